@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file points.hpp
+/// @brief The input point set: plain doubles, dimension 2 or 3, indices are input order.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "constrict/status.hpp"
+
+namespace constrict {
+
+/// Points stored interleaved: point i is coords[dim*i .. dim*i+dim-1].
+struct PointSet {
+  int dim = 2;                  ///< 2 or 3
+  std::vector<double> coords;   ///< size dim * size()
+
+  std::size_t size() const noexcept { return dim > 0 ? coords.size() / static_cast<std::size_t>(dim) : 0; }
+  const double* operator[](std::size_t i) const noexcept { return coords.data() + static_cast<std::size_t>(dim) * i; }
+  double* operator[](std::size_t i) noexcept { return coords.data() + static_cast<std::size_t>(dim) * i; }
+};
+
+/// One pair of identical input points (first < second, 0-based input indices).
+struct DuplicatePair {
+  std::size_t first = 0;
+  std::size_t second = 0;
+};
+
+/// Result of check_points(): what defects the set has.
+struct PointCheck {
+  std::vector<DuplicatePair> duplicates;  ///< every duplicate, paired with the first occurrence
+};
+
+/// Checks a point set for use by the reconstruction and graph builders.
+/// Order of checks: dimension, empty, non-finite, duplicates, too few, collinear/coplanar
+/// (exact predicates). Duplicates are reported with the first few index pairs in the message and
+/// all pairs in @p report (if given).
+/// @param[in] points the input
+/// @param[out] report optional; filled with all duplicate pairs
+/// @return Ok, or EmptyInput, NonFinite, Duplicate, TooFewPoints, Collinear, Coplanar, InvalidArgument
+/// @note O(N log N).
+Status check_points(const PointSet& points, PointCheck* report = nullptr);
+
+/// Finds all duplicate points (exact coordinate equality). Each later copy is paired with the first
+/// occurrence. O(N log N), deterministic.
+std::vector<DuplicatePair> find_duplicates(const PointSet& points);
+
+/// Removes later copies of duplicate points.
+/// @param[out] kept_index for each point of the result, its index in the original input
+/// @return the merged set (first occurrences, in input order)
+PointSet merge_duplicates(const PointSet& points, std::vector<std::size_t>* kept_index);
+
+}  // namespace constrict

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file predicates.hpp
+/// @brief Exact geometric predicates on plain double coordinates (CGAL's filtered Epick kernel
+/// behind the scenes). All return -1, 0 or +1 and are exact for any finite double input.
+#pragma once
+
+namespace constrict {
+
+/// Sign of the orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear.
+int orient2(const double* a, const double* b, const double* c) noexcept;
+
+/// Sign of orient3d: +1 if d lies on the positive side of plane (a,b,c) (i.e. (a,b,c,d) is a
+/// positively oriented tetrahedron, CGAL::orientation == POSITIVE), -1 negative, 0 coplanar.
+int orient3(const double* a, const double* b, const double* c, const double* d) noexcept;
+
+/// Position of p relative to the circle with diameter ab: +1 outside, 0 on, -1 inside.
+/// Equals sign((a-p).(b-p)).
+int diametral_side2(const double* a, const double* b, const double* p) noexcept;
+
+/// Position of p relative to the smallest sphere through the triangle abc (centre in its plane):
+/// +1 outside, 0 on, -1 inside. @pre a, b, c not collinear.
+int diametral_side3(const double* a, const double* b, const double* c, const double* p) noexcept;
+
+/// In-circle: +1 if d is strictly inside the circle through a, b, c (any orientation of abc),
+/// 0 on it, -1 outside. @pre a, b, c not collinear.
+int in_circle(const double* a, const double* b, const double* c, const double* d) noexcept;
+
+/// In-sphere: +1 if e strictly inside the sphere through a, b, c, d, 0 on, -1 outside.
+/// @pre a, b, c, d not coplanar.
+int in_sphere(const double* a, const double* b, const double* c, const double* d,
+              const double* e) noexcept;
+
+/// True iff the three points are collinear (3D input). Exact.
+bool collinear3(const double* a, const double* b, const double* c) noexcept;
+
+/// Position of p in the circumcircle plane of triangle abc (3D) when p is coplanar:
+/// +1 strictly inside the circumcircle, 0 on it, -1 outside. @pre a,b,c,p coplanar, abc not collinear.
+int in_circle_coplanar3(const double* a, const double* b, const double* c, const double* p) noexcept;
+
+}  // namespace constrict

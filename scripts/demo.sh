@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Runs constrict on the bundled examples and writes results and pictures to OUT.
+# Usage: scripts/demo.sh PATH/TO/constrict OUT
+set -euo pipefail
+CLI=${1:?constrict binary}
+OUT=${2:-out}
+EX=examples/data
+mkdir -p "$OUT"
+run() { echo "+ constrict $*"; "$CLI" "$@"; }
+
+# The γ-graph family on a 2D curve sample: Delaunay, Gabriel, a β-skeleton, the convex hull and a
+# γ0 < 0 graph with crossing edges (pictures as SVG, values as CSV).
+for preset in delaunay gabriel hull beta-circle=1.5; do
+  name=${preset//=/}
+  run graph "$EX/2d/flower.xy" --preset "$preset" -o "$OUT/flower_${name}.svg" --quiet
+done
+run graph "$EX/2d/flower.xy" --gamma -0.1,-0.1 -o "$OUT/flower_gamma-0.1.svg"
+run graph "$EX/2d/flower.xy" --interval -1,1,0,1 -o "$OUT/flower_delaunay.csv" --report "$OUT/flower_delaunay.json"
+run graph "$EX/2d/nonhamiltonian9.xy" --interval -1,1,-0.2,1 -o "$OUT/nonhamiltonian9_gamma-0.2.svg"
+
+# 3D: γ([-1,1],[0,1]) (Delaunay faces) and the Gabriel-like γ(0,0) of two closed surfaces.
+run graph "$EX/3d/candlestick.xyz" --preset delaunay -o "$OUT/candlestick_delaunay.ply" --report "$OUT/candlestick_delaunay.json"
+run graph "$EX/3d/candlestick.xyz" --preset gabriel -o "$OUT/candlestick_gabriel.off"
+run graph "$EX/3d/ellipsoid.xyz" --preset hull -o "$OUT/ellipsoid_hull.obj"
+
+echo "demo: results in $OUT/"
+ls -1 "$OUT"

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact predicates on plain doubles: thin wrappers around CGAL's filtered Epick predicates
+// (static + dynamic interval filters, exact fallback), so that no other module includes CGAL.
+#include "constrict/predicates.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+namespace constrict {
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P2 = K::Point_2;
+using P3 = K::Point_3;
+inline P2 p2(const double* a) { return P2(a[0], a[1]); }
+inline P3 p3(const double* a) { return P3(a[0], a[1], a[2]); }
+}  // namespace
+
+int orient2(const double* a, const double* b, const double* c) noexcept {
+  return static_cast<int>(CGAL::orientation(p2(a), p2(b), p2(c)));
+}
+
+int orient3(const double* a, const double* b, const double* c, const double* d) noexcept {
+  return static_cast<int>(CGAL::orientation(p3(a), p3(b), p3(c), p3(d)));
+}
+
+int diametral_side2(const double* a, const double* b, const double* p) noexcept {
+  // CGAL: ON_BOUNDED_SIDE = +1 (inside). We return +1 outside.
+  return -static_cast<int>(CGAL::side_of_bounded_circle(p2(a), p2(b), p2(p)));
+}
+
+int diametral_side3(const double* a, const double* b, const double* c, const double* p) noexcept {
+  // Sphere through a, b, c with centre in their plane (the smallest sphere through them).
+  return -static_cast<int>(K().side_of_bounded_sphere_3_object()(p3(a), p3(b), p3(c), p3(p)));
+}
+
+int in_circle(const double* a, const double* b, const double* c, const double* d) noexcept {
+  return static_cast<int>(CGAL::side_of_bounded_circle(p2(a), p2(b), p2(c), p2(d)));
+}
+
+int in_sphere(const double* a, const double* b, const double* c, const double* d,
+              const double* e) noexcept {
+  return static_cast<int>(CGAL::side_of_bounded_sphere(p3(a), p3(b), p3(c), p3(d), p3(e)));
+}
+
+bool collinear3(const double* a, const double* b, const double* c) noexcept {
+  return CGAL::collinear(p3(a), p3(b), p3(c));
+}
+
+int in_circle_coplanar3(const double* a, const double* b, const double* c,
+                        const double* p) noexcept {
+  // For p in the plane of abc, inside the smallest sphere of abc <=> inside its circumcircle.
+  return static_cast<int>(K().side_of_bounded_sphere_3_object()(p3(a), p3(b), p3(c), p3(p)));
+}
+
+}  // namespace constrict

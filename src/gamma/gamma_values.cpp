@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Apex values, side values and the brute-force oracle (spec §2.1, §4.1).
+// Signs come from exact predicates; magnitudes are evaluated in double with cancellation-free
+// formulas, so that |γ| is accurate to a few ulps even when the apex is close to the sphere.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "constrict/gamma_graph.hpp"
+#include "constrict/predicates.hpp"
+
+namespace constrict {
+
+void GammaFaces::reserve(std::size_t n) {
+  vertices.reserve(n * static_cast<std::size_t>(dim));
+  gamma_a.reserve(n);
+  gamma_b.reserve(n);
+  delta.reserve(n);
+  flags.reserve(n);
+}
+
+void GammaFaces::push_back(const int* ids, double ga, double gb, std::uint8_t flag) {
+  vertices.insert(vertices.end(), ids, ids + dim);
+  gamma_a.push_back(ga);
+  gamma_b.push_back(gb);
+  delta.push_back(filtration_value(ga, gb));
+  flags.push_back(flag);
+}
+
+double filtration_value(double gamma_a, double gamma_b) noexcept {
+  const double ma = std::fabs(gamma_a), mb = std::fabs(gamma_b);
+  if (ma > mb) return gamma_a;
+  if (mb > ma) return gamma_b;
+  return std::max(gamma_a, gamma_b);
+}
+
+double apex_gamma2(const double* a, const double* b, const double* p) noexcept {
+  const int s = diametral_side2(a, b, p);  // +1: p outside the diametral circle, angle acute
+  if (s == 0) return 0.0;
+  const double ux = a[0] - p[0], uy = a[1] - p[1];
+  const double vx = b[0] - p[0], vy = b[1] - p[1];
+  const double uu = ux * ux + uy * uy, vv = vx * vx + vy * vy;
+  const double dot = ux * vx + uy * vy;
+  const double cross = std::fabs(ux * vy - uy * vx);
+  const double nn = std::sqrt(uu * vv);
+  // 1 - sin φ = cos²φ / (1 + sin φ): no cancellation near φ = 90°.
+  const double sin_phi = std::min(1.0, cross / nn);
+  const double cos2 = std::min(1.0, (dot / nn) * (dot / nn));
+  const double mag = std::min(1.0, cos2 / (1.0 + sin_phi));
+  return s > 0 ? mag : -mag;
+}
+
+double apex_gamma3(const double* a, const double* b, const double* c, const double* p) noexcept {
+  const int s = diametral_side3(a, b, c, p);  // +1: p outside the smallest sphere of abc
+  if (s == 0) return 0.0;
+  // Circumcentre of abc relative to a: o = ((|e1|² e2 - |e2|² e1) × n) / (2|n|²).
+  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  const double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+  const double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+  const double w[3] = {l1 * e2[0] - l2 * e1[0], l1 * e2[1] - l2 * e1[1], l1 * e2[2] - l2 * e1[2]};
+  const double o[3] = {(w[1] * n[2] - w[2] * n[1]) / (2 * nn), (w[2] * n[0] - w[0] * n[2]) / (2 * nn),
+                       (w[0] * n[1] - w[1] * n[0]) / (2 * nn)};
+  const double r = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+  const double q[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double h = std::fabs(q[0] * n[0] + q[1] * n[1] + q[2] * n[2]) / std::sqrt(nn);
+  // Power of p w.r.t. the smallest sphere: |q - o|² - |o|² = |q|² - 2 q·o.
+  const double rho = std::fabs((q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) -
+                               2 * (q[0] * o[0] + q[1] * o[1] + q[2] * o[2]));
+  // 1 - r/R with R = sqrt(r² + (ρ/2h)²):  = ρ² / (S (S + 2hr)),  S = sqrt((2hr)² + ρ²).
+  const double t = 2 * h * r;
+  const double S = std::sqrt(t * t + rho * rho);
+  double mag = S > 0 ? (rho / S) * (rho / (S + t)) : 0.0;
+  mag = std::min(1.0, mag);
+  return s > 0 ? mag : -mag;
+}
+
+void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, double& gamma_b,
+                      bool& blocked) {
+  gamma_a = 1.0;
+  gamma_b = 1.0;
+  blocked = false;
+  const std::size_t n = points.size();
+  if (points.dim == 2) {
+    const double* a = points[static_cast<std::size_t>(ids[0])];
+    const double* b = points[static_cast<std::size_t>(ids[1])];
+    for (std::size_t i = 0; i < n; ++i) {
+      if (static_cast<int>(i) == ids[0] || static_cast<int>(i) == ids[1]) continue;
+      const double* p = points[i];
+      const int o = orient2(a, b, p);
+      if (o == 0) {
+        if (diametral_side2(a, b, p) < 0) blocked = true;  // in the open segment
+        continue;
+      }
+      const double g = apex_gamma2(a, b, p);
+      if (o > 0) gamma_a = std::min(gamma_a, g);
+      else gamma_b = std::min(gamma_b, g);
+    }
+  } else {
+    const double* a = points[static_cast<std::size_t>(ids[0])];
+    const double* b = points[static_cast<std::size_t>(ids[1])];
+    const double* c = points[static_cast<std::size_t>(ids[2])];
+    for (std::size_t i = 0; i < n; ++i) {
+      const int ii = static_cast<int>(i);
+      if (ii == ids[0] || ii == ids[1] || ii == ids[2]) continue;
+      const double* p = points[i];
+      const int o = orient3(a, b, c, p);
+      if (o == 0) {
+        if (in_circle_coplanar3(a, b, c, p) > 0) blocked = true;  // in the open circumdisc
+        continue;
+      }
+      const double g = apex_gamma3(a, b, c, p);
+      if (o > 0) gamma_a = std::min(gamma_a, g);
+      else gamma_b = std::min(gamma_b, g);
+    }
+  }
+}
+
+Status brute_force_gamma_faces(const PointSet& points, GammaFaces& out) {
+  const std::size_t n = points.size();
+  out.clear();
+  out.dim = points.dim;
+  auto flag_of = [](double ga, double gb, bool blocked) {
+    std::uint8_t f = 0;
+    if (blocked) f |= kFaceBlocked;
+    else if (ga == 1.0 || gb == 1.0) f |= kFaceHull;
+    return f;
+  };
+  if (points.dim == 2) {
+    if (n > 400) return {StatusCode::Unsupported, "brute force oracle: at most 400 points in 2D"};
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const int ids[2] = {static_cast<int>(i), static_cast<int>(j)};
+        double ga, gb;
+        bool blocked;
+        side_values_scan(points, ids, ga, gb, blocked);
+        out.push_back(ids, ga, gb, flag_of(ga, gb, blocked));
+      }
+  } else if (points.dim == 3) {
+    if (n > 80) return {StatusCode::Unsupported, "brute force oracle: at most 80 points in 3D"};
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        for (std::size_t k = j + 1; k < n; ++k) {
+          if (collinear3(points[i], points[j], points[k])) continue;
+          const int ids[3] = {static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)};
+          double ga, gb;
+          bool blocked;
+          side_values_scan(points, ids, ga, gb, blocked);
+          out.push_back(ids, ga, gb, flag_of(ga, gb, blocked));
+        }
+  } else {
+    return {StatusCode::InvalidArgument, "brute force oracle: dimension must be 2 or 3"};
+  }
+  return Status::ok();
+}
+
+}  // namespace constrict
