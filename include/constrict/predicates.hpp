@@ -25,6 +25,13 @@ int diametral_side3(const double* a, const double* b, const double* c, const dou
 /// 0 on it, -1 outside. @pre a, b, c not collinear.
 int in_circle(const double* a, const double* b, const double* c, const double* d) noexcept;
 
+/// In-circle for a counter-clockwise triangle abc (faster: statically filtered). @pre orient2(a,b,c) > 0.
+int in_circle_ccw(const double* a, const double* b, const double* c, const double* d) noexcept;
+
+/// In-sphere for a positively oriented tetrahedron (orient3(a,b,c,d) > 0); statically filtered.
+int in_sphere_positive(const double* a, const double* b, const double* c, const double* d,
+                       const double* e) noexcept;
+
 /// In-sphere: +1 if e strictly inside the sphere through a, b, c, d, 0 on, -1 outside.
 /// @pre a, b, c, d not coplanar.
 int in_sphere(const double* a, const double* b, const double* c, const double* d,

@@ -11,10 +11,6 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <CGAL/hilbert_sort.h>
-#include <CGAL/property_map.h>
-#include <CGAL/Spatial_sort_traits_adapter_2.h>
-#include <CGAL/Spatial_sort_traits_adapter_3.h>
 
 #include <string>
 #include <utility>
@@ -50,19 +46,10 @@ Status build_delaunay2(const PointSet& points, Delaunay2& out) {
   input.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     input.emplace_back(K::Point_2(points[i][0], points[i][1]), static_cast<int>(i));
-  // Deterministic Hilbert order (CGAL's spatial_sort shuffles with a time-seeded generator,
-  // which would make the triangulation of co-circular points vary between runs).
-  using Pair2 = std::pair<K::Point_2, int>;
-  CGAL::hilbert_sort(input.begin(), input.end(),
-                     CGAL::Spatial_sort_traits_adapter_2<K, CGAL::First_of_pair_property_map<Pair2>>(),
-                     CGAL::Hilbert_sort_median_policy());
+  // Range insertion: CGAL's spatial sort (BRIO with a fixed-seed boost::rand48, so the result
+  // is deterministic, also for co-circular points) then hinted insertion.
   DT2 dt;
-  DT2::Face_handle hint;
-  for (const auto& [p, idx] : input) {
-    auto v = dt.insert(p, hint);
-    v->info() = idx;
-    hint = v->face();
-  }
+  dt.insert(input.begin(), input.end());
   if (Status s = check_count(dt, n); !s) return s;
 
   out.n_vertices = n;
@@ -92,17 +79,8 @@ Status build_delaunay3(const PointSet& points, Delaunay3& out) {
   input.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     input.emplace_back(K::Point_3(points[i][0], points[i][1], points[i][2]), static_cast<int>(i));
-  using Pair3 = std::pair<K::Point_3, int>;
-  CGAL::hilbert_sort(input.begin(), input.end(),
-                     CGAL::Spatial_sort_traits_adapter_3<K, CGAL::First_of_pair_property_map<Pair3>>(),
-                     CGAL::Hilbert_sort_median_policy());
   DT3 dt;
-  DT3::Cell_handle hint;
-  for (const auto& [p, idx] : input) {
-    auto v = dt.insert(p, hint);
-    v->info() = idx;
-    hint = v->cell();
-  }
+  dt.insert(input.begin(), input.end());  // spatial sort (fixed seed) + hinted insertion
   if (dt.number_of_vertices() != n)
     return {StatusCode::Duplicate, "Delaunay: " + std::to_string(n - dt.number_of_vertices()) +
                                        " input points coincide with others (remove duplicates first)"};

@@ -2,8 +2,10 @@
 // Exact predicates on plain doubles: thin wrappers around CGAL's filtered Epick predicates
 // (static + dynamic interval filters, exact fallback), so that no other module includes CGAL.
 #include "constrict/predicates.hpp"
+#include "core/detail/semi_static.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
 
 namespace constrict {
 namespace {
@@ -12,6 +14,7 @@ using P2 = K::Point_2;
 using P3 = K::Point_3;
 inline P2 p2(const double* a) { return P2(a[0], a[1]); }
 inline P3 p3(const double* a) { return P3(a[0], a[1], a[2]); }
+
 }  // namespace
 
 int orient2(const double* a, const double* b, const double* c) noexcept {
@@ -23,22 +26,41 @@ int orient3(const double* a, const double* b, const double* c, const double* d) 
 }
 
 int diametral_side2(const double* a, const double* b, const double* p) noexcept {
+  bool ok = false;
+  const int s = detail::diametral2_filtered(a, b, p, ok);
+  if (ok) return s;
   // CGAL: ON_BOUNDED_SIDE = +1 (inside). We return +1 outside.
   return -static_cast<int>(CGAL::side_of_bounded_circle(p2(a), p2(b), p2(p)));
 }
 
 int diametral_side3(const double* a, const double* b, const double* c, const double* p) noexcept {
+  bool ok = false;
+  const int s = detail::diametral3_filtered(a, b, c, p, ok);
+  if (ok) return s;
   // Sphere through a, b, c with centre in their plane (the smallest sphere through them).
   return -static_cast<int>(K().side_of_bounded_sphere_3_object()(p3(a), p3(b), p3(c), p3(p)));
 }
 
+// The oriented in-circle/in-sphere predicates have CGAL's static filters; the unoriented ones
+// do not, so we orient first (orientation is statically filtered too).
 int in_circle(const double* a, const double* b, const double* c, const double* d) noexcept {
-  return static_cast<int>(CGAL::side_of_bounded_circle(p2(a), p2(b), p2(c), p2(d)));
+  const int o = orient2(a, b, c);
+  return o * static_cast<int>(CGAL::side_of_oriented_circle(p2(a), p2(b), p2(c), p2(d)));
+}
+
+int in_circle_ccw(const double* a, const double* b, const double* c, const double* d) noexcept {
+  return static_cast<int>(CGAL::side_of_oriented_circle(p2(a), p2(b), p2(c), p2(d)));
 }
 
 int in_sphere(const double* a, const double* b, const double* c, const double* d,
               const double* e) noexcept {
-  return static_cast<int>(CGAL::side_of_bounded_sphere(p3(a), p3(b), p3(c), p3(d), p3(e)));
+  const int o = orient3(a, b, c, d);
+  return o * static_cast<int>(CGAL::side_of_oriented_sphere(p3(a), p3(b), p3(c), p3(d), p3(e)));
+}
+
+int in_sphere_positive(const double* a, const double* b, const double* c, const double* d,
+                       const double* e) noexcept {
+  return static_cast<int>(CGAL::side_of_oriented_sphere(p3(a), p3(b), p3(c), p3(d), p3(e)));
 }
 
 bool collinear3(const double* a, const double* b, const double* c) noexcept {

@@ -15,6 +15,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "gamma/detail/apex3.hpp"
 
 namespace constrict {
 namespace {
@@ -115,7 +116,7 @@ Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
       double gb = v1 < v2 ? gq : gp;
       if (nb != -1) {
         const int q = tri[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
-        const int ic = in_circle(points[static_cast<std::size_t>(tri[t][0])], points[static_cast<std::size_t>(tri[t][1])],
+        const int ic = in_circle_ccw(points[static_cast<std::size_t>(tri[t][0])], points[static_cast<std::size_t>(tri[t][1])],
                                  points[static_cast<std::size_t>(tri[t][2])], points[static_cast<std::size_t>(q)]);
         reconcile(ga, gb, ic);
         if (ic == 0) {
@@ -228,21 +229,22 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
       // The tet is positively oriented, so orient3(ids..., apex) = parity of the permutation.
       const int side_p = parity4({fv[0].second, fv[1].second, fv[2].second, i});
       const int p = tet[t][static_cast<std::size_t>(i)];
-      const double gp = apex_gamma3(P(ids[0]), P(ids[1]), P(ids[2]), P(p));
+      const detail::TriangleFrame3 frame(P(ids[0]), P(ids[1]), P(ids[2]));
+      const double gp = frame.apex(P(p));
       double gq = 1.0;
       int j = -1;
       if (nb != -1) {
         for (int l = 0; l < 4; ++l)
           if (nbr[static_cast<std::size_t>(nb)][static_cast<std::size_t>(l)] == static_cast<int>(t)) j = l;
         const int q = tet[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
-        gq = apex_gamma3(P(ids[0]), P(ids[1]), P(ids[2]), P(q));
+        gq = frame.apex(P(q));
       }
       double ga = side_p > 0 ? gp : gq;
       double gb = side_p > 0 ? gq : gp;
       if (nb != -1) {
         const int q = tet[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
         const auto& v = tet[t];
-        const int is = in_sphere(P(v[0]), P(v[1]), P(v[2]), P(v[3]), P(q));
+        const int is = in_sphere_positive(P(v[0]), P(v[1]), P(v[2]), P(v[3]), P(q));
         reconcile(ga, gb, is);
         if (is == 0) {
           clusters.unite(static_cast<int>(t), nb);

@@ -8,6 +8,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "gamma/detail/apex3.hpp"
 
 namespace constrict {
 
@@ -51,31 +52,7 @@ double apex_gamma2(const double* a, const double* b, const double* p) noexcept {
 }
 
 double apex_gamma3(const double* a, const double* b, const double* c, const double* p) noexcept {
-  const int s = diametral_side3(a, b, c, p);  // +1: p outside the smallest sphere of abc
-  if (s == 0) return 0.0;
-  // Circumcentre of abc relative to a: o = ((|e1|² e2 - |e2|² e1) × n) / (2|n|²).
-  const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
-  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-  const double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
-  const double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
-  const double w[3] = {l1 * e2[0] - l2 * e1[0], l1 * e2[1] - l2 * e1[1], l1 * e2[2] - l2 * e1[2]};
-  const double o[3] = {(w[1] * n[2] - w[2] * n[1]) / (2 * nn), (w[2] * n[0] - w[0] * n[2]) / (2 * nn),
-                       (w[0] * n[1] - w[1] * n[0]) / (2 * nn)};
-  const double r = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
-  const double q[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-  const double h = std::fabs(q[0] * n[0] + q[1] * n[1] + q[2] * n[2]) / std::sqrt(nn);
-  // Power of p w.r.t. the smallest sphere: |q - o|² - |o|² = |q|² - 2 q·o.
-  const double rho = std::fabs((q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) -
-                               2 * (q[0] * o[0] + q[1] * o[1] + q[2] * o[2]));
-  // 1 - r/R with R = sqrt(r² + (ρ/2h)²):  = ρ² / (S (S + 2hr)),  S = sqrt((2hr)² + ρ²).
-  const double t = 2 * h * r;
-  const double S = std::sqrt(t * t + rho * rho);
-  double mag = S > 0 ? (rho / S) * (rho / (S + t)) : 0.0;
-  mag = std::min(1.0, mag);
-  return s > 0 ? mag : -mag;
+  return detail::TriangleFrame3(a, b, c).apex(p);
 }
 
 void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, double& gamma_b,
