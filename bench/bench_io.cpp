@@ -6,7 +6,6 @@
 // which is what the CLI runs; /check:0 is parsing alone.
 // Link with benchmark::benchmark_main (this file has no main()).
 #include <benchmark/benchmark.h>
-
 #include <stdlib.h>  // mkdtemp
 
 #include <cstdint>
@@ -125,8 +124,7 @@ void run(benchmark::State& state, Kind kind, int dim) {
     benchmark::DoNotOptimize(points.coords.data());
   }
   state.SetItemsProcessed(state.iterations() * n);
-  state.SetBytesProcessed(state.iterations() *
-                          static_cast<std::int64_t>(fs::file_size(path)));
+  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(fs::file_size(path)));
 }
 
 void BM_ReadText3D(benchmark::State& state) { run(state, Kind::Text, 3); }

@@ -20,8 +20,12 @@ enum class PointFormat { Auto, Text, Ply, Off, Obj };
 struct ReadOptions {
   int dim = 0;                    ///< 0: from the data (2 columns -> 2D, 3 -> 3D); 2 or 3: forced
   PointFormat format = PointFormat::Auto;  ///< Auto: by file extension
-  bool merge_duplicates = false;  ///< false: duplicates are an error; true: keep first, warn
-  bool check = true;              ///< run check_points() (too few, collinear, coplanar) at the end
+  /// false: duplicates are an error (Duplicate, when `check`); true: keep the first occurrence of
+  /// each point, drop later copies and add a warning (done even when `check` is false)
+  bool merge_duplicates = false;
+  /// run check_points() at the end (duplicates, too few, collinear, coplanar); false returns the
+  /// points as parsed. Parse-level defects (ParseError, NonFinite, EmptyInput) are always errors.
+  bool check = true;
 };
 
 /// What read_points() saw besides the points.
@@ -33,26 +37,35 @@ struct ReadReport {
   std::vector<std::string> warnings;        ///< one line each (e.g. merged duplicates)
 };
 
-/// Reads a point set.
+/// Reads a point set (full rules and every error message: docs/input-formats.md).
 /// Text: one point per line, fields separated by whitespace, ',', ';' or tab; '#' starts a
-/// comment; blank lines ignored; one optional non-numeric header line before the first point.
-/// Every line must have the same number of fields. With dim = 0 the field count (2 or 3) is the
-/// dimension; a forced dim takes the first `dim` fields of each line (so --dim 2 drops z) and
-/// fewer fields than `dim` is a ParseError.
+/// comment (full-line or trailing); blank lines ignored; CRLF accepted; one optional non-numeric
+/// header line before the first point. Every line must have the same number of fields. With
+/// dim = 0 the field count (2 or 3) is the dimension; a forced dim takes the first `dim` fields of
+/// each line (so --dim 2 drops z) and fewer fields than `dim` is a ParseError.
 /// PLY: ascii, binary_little_endian, binary_big_endian; `vertex` element with float/double (or
-/// integer) properties x, y[, z]; other elements and properties are skipped.
-/// OFF / OBJ: the vertices only.
+/// integer) properties x, y[, z]; other elements and properties (lists too) are skipped. 3D if
+/// the vertex has z, else 2D; a forced dim 2 drops z.
+/// OFF (also COFF, NOFF...) / OBJ (`v` lines): the vertices only, 3D unless dim 2 is forced.
 /// @param[in] path file to read
 /// @param[in] options see ReadOptions
-/// @param[out] out the points (dimension set)
-/// @param[out] report optional details
-/// @return Ok, or FileNotFound, ParseError (message names file and line), EmptyInput, NonFinite,
-///         Duplicate (first few index pairs listed), TooFewPoints, Collinear, Coplanar.
-/// @note Linear time; numbers parsed with fast_float (no iostreams).
+/// @param[out] out the points (dimension set); left unchanged when an error is returned
+/// @param[out] report optional details; reset at the start, complete only on success
+/// @return Ok, or FileNotFound (with the system's reason), InvalidArgument (options.dim not 0, 2
+///         or 3), ParseError ("file:LINE: ..."), EmptyInput, NonFinite ("file:LINE: ..." or
+///         "file: PLY vertex I: ..." for binary PLY), Duplicate (first few index pairs listed),
+///         TooFewPoints, Collinear, Coplanar. Every message is one line starting with @p path.
+/// @note O(N) parsing with fast_float (no iostreams) on a memory-mapped file, plus O(N log N)
+///       check_points(). A regular file is mapped on POSIX systems: truncating it while it is
+///       being read is undefined (SIGBUS), as for any mmap reader.
 Status read_points(const std::string& path, const ReadOptions& options, PointSet& out,
                    ReadReport* report = nullptr);
 
-/// Same as read_points() on an in-memory buffer; @p name is used in messages.
+/// Same as read_points() on an in-memory buffer (e.g. standard input).
+/// @param[in] data the file contents
+/// @param[in] name used in messages and, when no format is given, for the format by extension
+/// @param[in] format overrides options.format unless Auto; Auto with options.format Auto picks
+///            the format from the extension of @p name
 Status read_points_from_buffer(std::string_view data, const std::string& name, PointFormat format,
                                const ReadOptions& options, PointSet& out,
                                ReadReport* report = nullptr);

@@ -16,6 +16,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "gamma/detail/apex3.hpp"
+#include "gamma/detail/reconcile.hpp"
 
 namespace constrict {
 namespace {
@@ -38,23 +39,6 @@ struct UnionFind {
     if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
   }
 };
-
-inline double sgn_mag(double g, double mag) { return g > 0 ? mag : (g < 0 ? -mag : 0.0); }
-
-// Makes the two side values of a face consistent with the exact sign of their sum, which for a
-// Delaunay face with apexes p, q is the exact in-circle/in-sphere test (spec §2.2):
-// co-circular (ic == 0) -> equal magnitudes; strictly Delaunay (ic < 0) -> Δ > 0.
-void reconcile(double& ga, double& gb, int ic) {
-  if (ic == 0) {
-    const double mag = std::max(std::fabs(ga), std::fabs(gb));
-    ga = sgn_mag(ga, mag);
-    gb = sgn_mag(gb, mag);
-  } else if (ic < 0) {
-    double& pos = ga >= gb ? ga : gb;
-    double& neg = ga >= gb ? gb : ga;
-    if (neg < 0 && pos > 0 && -neg >= pos) neg = -std::nextafter(pos, 0.0);
-  }
-}
 
 struct ArrayHash {
   template <std::size_t K>
@@ -118,7 +102,7 @@ Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
         const int q = tri[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
         const int ic = in_circle_ccw(points[static_cast<std::size_t>(tri[t][0])], points[static_cast<std::size_t>(tri[t][1])],
                                  points[static_cast<std::size_t>(tri[t][2])], points[static_cast<std::size_t>(q)]);
-        reconcile(ga, gb, ic);
+        detail::reconcile_side_values(ga, gb, ic);
         if (ic == 0) {
           clusters.unite(static_cast<int>(t), nb);
           in_cluster[t] = in_cluster[static_cast<std::size_t>(nb)] = 1;
@@ -178,7 +162,7 @@ Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
         CONSTRICT_CHECK(wa >= 0 && wb >= 0, "co-circular chord without apexes on both sides");
         double ga = apex_gamma2(a, b, points[static_cast<std::size_t>(wa)]);
         double gb = apex_gamma2(a, b, points[static_cast<std::size_t>(wb)]);
-        reconcile(ga, gb, 0);
+        detail::reconcile_side_values(ga, gb, 0);
         faces.push_back(e.data(), ga, gb, kFaceCospherical);
       }
   }
@@ -245,7 +229,7 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
         const int q = tet[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
         const auto& v = tet[t];
         const int is = in_sphere_positive(P(v[0]), P(v[1]), P(v[2]), P(v[3]), P(q));
-        reconcile(ga, gb, is);
+        detail::reconcile_side_values(ga, gb, is);
         if (is == 0) {
           clusters.unite(static_cast<int>(t), nb);
           in_cluster[t] = in_cluster[static_cast<std::size_t>(nb)] = 1;
@@ -372,7 +356,9 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
           if (collinear3(P(tr[0]), P(tr[1]), P(tr[2]))) continue;
           const int s = orient3(P(tr[0]), P(tr[1]), P(tr[2]), P(witness));
           present.insert(tr);
-          faces.push_back(tr.data(), s == rep_side ? ra : rb, s == rep_side ? rb : ra, kFaceCospherical);
+          const double ga = s == rep_side ? ra : rb, gb = s == rep_side ? rb : ra;
+          faces.push_back(tr.data(), ga, gb,
+                          static_cast<std::uint8_t>(kFaceCospherical | (ga == 1.0 || gb == 1.0 ? kFaceHull : 0)));
         }
   }
 
@@ -409,7 +395,7 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
           if (wa < 0 || wb < 0) continue;
           double ga = apex_gamma3(A, B, C, P(wa));
           double gb = apex_gamma3(A, B, C, P(wb));
-          reconcile(ga, gb, 0);
+          detail::reconcile_side_values(ga, gb, 0);
           present.insert(tr);
           faces.push_back(tr.data(), ga, gb, kFaceCospherical);
         }

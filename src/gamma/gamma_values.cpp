@@ -9,6 +9,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "gamma/detail/apex3.hpp"
+#include "gamma/detail/reconcile.hpp"
 
 namespace constrict {
 
@@ -61,6 +62,7 @@ void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, d
   gamma_b = 1.0;
   blocked = false;
   const std::size_t n = points.size();
+  std::size_t arg_a = n, arg_b = n;  // apexes realising the side values
   if (points.dim == 2) {
     const double* a = points[static_cast<std::size_t>(ids[0])];
     const double* b = points[static_cast<std::size_t>(ids[1])];
@@ -73,9 +75,12 @@ void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, d
         continue;
       }
       const double g = apex_gamma2(a, b, p);
-      if (o > 0) gamma_a = std::min(gamma_a, g);
-      else gamma_b = std::min(gamma_b, g);
+      if (o > 0 && g < gamma_a) { gamma_a = g; arg_a = i; }
+      if (o < 0 && g < gamma_b) { gamma_b = g; arg_b = i; }
     }
+    // The sign of γ_a + γ_b is exact: the in-circle test of the two realising apexes.
+    if (arg_a < n && arg_b < n)
+      detail::reconcile_side_values(gamma_a, gamma_b, in_circle(a, b, points[arg_a], points[arg_b]));
   } else {
     const double* a = points[static_cast<std::size_t>(ids[0])];
     const double* b = points[static_cast<std::size_t>(ids[1])];
@@ -90,9 +95,11 @@ void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, d
         continue;
       }
       const double g = apex_gamma3(a, b, c, p);
-      if (o > 0) gamma_a = std::min(gamma_a, g);
-      else gamma_b = std::min(gamma_b, g);
+      if (o > 0 && g < gamma_a) { gamma_a = g; arg_a = i; }
+      if (o < 0 && g < gamma_b) { gamma_b = g; arg_b = i; }
     }
+    if (arg_a < n && arg_b < n)
+      detail::reconcile_side_values(gamma_a, gamma_b, in_sphere(a, b, c, points[arg_a], points[arg_b]));
   }
 }
 

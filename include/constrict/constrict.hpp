@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file constrict.hpp
+/// @brief 2D reconstruction: a simple polygon through all points by γ-constriction of the
+/// Delaunay triangulation (Veltkamp, seed paper §4.1, §4.3, §5; spec gamma-graph.md §3), with
+/// local fallbacks when the greedy constriction locks. Algorithm and guarantees:
+/// docs/reconstruction-2d.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "constrict/points.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict {
+
+/// What to do when the Delaunay constriction locks (heap empty, points still inside).
+enum class Fallback {
+  Auto,     ///< γ0 schedule, then degree-4 augmentation, then repair (always completes)
+  Gamma0,   ///< γ0 schedule, then repair if Constrict2Options::repair
+  Degree4,  ///< degree-4 augmentation, then repair if Constrict2Options::repair
+  None,     ///< stop at the lock: result.complete = false, stuck_points listed
+};
+
+/// Options of reconstruct2(). Defaults reproduce the paper's algorithm plus the fallbacks.
+struct Constrict2Options {
+  Fallback fallback = Fallback::Auto;  ///< behaviour on lock
+  /// γ0 values tried in order (each < 0, decreasing); the graph γ([-1,1],[γ0,1]) grows with each.
+  std::vector<double> gamma0_schedule = {-0.05, -0.1, -0.2, -0.3, -0.5, -0.75, -1};
+  /// Run the final repair after Gamma0/Degree4 (Auto always does). The repair guarantees a
+  /// complete polygon.
+  bool repair = true;
+  /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
+  /// then incomplete (no fallback runs) unless all points were already on the boundary.
+  std::size_t stop_after = SIZE_MAX;
+  /// Validate the final polygon with validate_polygon() (a failure is a bug: InternalError).
+  bool validate = true;
+};
+
+/// One fallback stage and how many points it placed on the boundary.
+struct Constrict2Stage {
+  std::string name;        ///< "gamma", "gamma0=-0.1", "degree4", "repair", "star"
+  std::size_t placed = 0;  ///< points that joined the boundary in this stage
+};
+
+/// Result of reconstruct2().
+struct Polygon2Result {
+  std::vector<int> boundary;  ///< CCW polygon as input indices (each point once when complete)
+  bool complete = false;      ///< all points on the boundary (always true unless Fallback::None
+                              ///< or stop_after stopped the run early)
+  bool locked_at_gamma0 = false;  ///< the Delaunay (γ0 = 0) constriction locked
+  std::vector<int> stuck_points;  ///< points inside when the Delaunay constriction stopped
+  /// The last stage that placed a point: "gamma" (no fallback needed), "gamma0=<v>", "degree4",
+  /// "repair" or "star"; "locked" with Fallback::None, "stopped" after stop_after.
+  std::string method;
+  std::vector<Constrict2Stage> stages;  ///< every stage run, in order
+  std::size_t removed_simplices = 0;    ///< triangles removed by the Delaunay constriction
+  std::size_t fallback_insertions = 0;  ///< points placed by the fallbacks
+  std::vector<std::array<int, 2>> fallback_edges;  ///< non-Delaunay polygon edges, (min, max) ids
+  double area = 0, perimeter = 0;       ///< of the final polygon (double arithmetic)
+  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_validate = 0;
+};
+
+/// Event passed to a visitor.
+struct Constrict2Event {
+  enum class Kind { RemoveTriangle, InsertPoint, Lock, StageBegin };
+  Kind kind = Kind::RemoveTriangle;
+  std::array<int, 3> triangle{{-1, -1, -1}};  ///< (a, b, y): boundary edge a->b, apex y
+  double criterion = 0;                       ///< 1 - γ(ab; y)
+  std::string stage;                          ///< stage name
+};
+
+/// Observer of the constriction (for figures, debugging, tests). Called synchronously.
+class Constrict2Visitor {
+ public:
+  virtual ~Constrict2Visitor() = default;
+  virtual void on_event(const Constrict2Event& event) = 0;
+};
+
+/// Step-able constrictor. Usage: init(); while (step()) {...}; finish(result).
+/// reconstruct2() does exactly this.
+class Constrictor2 {
+ public:
+  Constrictor2();
+  ~Constrictor2();
+  Constrictor2(const Constrictor2&) = delete;
+  Constrictor2& operator=(const Constrictor2&) = delete;
+
+  /// Checks the points, builds the Delaunay triangulation, starts from the convex hull.
+  /// @param[in] points 2D points (kept by reference: must outlive the constrictor)
+  /// @return check_points() failures (TooFewPoints, Collinear, Duplicate, ...) or Ok
+  /// @note O(N log N).
+  Status init(const PointSet& points, const Constrict2Options& options,
+              Constrict2Visitor* visitor = nullptr);
+  /// Removes one triangle of the Delaunay constriction (spec §3.5).
+  /// @return false when this stage is over: all points on the boundary, locked, or stop_after.
+  /// @note O(log N) amortised.
+  bool step();
+  /// Current boundary, CCW, starting at its smallest index.
+  std::vector<int> boundary() const;
+  /// Points not (yet) on the boundary, ascending.
+  std::vector<int> inside_points() const;
+  /// Runs the fallbacks per the options, validates and fills @p result.
+  /// @return Ok (see result.complete), or Internal if init() was not successful.
+  Status finish(Polygon2Result& result);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reconstructs a simple polygon through all points (2D).
+/// @param[in] points dim == 2, at least 3 points, no duplicates, not all collinear
+/// @param[in] options fallbacks and limits
+/// @param[out] result the polygon and diagnostics
+/// @return Ok, or the check_points() status for bad input. With Fallback::None a lock is not an
+///   error: Ok is returned with result.complete == false and result.stuck_points filled.
+/// @note Guarantee: with Fallback::Auto (or repair enabled) result.boundary is a simple CCW polygon
+///   through every point (validated exactly). Complexity O(N log N) expected for the Delaunay
+///   stage; fallbacks are local to the stuck region (docs/reconstruction-2d.md).
+Status reconstruct2(const PointSet& points, const Constrict2Options& options,
+                    Polygon2Result& result, Constrict2Visitor* visitor = nullptr);
+
+}  // namespace constrict

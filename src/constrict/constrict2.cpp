@@ -1,0 +1,753 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// 2D γ-constriction of the Delaunay triangulation (seed paper §4.1, §5; spec §3.1-3.5) with local
+// fallbacks after a lock (paper §4.3; spec §3.6, §3.7) and a final repair. See
+// docs/reconstruction-2d.md for the algorithm and its guarantees.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "constrict/constrict.hpp"
+#include "constrict/delaunay.hpp"
+#include "constrict/gamma_graph.hpp"
+#include "constrict/predicates.hpp"
+#include "constrict/validate.hpp"
+
+namespace constrict {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::uint64_t pair_key(int u, int v) {
+  if (u > v) std::swap(u, v);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) |
+         static_cast<std::uint32_t>(v);
+}
+
+std::array<int, 3> sorted3(int a, int b, int c) {
+  std::array<int, 3> s{{a, b, c}};
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+// Heap entry: larger key first; equal keys -> smallest sorted vertex triple (spec §3.5).
+struct Entry {
+  double key;
+  std::array<int, 3> ids;  // sorted vertex ids (tie-break)
+  int a, b, y;             // boundary edge a->b, apex y
+  int t;                   // triangle id (Delaunay stage) or -1
+  unsigned version;
+};
+struct EntryLess {
+  bool operator()(const Entry& l, const Entry& r) const {
+    if (l.key != r.key) return l.key < r.key;
+    return l.ids > r.ids;
+  }
+};
+using Heap = std::priority_queue<Entry, std::vector<Entry>, EntryLess>;
+
+bool on_closed_segment(const double* a, const double* b, const double* p) {
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+bool closed_segments_meet(const double* p, const double* q, const double* r, const double* s) {
+  const int o1 = orient2(p, q, r), o2 = orient2(p, q, s);
+  const int o3 = orient2(r, s, p), o4 = orient2(r, s, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  if (o1 == 0 && on_closed_segment(p, q, r)) return true;
+  if (o2 == 0 && on_closed_segment(p, q, s)) return true;
+  if (o3 == 0 && on_closed_segment(r, s, p)) return true;
+  if (o4 == 0 && on_closed_segment(r, s, q)) return true;
+  return false;
+}
+bool same_side_collinear(const double* v, const double* q, const double* r) {
+  if (q[0] != v[0]) return (q[0] > v[0]) == (r[0] > v[0]);
+  return (q[1] > v[1]) == (r[1] > v[1]);
+}
+
+// Uniform bucket grid over the bounding box. Cell indices are monotone in the coordinates, so a
+// bounding-box range query finds every point / registered segment inside the box (exactly).
+class Grid {
+ public:
+  void build(const PointSet& pts) {
+    const std::size_t n = pts.size();
+    minx_ = maxx_ = pts[0][0];
+    miny_ = maxy_ = pts[0][1];
+    for (std::size_t i = 1; i < n; ++i) {
+      minx_ = std::min(minx_, pts[i][0]); maxx_ = std::max(maxx_, pts[i][0]);
+      miny_ = std::min(miny_, pts[i][1]); maxy_ = std::max(maxy_, pts[i][1]);
+    }
+    const double w = std::max(maxx_ - minx_, 1e-300), h = std::max(maxy_ - miny_, 1e-300);
+    cs_ = std::sqrt(w * h / static_cast<double>(n));
+    cs_ = std::max({cs_, w / 4096.0, h / 4096.0});
+    nx_ = std::min<int>(4096, std::max(1, static_cast<int>(std::ceil(w / cs_))));
+    ny_ = std::min<int>(4096, std::max(1, static_cast<int>(std::ceil(h / cs_))));
+    const std::size_t nc = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+    start_.assign(nc + 1, 0);
+    std::vector<std::size_t> cell(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      cell[i] = index(cx(pts[i][0]), cy(pts[i][1]));
+      ++start_[cell[i] + 1];
+    }
+    for (std::size_t c = 0; c < nc; ++c) start_[c + 1] += start_[c];
+    ids_.assign(n, 0);
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) ids_[fill[cell[i]]++] = static_cast<int>(i);
+    edges_in_cell_.assign(nc, {});
+  }
+  int cx(double x) const { return clampi(static_cast<int>(std::floor((x - minx_) / cs_)), nx_); }
+  int cy(double y) const { return clampi(static_cast<int>(std::floor((y - miny_) / cs_)), ny_); }
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+  }
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  double cell_size() const { return cs_; }
+  template <class F> void points_in_cell(int i, int j, F&& f) const {
+    const std::size_t c = index(i, j);
+    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) f(ids_[k]);
+  }
+  std::vector<int>& edges(int i, int j) { return edges_in_cell_[index(i, j)]; }
+
+ private:
+  static int clampi(int v, int n) { return v < 0 ? 0 : (v >= n ? n - 1 : v); }
+  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, cs_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::size_t> start_;
+  std::vector<int> ids_;
+  std::vector<std::vector<int>> edges_in_cell_;
+};
+
+}  // namespace
+
+struct Constrictor2::Impl {
+  const PointSet* pts = nullptr;
+  Constrict2Options opt;
+  Constrict2Visitor* visitor = nullptr;
+  bool ready = false;
+  Delaunay2 dt;
+  std::size_t n = 0;
+  std::vector<char> alive, onb;
+  std::vector<int> nxt, prv;
+  std::vector<unsigned> ver;
+  std::size_t n_onb = 0, removed = 0;
+  Heap heap;
+  bool locked = false, stopped = false;
+  double ms_delaunay = 0, ms_constrict = 0;
+
+  // Fallback state (built on lock).
+  bool fb_ready = false;
+  std::vector<int> adj_off, adj;          // DT adjacency (CSR)
+  std::vector<int> vt_off, vt;            // vertex -> incident triangles (CSR)
+  Grid grid;
+  struct BEdge { int u, v; bool alive; };
+  std::vector<BEdge> bedges;
+  std::vector<int> out_edge;              // boundary edge id of (v, nxt[v])
+  std::unordered_map<std::uint64_t, double> delta_cache;
+  std::unordered_set<std::uint64_t> aug;  // degree-4 augmentation edges
+  std::vector<unsigned> mark;
+  unsigned mark_stamp = 0;
+
+  const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
+  static std::size_t U(int i) { return static_cast<std::size_t>(i); }
+
+  void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const std::string& stage) {
+    if (!visitor) return;
+    Constrict2Event ev;
+    ev.kind = k;
+    ev.triangle = {{a, b, y}};
+    ev.criterion = crit;
+    ev.stage = stage;
+    visitor->on_event(ev);
+  }
+
+  // ---------------------------------------------------------------- Delaunay stage (spec §3.5)
+  bool is_boundary_edge(int t, int i) const {
+    const int nb = dt.neighbors[U(t)][U(i)];
+    return nb < 0 || !alive[U(nb)];
+  }
+  // Removable ⇔ exactly one boundary edge and its opposite vertex not on the boundary (§3.3).
+  int removable_edge(int t) const {
+    if (!alive[U(t)]) return -1;
+    int cnt = 0, which = -1;
+    for (int i = 0; i < 3; ++i)
+      if (is_boundary_edge(t, i)) { ++cnt; which = i; }
+    if (cnt != 1) return -1;
+    if (onb[U(dt.triangles[U(t)][U(which)])]) return -1;
+    return which;
+  }
+  void push_triangle(int t) {
+    const int i = removable_edge(t);
+    if (i < 0) return;
+    const auto& tr = dt.triangles[U(t)];
+    const int y = tr[U(i)], a = tr[U((i + 1) % 3)], b = tr[U((i + 2) % 3)];
+    // The boundary runs a->b with the body on its left; γ(ab; y) is the inner side value (§3.2).
+    const double key = 1.0 - apex_gamma2(P(a), P(b), P(y));
+    heap.push(Entry{key, sorted3(a, b, y), a, b, y, t, ++ver[U(t)]});
+  }
+
+  Status init(const PointSet& points) {
+    pts = &points;
+    if (points.dim != 2) return {StatusCode::InvalidArgument, "reconstruct2: points must be 2D"};
+    Status st = check_points(points);
+    if (!st) return st;
+    const auto t0 = Clock::now();
+    st = build_delaunay2(points, dt);
+    if (!st) return st;
+    ms_delaunay = ms_since(t0);
+    n = points.size();
+    const std::size_t nt = dt.triangles.size();
+    alive.assign(nt, 1);
+    ver.assign(nt, 0);
+    onb.assign(n, 0);
+    nxt.assign(n, -1);
+    prv.assign(n, -1);
+    // Convex hull: DT edges without a neighbour; collinear hull points are hull vertices.
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 3; ++i)
+        if (dt.neighbors[t][U(i)] < 0) {
+          const int a = dt.triangles[t][U((i + 1) % 3)], b = dt.triangles[t][U((i + 2) % 3)];
+          nxt[U(a)] = b;
+          prv[U(b)] = a;
+          if (!onb[U(a)]) { onb[U(a)] = 1; ++n_onb; }
+          if (!onb[U(b)]) { onb[U(b)] = 1; ++n_onb; }
+        }
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 3; ++i)
+        if (dt.neighbors[t][U(i)] < 0) push_triangle(static_cast<int>(t));
+    ready = true;
+    return Status::ok();
+  }
+
+  bool step() {
+    if (!ready || n_onb == n || locked || stopped) return false;
+    if (removed >= opt.stop_after) { stopped = true; return false; }
+    const auto t0 = Clock::now();
+    while (!heap.empty()) {
+      const Entry e = heap.top();
+      heap.pop();
+      if (e.version != ver[U(e.t)] || removable_edge(e.t) < 0) continue;  // stale (lazy deletion)
+      alive[U(e.t)] = 0;
+      ++ver[U(e.t)];
+      nxt[U(e.a)] = e.y; prv[U(e.y)] = e.a;
+      nxt[U(e.y)] = e.b; prv[U(e.b)] = e.y;
+      onb[U(e.y)] = 1;
+      ++n_onb;
+      ++removed;
+      emit(Constrict2Event::Kind::RemoveTriangle, e.a, e.b, e.y, e.key, "gamma");
+      for (int j = 0; j < 3; ++j) {
+        const int nb = dt.neighbors[U(e.t)][U(j)];
+        if (nb >= 0 && alive[U(nb)]) push_triangle(nb);
+      }
+      ms_constrict += ms_since(t0);
+      return n_onb < n;
+    }
+    locked = true;
+    ms_constrict += ms_since(t0);
+    emit(Constrict2Event::Kind::Lock, -1, -1, -1, 0, "gamma");
+    return false;
+  }
+
+  // ---------------------------------------------------------------- fallback infrastructure
+  void build_fallback() {
+    if (fb_ready) return;
+    fb_ready = true;
+    std::vector<std::vector<int>> nb(n);
+    adj_off.assign(n + 1, 0);
+    vt_off.assign(n + 1, 0);
+    for (const auto& tr : dt.triangles)
+      for (int i = 0; i < 3; ++i) {
+        const int u = tr[U(i)], v = tr[U((i + 1) % 3)];
+        nb[U(u)].push_back(v);
+        nb[U(v)].push_back(u);
+        ++vt_off[U(u) + 1];
+      }
+    for (std::size_t v = 0; v < n; ++v) {
+      std::sort(nb[v].begin(), nb[v].end());
+      nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
+      adj_off[v + 1] = adj_off[v] + static_cast<int>(nb[v].size());
+      vt_off[v + 1] += vt_off[v];
+    }
+    adj.reserve(U(adj_off[n]));
+    for (std::size_t v = 0; v < n; ++v) adj.insert(adj.end(), nb[v].begin(), nb[v].end());
+    vt.assign(U(vt_off[n]), 0);
+    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
+    for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i) vt[U(fill[U(dt.triangles[t][U(i)])]++)] = static_cast<int>(t);
+    grid.build(*pts);
+    out_edge.assign(n, -1);
+    for (std::size_t v = 0; v < n; ++v)
+      if (onb[v]) out_edge[v] = add_edge(static_cast<int>(v), nxt[v]);
+    mark.assign(n, 0);
+  }
+  bool is_dt_edge(int u, int v) const {
+    return std::binary_search(adj.begin() + adj_off[U(u)], adj.begin() + adj_off[U(u) + 1], v);
+  }
+  int add_edge(int u, int v) {
+    const int id = static_cast<int>(bedges.size());
+    bedges.push_back(BEdge{u, v, true});
+    const double* a = P(u);
+    const double* b = P(v);
+    for (int j = grid.cy(std::min(a[1], b[1])); j <= grid.cy(std::max(a[1], b[1])); ++j)
+      for (int i = grid.cx(std::min(a[0], b[0])); i <= grid.cx(std::max(a[0], b[0])); ++i)
+        grid.edges(i, j).push_back(id);
+    return id;
+  }
+
+  // Segment (s, t) with s a boundary vertex and t not: does boundary edge e meet it anywhere
+  // other than at s (where only a collinear overlap counts)?
+  bool edge_blocks(const BEdge& e, int s, int t) const {
+    if (e.u == s || e.v == s) {
+      const int o = e.u == s ? e.v : e.u;
+      return orient2(P(s), P(o), P(t)) == 0 && same_side_collinear(P(s), P(o), P(t));
+    }
+    return closed_segments_meet(P(e.u), P(e.v), P(s), P(t));
+  }
+
+  // Can apex y (inside) be inserted into boundary edge a->b? The closed triangle (a,b,y) must be
+  // empty of other points and no boundary edge may meet the new edges ay, yb (exact). Then the
+  // triangle lies inside the polygon and the new polygon is simple (docs, "Local insertion").
+  bool valid_insert(int a, int b, int y) {
+    if (onb[U(y)] || !onb[U(a)] || nxt[U(a)] != b) return false;
+    const double* pa = P(a);
+    const double* pb = P(b);
+    const double* py = P(y);
+    if (orient2(pa, pb, py) <= 0) return false;
+    const int i0 = grid.cx(std::min({pa[0], pb[0], py[0]})), i1 = grid.cx(std::max({pa[0], pb[0], py[0]}));
+    const int j0 = grid.cy(std::min({pa[1], pb[1], py[1]})), j1 = grid.cy(std::max({pa[1], pb[1], py[1]}));
+    bool empty = true;
+    for (int j = j0; j <= j1 && empty; ++j)
+      for (int i = i0; i <= i1 && empty; ++i)
+        grid.points_in_cell(i, j, [&](int p) {
+          if (!empty || p == a || p == b || p == y) return;
+          const double* pp = P(p);
+          if (orient2(pa, pb, pp) >= 0 && orient2(pb, py, pp) >= 0 && orient2(py, pa, pp) >= 0) empty = false;
+        });
+    if (!empty) return false;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        for (int id : grid.edges(i, j)) {
+          const BEdge& e = bedges[U(id)];
+          if (!e.alive || (e.u == a && e.v == b)) continue;
+          if (edge_blocks(e, a, y) || edge_blocks(e, b, y)) return false;
+        }
+    return true;
+  }
+
+  void insert_point(int a, int b, int y) {
+    bedges[U(out_edge[U(a)])].alive = false;
+    out_edge[U(a)] = add_edge(a, y);
+    out_edge[U(y)] = add_edge(y, b);
+    nxt[U(a)] = y; prv[U(y)] = a;
+    nxt[U(y)] = b; prv[U(b)] = y;
+    onb[U(y)] = 1;
+    ++n_onb;
+  }
+
+  // Vertices within k DT hops of the seeds (marks them with a fresh stamp).
+  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) {
+    ++mark_stamp;
+    std::vector<int> out;
+    for (int s : seeds)
+      if (mark[U(s)] != mark_stamp) { mark[U(s)] = mark_stamp; out.push_back(s); }
+    std::size_t lo = 0;
+    for (int d = 0; d < k; ++d) {
+      const std::size_t hi = out.size();
+      if (lo == hi) break;
+      for (std::size_t q = lo; q < hi; ++q)
+        for (int w = adj_off[U(out[q])]; w < adj_off[U(out[q]) + 1]; ++w) {
+          const int v = adj[U(w)];
+          if (mark[U(v)] != mark_stamp) { mark[U(v)] = mark_stamp; out.push_back(v); }
+        }
+      lo = hi;
+    }
+    return out;
+  }
+
+  // Side values of pair (i, j), i < j (spec §2.1; exact signs), restricted to the points within
+  // distance `radius` of the midpoint (ring search on the grid; the true minimum on a side is
+  // found whenever it is attained inside the radius). Points with apex value below g lie within
+  // |ij| / (1 - |g|) of the midpoint (they see ij under a wider angle), which bounds the searches.
+  void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
+    double searched = 0;
+    search_sides(i, j, radius, ga, gb, blocked, searched);
+  }
+  // Cached side values: the stored search radius says which queries the entry answers.
+  struct SideCache { double ga, gb; bool blocked; double radius; };
+  std::unordered_map<std::uint64_t, SideCache> side_cache;
+  void sides_cached(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
+    auto it = side_cache.find(pair_key(i, j));
+    if (it != side_cache.end() && (it->second.radius >= radius || it->second.blocked)) {
+      ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
+      return;
+    }
+    double searched = 0;
+    search_sides(i, j, radius, ga, gb, blocked, searched);
+    side_cache[pair_key(i, j)] = SideCache{ga, gb, blocked, searched};
+  }
+  void search_sides(int i, int j, double radius, double& ga, double& gb, bool& blocked, double& searched) {
+    const double* a = P(i);
+    const double* b = P(j);
+    ga = 1; gb = 1; blocked = false;
+    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const int ci = grid.cx(mx), cj = grid.cy(my);
+    const double cs = grid.cell_size();
+    const int kmax = std::max(grid.nx(), grid.ny());
+    auto visit = [&](int p) {
+      if (p == i || p == j) return;
+      const int o = orient2(a, b, P(p));
+      if (o == 0) {
+        if (diametral_side2(a, b, P(p)) < 0) blocked = true;
+        return;
+      }
+      const double g = apex_gamma2(a, b, P(p));
+      if (o > 0) ga = std::min(ga, g); else gb = std::min(gb, g);
+    };
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    auto cut = [&](double g) {
+      const double sn = 1.0 - std::fabs(g);
+      return sn <= 0 ? HUGE_VAL : 1.001 * len / sn + cs;
+    };
+    bool exhaustive = true;
+    for (int k = 0; k <= kmax && !blocked; ++k) {
+      if (k >= 2) {
+        const double d = static_cast<double>(k - 1) * cs;
+        // Both sides complete: every point with a smaller value is nearer than the cutoff.
+        if (d > std::max(cut(ga), cut(gb))) break;
+        if (d > radius) { exhaustive = false; break; }
+      }
+      for (int jj = cj - k; jj <= cj + k; ++jj) {
+        if (jj < 0 || jj >= grid.ny()) continue;
+        const bool edge_row = (jj == cj - k || jj == cj + k);
+        for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
+          if (ii >= 0 && ii < grid.nx()) grid.points_in_cell(ii, jj, visit);
+          if (k == 0) break;
+        }
+      }
+    }
+    searched = exhaustive ? HUGE_VAL : radius;
+  }
+  double reach(int i, int j, double g) const {
+    const double s = 1.0 - std::fabs(g);
+    const double len = std::hypot(P(j)[0] - P(i)[0], P(j)[1] - P(i)[1]);
+    return s <= 0 ? HUGE_VAL : 1.001 * len / s + grid.cell_size();
+  }
+
+  // Δ(u, v) = filtration value (spec §2.2); -inf for a blocked pair. Exhaustive when a side is
+  // empty (used only by the degree-4 ranking, on few pairs).
+  double delta(int u, int v) {
+    const std::uint64_t key = pair_key(u, v);
+    auto it = delta_cache.find(key);
+    if (it != delta_cache.end()) return it->second;
+    const int i = std::min(u, v), j = std::max(u, v);
+    double ga = 1, gb = 1;
+    bool blocked = false;
+    side_values_within(i, j, HUGE_VAL, ga, gb, blocked);
+    // A second pass bounded by the values found is not needed: the first pass is exhaustive.
+    const double d = blocked ? -HUGE_VAL : filtration_value(ga, gb);
+    delta_cache.emplace(key, d);
+    return d;
+  }
+
+  // Δ(u, v) >= gamma0 (< 0) with two bounded searches: first all points with apex value < gamma0;
+  // if a side m < gamma0 exists, the pair is in iff the other side is >= |m| (magnitude rule of
+  // filtration_value), decided by the points with apex value < |m|.
+  bool delta_at_least(int u, int v, double gamma0) {
+    const int i = std::min(u, v), j = std::max(u, v);
+    double ga, gb;
+    bool blocked;
+    sides_cached(i, j, reach(i, j, gamma0), ga, gb, blocked);
+    if (blocked) return false;
+    const double m = std::min(ga, gb);
+    if (m >= gamma0) return true;
+    sides_cached(i, j, reach(i, j, m), ga, gb, blocked);
+    const double other = ga == m ? gb : ga;
+    return other >= -m;
+  }
+
+  // ---------------------------------------------------------------- local constriction
+  // Graph predicate for the edges (apex, boundary vertex) of a candidate triangle.
+  enum class Graph { Gamma0, Degree4, Complete };
+  bool in_graph(Graph g, double gamma0, int u, int v) {
+    if (g == Graph::Complete) return true;
+    if (is_dt_edge(u, v)) return true;
+    if (g == Graph::Degree4) return aug.count(pair_key(u, v)) > 0;
+    return delta_at_least(u, v, gamma0);
+  }
+
+  void push_candidate(Heap& h, Graph g, double gamma0, int a, int z) {
+    const int b = nxt[U(a)];
+    if (b < 0 || onb[U(z)]) return;
+    if (orient2(P(a), P(b), P(z)) <= 0) return;
+    // The geometric test is cheaper than the side-value searches of in_graph().
+    if (!valid_insert(a, b, z)) return;
+    if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
+    h.push(Entry{1.0 - apex_gamma2(P(a), P(b), P(z)), sorted3(a, b, z), a, b, z, -1, 0});
+  }
+
+  // Candidate boundary edges for apex z: those with an endpoint within k hops of z.
+  void push_candidates_of(Heap& h, Graph g, double gamma0, int z, int k) {
+    std::vector<int> region = neighbourhood({z}, k);
+    std::vector<int> starts;
+    for (int u : region)
+      if (onb[U(u)]) { starts.push_back(u); starts.push_back(prv[U(u)]); }
+    std::sort(starts.begin(), starts.end());
+    starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+    for (int a : starts) push_candidate(h, g, gamma0, a, z);
+  }
+
+  // Constricts the region still inside by inserting stuck points into boundary edges, widest
+  // apex angle first (same criterion as §3.4; spec §3.6 "cheaper variant"). Returns points placed.
+  std::size_t local_constrict(Graph g, double gamma0, int k, const std::string& stage) {
+    emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, stage);
+    Heap h;
+    for (std::size_t z = 0; z < n; ++z)
+      if (!onb[z]) push_candidates_of(h, g, gamma0, static_cast<int>(z), k);
+    std::size_t placed = 0;
+    while (!h.empty() && n_onb < n) {
+      const Entry e = h.top();
+      h.pop();
+      if (!valid_insert(e.a, e.b, e.y)) continue;  // validity only decays (spec §3.6)
+      insert_point(e.a, e.b, e.y);
+      ++placed;
+      emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage);
+      // Only the two new edges are new candidates; stuck points near them get them offered.
+      for (int z : neighbourhood({e.a, e.y, e.b}, k)) {
+        if (onb[U(z)]) continue;
+        push_candidate(h, g, gamma0, e.a, z);
+        push_candidate(h, g, gamma0, e.y, z);
+      }
+    }
+    return placed;
+  }
+
+  // Degree-4 augmentation (spec §3.7), restricted to vertices within two hops of the stuck points
+  // (only edges at a stuck point can be used by a removal; degrees cascade in index order).
+  void augment_degree4() {
+    std::vector<int> stuck;
+    for (std::size_t v = 0; v < n; ++v)
+      if (!onb[v]) stuck.push_back(static_cast<int>(v));
+    std::vector<int> verts = neighbourhood(stuck, 2);
+    std::sort(verts.begin(), verts.end());
+    std::unordered_map<int, int> extra;  // added degree
+    auto degree = [&](int v) { return adj_off[U(v) + 1] - adj_off[U(v)] + extra[v]; };
+    auto apex_across = [&](int t, int a, int b) -> int {  // apex of the triangle across edge ab of t
+      const auto& tr = dt.triangles[U(t)];
+      for (int i = 0; i < 3; ++i)
+        if (tr[U(i)] != a && tr[U(i)] != b) {
+          const int nb = dt.neighbors[U(t)][U(i)];
+          if (nb < 0) return -1;
+          for (int q : dt.triangles[U(nb)]) if (q != a && q != b) return q;
+        }
+      return -1;
+    };
+    auto neighbour_tri = [&](int t, int a, int b) -> int {
+      const auto& tr = dt.triangles[U(t)];
+      for (int i = 0; i < 3; ++i)
+        if (tr[U(i)] != a && tr[U(i)] != b) return dt.neighbors[U(t)][U(i)];
+      return -1;
+    };
+    for (int v : verts) {
+      const int d = degree(v);
+      if (d >= 4) continue;
+      std::vector<int> cand;
+      const int nt = vt_off[U(v) + 1] - vt_off[U(v)];
+      for (int q = vt_off[U(v)]; q < vt_off[U(v) + 1]; ++q) {
+        const int t = vt[U(q)];
+        const auto& tr = dt.triangles[U(t)];
+        int a = -1, b = -1;
+        for (int x : tr) if (x != v) { if (a < 0) a = x; else b = x; }
+        const int c = apex_across(t, a, b);
+        if (c < 0) continue;
+        cand.push_back(c);
+        if (nt == 1) {  // hull vertex of degree 2: also look beyond (a, b, c)
+          const int t2 = neighbour_tri(t, a, b);
+          const int c1 = apex_across(t2, a, c), c2 = apex_across(t2, b, c);
+          if (c1 >= 0) cand.push_back(c1);
+          if (c2 >= 0) cand.push_back(c2);
+        }
+      }
+      std::sort(cand.begin(), cand.end());
+      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+      std::vector<std::pair<double, int>> ranked;
+      for (int w : cand)
+        if (w != v && !is_dt_edge(v, w) && !aug.count(pair_key(v, w)))
+          ranked.emplace_back(delta(v, w), w);
+      std::sort(ranked.begin(), ranked.end(), [](const auto& l, const auto& r) {
+        return l.first != r.first ? l.first > r.first : l.second < r.second;
+      });
+      for (std::size_t r = 0; r < ranked.size() && static_cast<int>(r) < 4 - d; ++r) {
+        if (ranked[r].first == -HUGE_VAL) break;  // blocked pair: in no graph
+        aug.insert(pair_key(v, ranked[r].second));
+        ++extra[v];
+        ++extra[ranked[r].second];
+      }
+    }
+  }
+
+  // Last resort (never observed): a star-shaped polygon around the lowest point; always simple.
+  void star_polygon() {
+    std::vector<int> ord;
+    int o = 0;
+    for (std::size_t i = 1; i < n; ++i) {
+      const double* p = P(static_cast<int>(i));
+      const double* q = P(o);
+      if (p[1] < q[1] || (p[1] == q[1] && p[0] < q[0])) o = static_cast<int>(i);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (static_cast<int>(i) != o) ord.push_back(static_cast<int>(i));
+    const double* po = P(o);
+    auto closer = [&](int p, int q) {  // p, q collinear with o on the same ray
+      const double* a = P(p);
+      const double* b = P(q);
+      return a[0] != b[0] ? std::fabs(a[0] - po[0]) < std::fabs(b[0] - po[0]) : a[1] < b[1];
+    };
+    std::sort(ord.begin(), ord.end(), [&](int p, int q) {
+      const int s = orient2(po, P(p), P(q));
+      if (s != 0) return s > 0;
+      return closer(p, q);
+    });
+    // Points on the last ray go outward-in so the polygon closes without overlap.
+    std::size_t first_last = ord.size() - 1;
+    while (first_last > 0 && orient2(po, P(ord[first_last - 1]), P(ord.back())) == 0) --first_last;
+    std::reverse(ord.begin() + static_cast<std::ptrdiff_t>(first_last), ord.end());
+    ord.insert(ord.begin(), o);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = ord[i], b = ord[(i + 1) % n];
+      nxt[U(a)] = b;
+      prv[U(b)] = a;
+      onb[U(a)] = 1;
+    }
+    n_onb = n;
+  }
+
+  std::vector<int> boundary_list() const {
+    std::vector<int> out;
+    int s = -1;
+    for (std::size_t v = 0; v < n; ++v)
+      if (onb[v]) { s = static_cast<int>(v); break; }
+    if (s < 0) return out;
+    int v = s;
+    do {
+      out.push_back(v);
+      v = nxt[U(v)];
+    } while (v != s && out.size() <= n);
+    return out;
+  }
+
+  Status finish(Polygon2Result& r) {
+    if (!ready) return {StatusCode::Internal, "Constrictor2::finish called without a successful init"};
+    while (step()) {
+    }
+    r = Polygon2Result{};
+    r.removed_simplices = removed;
+    r.locked_at_gamma0 = locked;
+    for (std::size_t v = 0; v < n; ++v)
+      if (!onb[v]) r.stuck_points.push_back(static_cast<int>(v));
+    r.stages.push_back({"gamma", removed});
+    r.method = "gamma";
+    const auto t0 = Clock::now();
+    if (stopped && n_onb < n) {
+      r.method = "stopped";
+    } else if (locked && opt.fallback == Fallback::None) {
+      r.method = "locked";
+    } else if (locked) {
+      build_fallback();
+      auto run = [&](Graph g, double g0, int k, const std::string& name) {
+        if (n_onb == n) return;
+        const std::size_t placed = local_constrict(g, g0, k, name);
+        r.stages.push_back({name, placed});
+        r.fallback_insertions += placed;
+        if (placed > 0) r.method = name;
+      };
+      if (opt.fallback == Fallback::Auto || opt.fallback == Fallback::Gamma0)
+        for (double g0 : opt.gamma0_schedule) {
+          if (!(g0 < 0 && g0 >= -1)) continue;
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "gamma0=%g", g0);
+          run(Graph::Gamma0, g0, 2, buf);
+        }
+      if ((opt.fallback == Fallback::Auto || opt.fallback == Fallback::Degree4) && n_onb < n) {
+        augment_degree4();
+        run(Graph::Degree4, 0, 2, "degree4");
+      }
+      if (opt.fallback == Fallback::Auto || opt.repair) {
+        for (int k = 2; n_onb < n; k *= 2) {
+          run(Graph::Complete, 0, k, "repair");
+          if (static_cast<std::size_t>(k) > n) break;
+        }
+        if (n_onb < n) {
+          const std::size_t placed = n - n_onb;
+          star_polygon();
+          r.stages.push_back({"star", placed});
+          r.fallback_insertions += placed;
+          r.method = "star";
+        }
+      }
+    }
+    r.ms_fallback = ms_since(t0);
+    r.complete = n_onb == n;
+    r.boundary = boundary_list();
+    r.ms_delaunay = ms_delaunay;
+    r.ms_constrict = ms_constrict;
+    if (!fb_ready && r.method != "gamma") build_fallback();
+    const std::size_t m = r.boundary.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const int a = r.boundary[i], b = r.boundary[(i + 1) % m];
+      const double* pa = P(a);
+      const double* pb = P(b);
+      r.area += 0.5 * (pa[0] * pb[1] - pa[1] * pb[0]);
+      r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
+      if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(a, b), std::max(a, b)}});
+    }
+    if (opt.validate && r.complete) {
+      const auto tv = Clock::now();
+      PolygonCheck chk;
+      const Status vs = validate_polygon(*pts, r.boundary, &chk);
+      r.ms_validate = ms_since(tv);
+      CONSTRICT_CHECK(vs.is_ok(), "reconstruct2 produced an invalid polygon: " + vs.message());
+    }
+    return Status::ok();
+  }
+};
+
+Constrictor2::Constrictor2() : impl_(new Impl) {}
+Constrictor2::~Constrictor2() = default;
+
+Status Constrictor2::init(const PointSet& points, const Constrict2Options& options,
+                          Constrict2Visitor* visitor) {
+  impl_.reset(new Impl);
+  impl_->opt = options;
+  impl_->visitor = visitor;
+  return impl_->init(points);
+}
+bool Constrictor2::step() { return impl_->step(); }
+std::vector<int> Constrictor2::boundary() const { return impl_->boundary_list(); }
+std::vector<int> Constrictor2::inside_points() const {
+  std::vector<int> out;
+  for (std::size_t v = 0; v < impl_->n; ++v)
+    if (!impl_->onb[v]) out.push_back(static_cast<int>(v));
+  return out;
+}
+Status Constrictor2::finish(Polygon2Result& result) { return impl_->finish(result); }
+
+Status reconstruct2(const PointSet& points, const Constrict2Options& options,
+                    Polygon2Result& result, Constrict2Visitor* visitor) {
+  result = Polygon2Result{};
+  Constrictor2 c;
+  Status st = c.init(points, options, visitor);
+  if (!st) return st;
+  while (c.step()) {
+  }
+  return c.finish(result);
+}
+
+}  // namespace constrict

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Seeded random inputs: every reconstruct2() output must be a valid simple CCW polygon through all
+// points; counts how often each fallback was needed. Seeds are printed on failure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "constrict/constrict.hpp"
+#include "constrict/points.hpp"
+#include "constrict/validate.hpp"
+
+namespace constrict {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+PointSet dedup(const PointSet& p) { return merge_duplicates(p, nullptr); }
+
+// Families: 0 uniform, 1 clustered, 2 noisy smooth closed curve, 3 polygonal curve, 4 integer grid.
+PointSet make_points(int family, std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g(0, 1);
+  PointSet p;
+  p.dim = 2;
+  auto add = [&](double x, double y) { p.coords.push_back(x); p.coords.push_back(y); };
+  switch (family) {
+    case 0:
+      for (std::size_t i = 0; i < n; ++i) add(u(rng), u(rng));
+      break;
+    case 1: {
+      const std::size_t k = 1 + rng() % 5;
+      std::vector<std::array<double, 3>> c(k);
+      for (auto& q : c) q = {{u(rng), u(rng), 0.01 + 0.1 * u(rng)}};
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& q = c[rng() % k];
+        add(q[0] + q[2] * g(rng), q[1] + q[2] * g(rng));
+      }
+      break;
+    }
+    case 2: {
+      const double a = 1 + u(rng), b = 0.5 + u(rng), w = 0.3 * u(rng), noise = 0.03 * u(rng);
+      const int lobes = 2 + static_cast<int>(rng() % 5);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double t = 2 * kPi * u(rng);
+        const double r = 1 + w * std::sin(lobes * t);
+        add(a * r * std::cos(t) + noise * g(rng), b * r * std::sin(t) + noise * g(rng));
+      }
+      break;
+    }
+    case 3: {
+      const int m = 3 + static_cast<int>(rng() % 8);
+      std::vector<std::array<double, 2>> v(static_cast<std::size_t>(m));
+      for (int i = 0; i < m; ++i) {
+        const double t = 2 * kPi * i / m, r = 0.4 + u(rng);
+        v[static_cast<std::size_t>(i)] = {{r * std::cos(t), r * std::sin(t)}};
+      }
+      const double noise = (rng() % 2) ? 0.0 : 0.01 * u(rng);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t e = rng() % static_cast<std::size_t>(m);
+        const auto& a = v[e];
+        const auto& b = v[(e + 1) % static_cast<std::size_t>(m)];
+        const double s = u(rng);
+        add(a[0] + s * (b[0] - a[0]) + noise * g(rng), a[1] + s * (b[1] - a[1]) + noise * g(rng));
+      }
+      break;
+    }
+    default: {
+      const int side = 2 + static_cast<int>(std::sqrt(static_cast<double>(n))) + static_cast<int>(rng() % 3);
+      for (std::size_t i = 0; i < n; ++i)
+        add(static_cast<double>(rng() % static_cast<unsigned>(side)),
+            static_cast<double>(rng() % static_cast<unsigned>(side)));
+      break;
+    }
+  }
+  return dedup(p);
+}
+
+TEST(Constrict2Property, RandomInputsValidate) {
+  std::map<std::string, int> method_count;
+  std::map<std::string, int> stage_points;
+  int runs = 0, locks = 0;
+  const char* names[] = {"uniform", "clustered", "curve", "polyline", "grid"};
+  for (std::uint64_t seed = 1; seed <= 4000; ++seed) {
+    std::mt19937_64 rng(seed);
+    const int family = static_cast<int>(seed % 5);
+    const std::size_t n = 3 + rng() % 198;
+    const PointSet p = make_points(family, n, rng);
+    Polygon2Result r;
+    Status st;
+    try {
+      st = reconstruct2(p, {}, r);
+    } catch (const std::exception& e) {
+      FAIL() << "seed " << seed << " (" << names[family] << ", n=" << p.size() << "): " << e.what();
+    }
+    if (st.code() == StatusCode::Collinear || st.code() == StatusCode::TooFewPoints) continue;
+    ASSERT_TRUE(st.is_ok()) << "seed " << seed << ": " << st.message();
+    ++runs;
+    locks += r.locked_at_gamma0;
+    ++method_count[r.method];
+    for (const auto& s : r.stages) stage_points[s.name] += static_cast<int>(s.placed);
+    ASSERT_TRUE(r.complete) << "seed " << seed;
+    PolygonCheck d;
+    const Status v = validate_polygon(p, r.boundary, &d);
+    ASSERT_TRUE(v.is_ok()) << "seed " << seed << " (" << names[family] << ", n=" << p.size()
+                           << "): " << v.message();
+    if (r.locked_at_gamma0) {
+      // Exercise the other fallbacks on the locked inputs: degree-4 (+repair) and repair alone.
+      Constrict2Options d4;
+      d4.fallback = Fallback::Degree4;
+      Constrict2Options rep;
+      rep.fallback = Fallback::Gamma0;
+      rep.gamma0_schedule.clear();
+      for (const Constrict2Options* o : {&d4, &rep}) {
+        Polygon2Result r2;
+        ASSERT_TRUE(reconstruct2(p, *o, r2).is_ok()) << "seed " << seed;
+        ASSERT_TRUE(r2.complete) << "seed " << seed;
+        ASSERT_TRUE(validate_polygon(p, r2.boundary).is_ok()) << "seed " << seed;
+        ++method_count[(o == &d4 ? "[degree4 run] " : "[repair run] ") + r2.method];
+      }
+    }
+    if (seed % 8 == 0) {
+      ASSERT_TRUE(validate_polygon_brute_force(p, r.boundary).is_ok()) << "seed " << seed;
+    }
+  }
+  std::printf("[ Constrict2Property ] runs=%d locked_at_gamma0=%d\n", runs, locks);
+  for (const auto& m : method_count) std::printf("  method %-14s %d\n", m.first.c_str(), m.second);
+  for (const auto& m : stage_points) std::printf("  points placed by %-14s %d\n", m.first.c_str(), m.second);
+}
+
+// The sweep validator agrees with the brute-force check on random (mostly invalid) polygons.
+TEST(Constrict2Property, ValidatorMatchesBruteForce) {
+  int valid = 0;
+  for (std::uint64_t seed = 1; seed <= 3000; ++seed) {
+    std::mt19937_64 rng(seed);
+    const std::size_t n = 3 + rng() % 12;
+    const int side = 3 + static_cast<int>(rng() % 4);
+    PointSet p;
+    p.dim = 2;
+    std::set<std::pair<int, int>> used;
+    while (p.size() < n && used.size() < static_cast<std::size_t>(side * side)) {
+      const int x = static_cast<int>(rng() % static_cast<unsigned>(side));
+      const int y = static_cast<int>(rng() % static_cast<unsigned>(side));
+      if (used.insert({x, y}).second) { p.coords.push_back(x); p.coords.push_back(y); }
+    }
+    std::vector<int> b(p.size());
+    for (std::size_t i = 0; i < b.size(); ++i) b[i] = static_cast<int>(i);
+    // Half of the time: angular order (often valid); otherwise random order.
+    if (seed % 2) {
+      Polygon2Result r;
+      Constrict2Options o;
+      if (reconstruct2(p, o, r).is_ok()) b = r.boundary;
+      if (seed % 4 == 1 && b.size() > 3) std::swap(b[1], b[2]);
+    } else {
+      std::shuffle(b.begin(), b.end(), rng);
+    }
+    const bool fast = validate_polygon(p, b).is_ok();
+    const bool slow = validate_polygon_brute_force(p, b).is_ok();
+    ASSERT_EQ(fast, slow) << "seed " << seed;
+    valid += fast;
+  }
+  std::printf("[ Constrict2Property ] validator: %d valid polygons of 3000\n", valid);
+}
+
+TEST(Constrict2Property, LargeInputIsFast) {
+  std::mt19937_64 rng(12345);
+  const PointSet p = make_points(0, 100000, rng);
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, {}, r).is_ok());
+  EXPECT_TRUE(r.complete);
+  std::printf("[ Constrict2Property ] N=100000 method=%s dt=%.1fms constrict=%.1fms fallback=%.1fms validate=%.1fms\n",
+              r.method.c_str(), r.ms_delaunay, r.ms_constrict, r.ms_fallback, r.ms_validate);
+}
+
+}  // namespace
+}  // namespace constrict

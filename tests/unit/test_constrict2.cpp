@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Hand cases for the 2D reconstruction (spec gamma-graph.md §5.1, §5.2, §6.2) and the validator.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "constrict/constrict.hpp"
+#include "constrict/validate.hpp"
+
+namespace constrict {
+namespace {
+
+PointSet make2(const std::vector<std::array<double, 2>>& xy) {
+  PointSet p;
+  p.dim = 2;
+  for (const auto& q : xy) { p.coords.push_back(q[0]); p.coords.push_back(q[1]); }
+  return p;
+}
+
+// Rotation so that the smallest index comes first (orientation kept).
+std::vector<int> canon(std::vector<int> b) {
+  std::rotate(b.begin(), std::min_element(b.begin(), b.end()), b.end());
+  return b;
+}
+
+const std::vector<std::array<double, 2>> kExampleA = {{0, 0}, {8, 0}, {8, 6}, {0, 6}, {3, 2}};
+const std::vector<std::array<double, 2>> kExampleB = {{-8, 13}, {12, 13}, {20, -3}, {15, 20},
+                                                      {8, 6},   {9, 11},  {4, 17}};
+const std::vector<std::array<double, 2>> kN9 = {{12, 2},  {0, 0},   {-1, 12}, {-14, -3}, {0, -14},
+                                                {1, 2},   {12, 15}, {-20, 4}, {8, -19}};
+
+struct Recorder : Constrict2Visitor {
+  std::vector<Constrict2Event> events;
+  void on_event(const Constrict2Event& e) override { events.push_back(e); }
+};
+
+TEST(Constrict2Unit, ExampleA) {
+  const PointSet p = make2(kExampleA);
+  Polygon2Result r;
+  Recorder rec;
+  ASSERT_TRUE(reconstruct2(p, {}, r, &rec).is_ok());
+  EXPECT_TRUE(r.complete);
+  EXPECT_FALSE(r.locked_at_gamma0);
+  EXPECT_EQ(r.method, "gamma");
+  EXPECT_EQ(canon(r.boundary), (std::vector<int>{0, 4, 1, 2, 3}));
+  EXPECT_EQ(r.removed_simplices, 1u);
+  ASSERT_EQ(rec.events.size(), 1u);
+  EXPECT_NEAR(rec.events[0].criterion, 1.175958, 1e-6);
+  EXPECT_NEAR(r.area, 48 - 8, 1e-9);  // rectangle minus triangle (0,1,4) of area 8
+}
+
+TEST(Constrict2Unit, ExampleBLocksAtGamma0) {
+  const PointSet p = make2(kExampleB);
+  Constrict2Options o;
+  o.fallback = Fallback::None;
+  Polygon2Result r;
+  Recorder rec;
+  ASSERT_TRUE(reconstruct2(p, o, r, &rec).is_ok());
+  EXPECT_FALSE(r.complete);
+  EXPECT_TRUE(r.locked_at_gamma0);
+  EXPECT_EQ(r.method, "locked");
+  EXPECT_EQ(r.stuck_points, std::vector<int>{5});
+  EXPECT_EQ(canon(r.boundary), (std::vector<int>{0, 4, 2, 1, 3, 6}));
+  ASSERT_GE(rec.events.size(), 2u);
+  EXPECT_NEAR(rec.events[0].criterion, 1.770961, 1e-6);
+  EXPECT_NEAR(rec.events[1].criterion, 1.236614, 1e-6);
+}
+
+TEST(Constrict2Unit, ExampleBGamma0Rescue) {
+  const PointSet p = make2(kExampleB);
+  Constrict2Options o;
+  o.fallback = Fallback::Gamma0;
+  o.repair = false;
+  Polygon2Result r;
+  Recorder rec;
+  ASSERT_TRUE(reconstruct2(p, o, r, &rec).is_ok());
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.method, "gamma0=-0.1");
+  EXPECT_EQ(canon(r.boundary), (std::vector<int>{0, 4, 2, 5, 1, 3, 6}));
+  EXPECT_NEAR(rec.events.back().criterion, 0.996962, 1e-6);
+  EXPECT_EQ(r.fallback_edges, (std::vector<std::array<int, 2>>{{{2, 5}}}));
+}
+
+TEST(Constrict2Unit, ExampleBDegree4Rescue) {
+  const PointSet p = make2(kExampleB);
+  Constrict2Options o;
+  o.fallback = Fallback::Degree4;
+  o.repair = false;
+  Polygon2Result r;
+  Recorder rec;
+  ASSERT_TRUE(reconstruct2(p, o, r, &rec).is_ok());
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.method, "degree4");
+  EXPECT_EQ(canon(r.boundary), (std::vector<int>{0, 5, 4, 2, 1, 3, 6}));
+  EXPECT_NEAR(rec.events.back().criterion, 0.996779, 1e-6);
+}
+
+TEST(Constrict2Unit, N9LocksThenRescued) {
+  const PointSet p = make2(kN9);
+  {
+    Constrict2Options o;
+    o.fallback = Fallback::None;
+    Polygon2Result r;
+    Recorder rec;
+    ASSERT_TRUE(reconstruct2(p, o, r, &rec).is_ok());
+    EXPECT_FALSE(r.complete);
+    EXPECT_EQ(r.stuck_points, std::vector<int>{5});
+    EXPECT_EQ(canon(r.boundary), canon({7, 3, 1, 4, 8, 0, 6, 2}));
+    ASSERT_GE(rec.events.size(), 1u);
+    EXPECT_NEAR(rec.events[0].criterion, 0.977802, 1e-6);
+  }
+  {
+    Constrict2Options o;
+    o.fallback = Fallback::Gamma0;
+    o.repair = false;
+    Polygon2Result r;
+    Recorder rec;
+    ASSERT_TRUE(reconstruct2(p, o, r, &rec).is_ok());
+    EXPECT_TRUE(r.complete);
+    EXPECT_EQ(r.method, "gamma0=-0.05");
+    EXPECT_EQ(canon(r.boundary), canon({7, 3, 1, 4, 8, 0, 6, 5, 2}));
+    EXPECT_NEAR(rec.events.back().criterion, 0.783111, 1e-6);
+  }
+  {
+    Constrict2Options o;
+    o.fallback = Fallback::Degree4;
+    o.repair = false;
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(p, o, r).is_ok());
+    EXPECT_TRUE(r.complete);
+    EXPECT_EQ(r.method, "degree4");
+    EXPECT_EQ(canon(r.boundary), canon({7, 3, 1, 4, 8, 0, 6, 2, 5}));  // spec §6.2
+  }
+  {
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(p, {}, r).is_ok());
+    EXPECT_TRUE(r.complete);
+    EXPECT_TRUE(r.locked_at_gamma0);
+  }
+}
+
+TEST(Constrict2Unit, StepperAndStopAfter) {
+  const PointSet p = make2(kExampleB);
+  Constrictor2 c;
+  ASSERT_TRUE(c.init(p, {}).is_ok());
+  EXPECT_EQ(canon(c.boundary()), (std::vector<int>{0, 2, 3, 6}));
+  EXPECT_TRUE(c.step());
+  EXPECT_EQ(canon(c.boundary()), (std::vector<int>{0, 4, 2, 3, 6}));
+  Constrict2Options o;
+  o.stop_after = 1;
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, o, r).is_ok());
+  EXPECT_FALSE(r.complete);
+  EXPECT_EQ(r.method, "stopped");
+  EXPECT_EQ(r.removed_simplices, 1u);
+}
+
+TEST(Constrict2Unit, BadInput) {
+  Polygon2Result r;
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}}), {}, r).code(), StatusCode::TooFewPoints);
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}, {2, 2}}), {}, r).code(), StatusCode::Collinear);
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 0}, {0, 1}, {1, 0}}), {}, r).code(), StatusCode::Duplicate);
+}
+
+TEST(Constrict2Unit, CollinearHullPoints) {
+  // Square with points on its sides and one inside.
+  const PointSet p = make2({{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}, {1, 1}});
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, {}, r).is_ok());
+  EXPECT_TRUE(r.complete);
+  EXPECT_TRUE(validate_polygon(p, r.boundary).is_ok());
+}
+
+TEST(Constrict2Validator, Basics) {
+  const PointSet sq = make2({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  PolygonCheck d;
+  EXPECT_TRUE(validate_polygon(sq, {0, 1, 2, 3}, &d).is_ok());
+  EXPECT_TRUE(d.simple && d.ccw && d.all_points);
+  EXPECT_FALSE(validate_polygon(sq, {0, 3, 2, 1}, &d).is_ok());  // clockwise
+  EXPECT_TRUE(d.simple);
+  EXPECT_FALSE(d.ccw);
+  EXPECT_FALSE(validate_polygon(sq, {0, 2, 1, 3}, &d).is_ok());  // bow tie
+  EXPECT_FALSE(d.simple);
+  EXPECT_FALSE(validate_polygon(sq, {0, 1, 2}, &d).is_ok());  // missing
+  EXPECT_EQ(d.missing_point, 3);
+  EXPECT_FALSE(validate_polygon(sq, {0, 1, 2, 3, 1}, &d).is_ok());  // repeated
+  EXPECT_EQ(d.repeated_point, 1);
+  EXPECT_FALSE(validate_polygon(sq, {0, 1, 2, 7}, &d).is_ok());  // out of range
+}
+
+TEST(Constrict2Validator, TouchingAndCollinear) {
+  // Vertex 4 touches edge (0,1) from inside: invalid.
+  const PointSet t = make2({{0, 0}, {4, 0}, {4, 4}, {2, 0}, {0, 4}});
+  EXPECT_FALSE(validate_polygon(t, {0, 1, 2, 3, 4}).is_ok());
+  // 180° vertex allowed.
+  const PointSet c = make2({{0, 0}, {1, 0}, {2, 0}, {1, 1}});
+  EXPECT_TRUE(validate_polygon(c, {0, 1, 2, 3}).is_ok());
+  // Fold back along a line: invalid.
+  EXPECT_FALSE(validate_polygon(c, {0, 2, 1, 3}).is_ok());
+  // Collinear overlap of non-adjacent edges.
+  const PointSet o = make2({{0, 0}, {3, 0}, {3, 2}, {2, 0}, {1, 0}, {0, 2}});
+  EXPECT_FALSE(validate_polygon(o, {0, 1, 2, 3, 4, 5}).is_ok());
+  // Vertical edges.
+  const PointSet v = make2({{0, 0}, {2, 0}, {2, 2}, {1, 1}, {1, 3}, {0, 3}});
+  PolygonCheck d1, d2;
+  const Status s1 = validate_polygon(v, {0, 1, 2, 3, 4, 5}, &d1);
+  const Status s2 = validate_polygon_brute_force(v, {0, 1, 2, 3, 4, 5}, &d2);
+  EXPECT_EQ(s1.is_ok(), s2.is_ok());
+}
+
+}  // namespace
+}  // namespace constrict
