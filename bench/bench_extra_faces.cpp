@@ -2,6 +2,7 @@
 // detail::lens_faces: non-Delaunay members of γ-graphs with a negative threshold m.
 // Fixed seeds; the Delaunay faces are computed outside the timed loop.
 // Counters: faces = output size, tested = faces sent to the exact lens test.
+// (main() comes from benchmark::benchmark_main, see bench/CMakeLists.txt.)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -10,8 +11,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/points.hpp"
-// The bench target may lack the src/ include path; include the private header relatively.
-#include "../src/gamma/detail/extra_faces.hpp"
+#include "gamma/detail/extra_faces.hpp"
 
 namespace {
 
@@ -124,5 +124,3 @@ BENCHMARK(BM_Uniform3)->ArgsProduct({{1000, 3000, 10000}, {50}})->Unit(benchmark
 BENCHMARK(BM_Sphere3)->ArgsProduct({{100, 10000}, {50}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
-
-BENCHMARK_MAIN();

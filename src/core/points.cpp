@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Point-set checks: dimension, emptiness, finiteness, duplicates, degenerate (collinear/coplanar)
-// position. The reconstruction needs all of them (spec gamma-graph.md §"Degenerate input":
-// duplicates are rejected, a Delaunay triangulation of a collinear/coplanar set has no faces).
+// position. The reconstruction needs all of them: spec gamma-graph.md §3.8 rejects duplicate
+// points, and a Delaunay triangulation of a collinear (2D) or coplanar (3D) set has no faces.
 #include "constrict/points.hpp"
 
 #include <algorithm>
@@ -52,8 +52,8 @@ struct KeyIndex {
 };
 
 // Sorts by (key, index) for entries that arrive in index order: an LSD radix sort is stable, so
-// equal keys keep their index order. Byte positions where all keys agree are skipped (for points in
-// a bounding box, the exponent bytes mostly). O(N); std::sort below a size where that pays off.
+// equal keys keep their index order. Digits where all keys agree are skipped (for points in a
+// bounding box, often the sign and exponent bits). O(N); std::sort below a size where that pays.
 void sort_by_key(std::vector<KeyIndex>& a) {
   const std::size_t n = a.size();
   if (n < 2048) {

@@ -2,11 +2,11 @@
 // The γ-neighborhood graph family: parameters, membership (cap form, spec §1.3 and the
 // magnitude-ordered interval reading, spec §2.2) and construction (spec §4.2, §4.3).
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
-#include <sstream>
 #include <string>
 
 #include "constrict/gamma_graph.hpp"
@@ -17,11 +17,10 @@ namespace {
 
 bool in_range(double v, double lo, double hi) { return lo <= v && v <= hi; }
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+std::string fmt(double v) {  // shortest decimal that round-trips
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 // Parses a whole string as a finite double.
