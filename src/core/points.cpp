@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,45 +47,39 @@ bool equal_coords(const double* a, const double* b, int dim) noexcept {
   return true;
 }
 
-struct KeyIndex {
-  std::uint64_t key;
-  std::size_t index;
+// Radix sort entry: the high 32 bits of the key of x, and the point index.
+struct HighIndex {
+  std::uint32_t high;
+  std::uint32_t index;
 };
 
-// Sorts by (key, index) for entries that arrive in index order: an LSD radix sort is stable, so
-// equal keys keep their index order. Digits where all keys agree are skipped (for points in a
-// bounding box, often the sign and exponent bits). O(N); std::sort below a size where that pays.
-void sort_by_key(std::vector<KeyIndex>& a) {
-  const std::size_t n = a.size();
-  if (n < 2048) {
-    std::sort(a.begin(), a.end(), [](const KeyIndex& l, const KeyIndex& r) {
-      return l.key != r.key ? l.key < r.key : l.index < r.index;
-    });
-    return;
-  }
-  // 11-bit digits: 6 passes over 64-bit keys, counts small enough to stay in L1.
+// Sorts by `high`, stable: entries arrive in index order, so equal keys stay in index order.
+// LSD radix sort with 11-bit digits (3 passes over 8-byte entries, counts that fit in L1); digits
+// where all keys agree are skipped. O(N).
+void radix_sort(std::vector<HighIndex>& a) {
   constexpr int kBits = 11;
-  constexpr int kDigits = (64 + kBits - 1) / kBits;
+  constexpr int kDigits = (32 + kBits - 1) / kBits;
   constexpr std::size_t kBuckets = std::size_t{1} << kBits;
-  constexpr std::uint64_t kMask = kBuckets - 1;
+  constexpr std::uint32_t kMask = kBuckets - 1;
+  const std::size_t n = a.size();
   std::vector<std::array<std::size_t, kBuckets>> histogram(kDigits);
   for (auto& h : histogram) h.fill(0);
-  for (const KeyIndex& e : a)
-    for (int d = 0; d < kDigits; ++d) ++histogram[d][(e.key >> (kBits * d)) & kMask];
-  std::vector<KeyIndex> buffer(n);
-  KeyIndex* src = a.data();
-  KeyIndex* dst = buffer.data();
+  for (const HighIndex& e : a)
+    for (int d = 0; d < kDigits; ++d) ++histogram[d][(e.high >> (kBits * d)) & kMask];
+  std::vector<HighIndex> buffer(n);
+  HighIndex* src = a.data();
+  HighIndex* dst = buffer.data();
   for (int d = 0; d < kDigits; ++d) {
     std::array<std::size_t, kBuckets>& h = histogram[d];
     const unsigned shift = static_cast<unsigned>(kBits * d);
-    if (h[(src[0].key >> shift) & kMask] == n) continue;
+    if (h[(src[0].high >> shift) & kMask] == n) continue;
     std::size_t sum = 0;
     for (std::size_t& c : h) {
       const std::size_t count = c;
       c = sum;
       sum += count;
     }
-    for (std::size_t i = 0; i < n; ++i) dst[h[(src[i].key >> shift) & kMask]++] = src[i];
+    for (std::size_t i = 0; i < n; ++i) dst[h[(src[i].high >> shift) & kMask]++] = src[i];
     std::swap(src, dst);
   }
   if (src != a.data()) std::copy(src, src + n, a.data());
@@ -146,41 +141,61 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
   const int dim = points.dim;
   if (n < 2) return dups;
 
-  // Lexicographic sort of the indices by coordinates, ties broken by index, so the result does not
-  // depend on the sort algorithm. Done in two steps for speed: radix-sort compact (key(x), index)
-  // pairs, then sort the runs of equal x by the other coordinates. The final order is exactly the
-  // lexicographic (x, y, z, index) order.
-  std::vector<KeyIndex> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = {order_key(points[i][0]), i};
-  sort_by_key(order);
-  const auto lex_less = [&points, dim](const KeyIndex& l, const KeyIndex& r) {
-    const double* p = points[l.index];
-    const double* q = points[r.index];
-    for (int k = 1; k < dim; ++k) {
+  // The indices are sorted lexicographically by coordinates, ties broken by index, so the result
+  // does not depend on the sort algorithm; identical points are then adjacent, the first
+  // occurrence first. For speed this is done in two steps: a radix sort of compact
+  // (high 32 bits of x, index) pairs, then a comparison sort of each run of equal high bits
+  // (mostly single points). The final order is exactly the (x, y, z, index) order.
+  const auto lex_less = [&points, dim](std::size_t l, std::size_t r) {
+    const double* p = points[l];
+    const double* q = points[r];
+    for (int k = 0; k < dim; ++k) {
       if (less_total(p[k], q[k])) return true;
       if (less_total(q[k], p[k])) return false;
     }
-    return l.index < r.index;
+    return l < r;
+  };
+  // Pairs every later copy in a lexicographically sorted range with its first occurrence.
+  const auto pair_copies = [&](const std::size_t* b, const std::size_t* e) {
+    for (const std::size_t* g = b; g != e;) {
+      const std::size_t* g_end = g + 1;
+      while (g_end != e && equal_coords(points[*g], points[*g_end], dim)) {
+        dups.push_back({*g, *g_end});
+        ++g_end;
+      }
+      g = g_end;
+    }
   };
 
-  for (std::size_t run = 0; run < n;) {
-    std::size_t run_end = run + 1;
-    while (run_end < n && order[run_end].key == order[run].key) ++run_end;
-    if (run_end - run > 1) {
-      std::sort(order.begin() + static_cast<std::ptrdiff_t>(run),
-                order.begin() + static_cast<std::ptrdiff_t>(run_end), lex_less);
-      // Within the run, groups of equal points are contiguous and start with their lowest index.
-      for (std::size_t g = run; g < run_end;) {
-        std::size_t g_end = g + 1;
-        const double* first = points[order[g].index];
-        while (g_end < run_end && equal_coords(first, points[order[g_end].index], dim)) {
-          dups.push_back({order[g].index, order[g_end].index});
-          ++g_end;
-        }
-        g = g_end;
+  constexpr std::size_t kRadixMin = 2048;
+  if (n < kRadixMin || n > std::numeric_limits<std::uint32_t>::max()) {
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), lex_less);
+    pair_copies(order.data(), order.data() + n);
+  } else {
+    std::vector<HighIndex> order(n);
+    for (std::size_t i = 0; i < n; ++i)
+      order[i] = {static_cast<std::uint32_t>(order_key(points[i][0]) >> 32),
+                  static_cast<std::uint32_t>(i)};
+    radix_sort(order);
+    std::vector<std::size_t> run;
+    for (std::size_t r = 0; r < n;) {
+      std::size_t r_end = r + 1;
+      while (r_end < n && order[r_end].high == order[r].high) ++r_end;
+      if (r_end - r == 2) {
+        // The common collision: two points, already in index order; no sort needed.
+        const std::size_t i0 = order[r].index;
+        const std::size_t i1 = order[r + 1].index;
+        if (equal_coords(points[i0], points[i1], dim)) dups.push_back({i0, i1});
+      } else if (r_end - r > 2) {
+        run.clear();
+        for (std::size_t i = r; i < r_end; ++i) run.push_back(order[i].index);
+        std::sort(run.begin(), run.end(), lex_less);
+        pair_copies(run.data(), run.data() + run.size());
       }
+      r = r_end;
     }
-    run = run_end;
   }
   std::sort(dups.begin(), dups.end(), [](const DuplicatePair& l, const DuplicatePair& r) {
     return l.first != r.first ? l.first < r.first : l.second < r.second;

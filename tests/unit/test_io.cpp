@@ -3,10 +3,14 @@
 // line, duplicates (error and merge) and the %.17g round trip.
 #include <gtest/gtest.h>
 #include <stdlib.h>  // mkdtemp
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/stat.h>  // mkfifo
+#endif
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +19,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "constrict/io.hpp"
@@ -145,6 +150,32 @@ TEST_F(IoText, ByteOrderMarkAndLeadingPlus) {
   ASSERT_TRUE(read("bom.csv", "\xEF\xBB\xBFx,y,z\n+0,0,0\n+1,0,0\n0,+1,0\n0,0,+1\n", p));
   EXPECT_EQ(p.coords, kTetraCoords);
 }
+
+#if defined(__unix__) || defined(__APPLE__)
+TEST_F(IoText, ReadsFromPipe) {
+  // A FIFO is not a regular file: it cannot be mapped and has no size, so it is read in chunks.
+  const std::string path = (dir_ / "pipe.xyz").string();
+  ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
+  std::string text = "x y z\n";
+  for (int i = 0; i < 20000; ++i)  // more than one read chunk
+    text += std::to_string(i) + " " + std::to_string(i % 7) + " " + std::to_string(i % 11) + "\n";
+  // If the reader stopped early the writer would get SIGPIPE: make that a test failure instead.
+  const auto old_handler = std::signal(SIGPIPE, SIG_IGN);
+  std::thread writer([&path, &text] {
+    std::ofstream f(path, std::ios::binary);
+    f << text;
+  });
+  PointSet p;
+  Status st = read_points(path, {}, p);
+  writer.join();
+  std::signal(SIGPIPE, old_handler);
+  ASSERT_TRUE(st) << st.message();
+  ASSERT_EQ(p.size(), 20000u);
+  EXPECT_EQ(p[19999][0], 19999.0);
+  EXPECT_EQ(p[19999][1], 19999 % 7);
+  EXPECT_EQ(p[19999][2], 19999 % 11);
+}
+#endif
 
 TEST_F(IoText, ForcedDim2DropsZ) {
   PointSet p;
