@@ -16,10 +16,14 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 
 namespace constrict {
 namespace {
+using detail::closed_segments_meet;
+using detail::on_closed_segment;
+using detail::same_side_collinear;
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) {
@@ -54,24 +58,6 @@ struct EntryLess {
 };
 using Heap = std::priority_queue<Entry, std::vector<Entry>, EntryLess>;
 
-bool on_closed_segment(const double* a, const double* b, const double* p) {
-  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
-         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
-}
-bool closed_segments_meet(const double* p, const double* q, const double* r, const double* s) {
-  const int o1 = orient2(p, q, r), o2 = orient2(p, q, s);
-  const int o3 = orient2(r, s, p), o4 = orient2(r, s, q);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  if (o1 == 0 && on_closed_segment(p, q, r)) return true;
-  if (o2 == 0 && on_closed_segment(p, q, s)) return true;
-  if (o3 == 0 && on_closed_segment(r, s, p)) return true;
-  if (o4 == 0 && on_closed_segment(r, s, q)) return true;
-  return false;
-}
-bool same_side_collinear(const double* v, const double* q, const double* r) {
-  if (q[0] != v[0]) return (q[0] > v[0]) == (r[0] > v[0]);
-  return (q[1] > v[1]) == (r[1] > v[1]);
-}
 
 // Uniform bucket grid over the bounding box. Cell indices are monotone in the coordinates, so a
 // bounding-box range query finds every point / registered segment inside the box (exactly).

@@ -6,39 +6,22 @@
 #include <vector>
 
 #include "constrict/predicates.hpp"
+#include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 
 namespace constrict {
 namespace {
+using detail::closed_segments_meet;
+using detail::on_closed_segment;
+using detail::same_side_collinear;
 
 // Lexicographic (x, y) comparison of two points: exact.
 bool lex_less(const double* p, const double* q) {
   return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]);
 }
 
-// For q, r collinear with v (and both != v): true iff q and r lie on the same side of v.
-bool same_side_collinear(const double* v, const double* q, const double* r) {
-  if (q[0] != v[0]) return (q[0] > v[0]) == (r[0] > v[0]);
-  return (q[1] > v[1]) == (r[1] > v[1]);
-}
 
-// p collinear with segment ab: p in the closed segment?
-bool on_closed_segment(const double* a, const double* b, const double* p) {
-  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
-         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
-}
 
-// Do the closed segments pq and rs share a point? Exact.
-bool closed_segments_meet(const double* p, const double* q, const double* r, const double* s) {
-  const int o1 = orient2(p, q, r), o2 = orient2(p, q, s);
-  const int o3 = orient2(r, s, p), o4 = orient2(r, s, q);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  if (o1 == 0 && on_closed_segment(p, q, r)) return true;
-  if (o2 == 0 && on_closed_segment(p, q, s)) return true;
-  if (o3 == 0 && on_closed_segment(r, s, p)) return true;
-  if (o4 == 0 && on_closed_segment(r, s, q)) return true;
-  return false;
-}
 
 struct Poly {
   const PointSet& pts;
