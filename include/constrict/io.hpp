@@ -96,3 +96,35 @@ Status write_graph(const std::string& path, const PointSet& points, const GammaF
                    const std::string& description, GraphFormat format = GraphFormat::Auto);
 
 }  // namespace constrict
+
+#include <array>
+
+namespace constrict {
+
+/// Output formats of write_polygon2(). Auto picks by extension.
+enum class PolygonFormat { Auto, Idx, Csv, GeoJson, Wkt, Svg };
+
+/// Format from a file name's extension (.idx .csv .geojson/.json .wkt .svg); Auto if unknown.
+PolygonFormat polygon_format_from_path(const std::string& path) noexcept;
+
+/// Optional layers of the SVG picture of a polygon (paper Figure 4 style).
+struct PolygonSvgLayers {
+  const GammaFaces* graph = nullptr;            ///< drawn dashed under the polygon (2D edges)
+  std::vector<int> highlight_points;            ///< e.g. points stuck at a lock (drawn larger)
+  std::vector<std::array<int, 2>> highlight_edges;  ///< e.g. fallback edges (drawn in a second colour)
+  std::string title;                            ///< <title> of the picture
+};
+
+/// Writes a 2D polygon given as input indices in boundary order (closed implicitly).
+/// - .idx: one 0-based input index per line, in order.
+/// - .csv: header `x,y`, then the ordered coordinates (shortest round-trip decimals).
+/// - .geojson (.json): a Feature with a Polygon geometry, the ring closed (first point repeated).
+/// - .wkt: `POLYGON ((x y, ..., x y))`, ring closed.
+/// - .svg: the points, the polygon solid, optional layers.
+/// @param[in] boundary polygon vertices as input indices (at least 3 for the polygon formats)
+/// @param[in] layers optional SVG layers (ignored by the other formats)
+/// @return Ok, InvalidArgument (unknown extension, not 2D, index out of range), WriteFailed
+Status write_polygon2(const std::string& path, const PointSet& points, const std::vector<int>& boundary,
+                      PolygonFormat format = PolygonFormat::Auto, const PolygonSvgLayers* layers = nullptr);
+
+}  // namespace constrict

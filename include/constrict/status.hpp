@@ -24,6 +24,8 @@ enum class StatusCode {
   Collinear,        ///< all points collinear (2D)
   Coplanar,         ///< all points coplanar (3D)
   Unsupported,      ///< valid request that this build or size limit cannot serve
+  Incomplete,       ///< a result was written but does not pass through every point (lock with
+                    ///< fallbacks disabled, or stopped early on request)
   Internal,         ///< a broken invariant (a bug): please report
 };
 

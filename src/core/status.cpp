@@ -17,6 +17,7 @@ const char* to_string(StatusCode code) noexcept {
     case StatusCode::Collinear: return "Collinear";
     case StatusCode::Coplanar: return "Coplanar";
     case StatusCode::Unsupported: return "Unsupported";
+    case StatusCode::Incomplete: return "Incomplete";
     case StatusCode::Internal: return "Internal";
   }
   return "Unknown";
@@ -38,6 +39,7 @@ int exit_code(StatusCode code) noexcept {
     case StatusCode::Collinear: return 10;
     case StatusCode::Coplanar: return 11;
     case StatusCode::Unsupported: return 12;
+    case StatusCode::Incomplete: return 13;
     case StatusCode::Internal: return 70;
   }
   return 1;

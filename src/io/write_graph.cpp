@@ -11,62 +11,17 @@
 #include <string>
 
 #include "constrict/io.hpp"
+#include "io/detail/write_util.hpp"
 
 namespace constrict {
 namespace {
 
-void put_double(std::string& s, double v) {
-  char buf[32];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
-  s.append(buf, r.ptr);
-}
-void put_int(std::string& s, long long v) {
-  char buf[24];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
-  s.append(buf, r.ptr);
-}
-
-std::string extension(const std::string& path) {
-  const auto slash = path.find_last_of("/\\");
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-  std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
-Status write_file(const std::string& path, const std::string& data) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return {StatusCode::WriteFailed, path + ": cannot open for writing: " + std::strerror(errno)};
-  const std::size_t w = std::fwrite(data.data(), 1, data.size(), f);
-  const int c = std::fclose(f);
-  if (w != data.size() || c != 0) return {StatusCode::WriteFailed, path + ": write failed: " + std::strerror(errno)};
-  return Status::ok();
-}
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') { o += '\\'; o += c; }
-    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
-    else o += c;
-  }
-  return o;
-}
-
-std::string xml_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
+using detail::extension;
+using detail::json_escape;
+using detail::put_double;
+using detail::put_int;
+using detail::write_file;
+using detail::xml_escape;
 
 void face_row(std::string& s, const GammaFaces& g, std::size_t f, char sep) {
   for (int j = 0; j < g.dim; ++j) {
@@ -108,53 +63,14 @@ std::string to_json(const PointSet& pts, const GammaFaces& g, const std::string&
 }
 
 std::string to_svg(const PointSet& pts, const GammaFaces& g, const std::string& desc) {
-  double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  double hi[2] = {-lo[0], -lo[1]};
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    for (int k = 0; k < 2; ++k) {
-      lo[k] = std::min(lo[k], pts[i][k]);
-      hi[k] = std::max(hi[k], pts[i][k]);
-    }
-  const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300);
-  const double size = 800.0, margin = 20.0;
-  const double scale = (size - 2 * margin) / std::max(w, h);
-  const double W = w * scale + 2 * margin, H = h * scale + 2 * margin;
-  auto X = [&](double x) { return margin + (x - lo[0]) * scale; };
-  auto Y = [&](double y) { return H - margin - (y - lo[1]) * scale; };  // y axis up
-  std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-  put_double(s, W);
-  s += "\" height=\"";
-  put_double(s, H);
-  s += "\" viewBox=\"0 0 ";
-  put_double(s, W);
-  s += ' ';
-  put_double(s, H);
-  s += "\">\n<title>" + xml_escape(desc) + "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const detail::SvgFrame fr(pts);
+  std::string s = fr.open(desc);
   s += "<g stroke=\"#1f4e8c\" stroke-width=\"1\" fill=\"none\">\n";
-  for (std::size_t f = 0; f < g.size(); ++f) {
-    const double* a = pts[static_cast<std::size_t>(g.vertex(f, 0))];
-    const double* b = pts[static_cast<std::size_t>(g.vertex(f, 1))];
-    s += "<line x1=\"";
-    put_double(s, X(a[0]));
-    s += "\" y1=\"";
-    put_double(s, Y(a[1]));
-    s += "\" x2=\"";
-    put_double(s, X(b[0]));
-    s += "\" y2=\"";
-    put_double(s, Y(b[1]));
-    s += "\"/>\n";
-  }
+  for (std::size_t f = 0; f < g.size(); ++f)
+    fr.line(s, pts[static_cast<std::size_t>(g.vertex(f, 0))], pts[static_cast<std::size_t>(g.vertex(f, 1))]);
   s += "</g>\n<g fill=\"#c0392b\">\n";
-  const double r = std::clamp(400.0 / std::sqrt(static_cast<double>(pts.size()) + 1.0), 0.5, 4.0);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    s += "<circle cx=\"";
-    put_double(s, X(pts[i][0]));
-    s += "\" cy=\"";
-    put_double(s, Y(pts[i][1]));
-    s += "\" r=\"";
-    put_double(s, r);
-    s += "\"/>\n";
-  }
+  const double r = detail::SvgFrame::point_radius(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) fr.circle(s, pts[i], r);
   s += "</g>\n</svg>\n";
   return s;
 }

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `constrict reconstruct`: a simple polygon (2D) through all points. Validates every result.
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "constrict/constrict.hpp"
+#include "constrict/gamma_graph.hpp"
+#include "constrict/io.hpp"
+#include "constrict/validate.hpp"
+
+namespace constrict::cli {
+namespace {
+
+struct ReconstructArgs {
+  InputArgs in;
+  std::string out, report, fallback = "auto";
+  std::size_t stop_after = SIZE_MAX;
+  bool quiet = false;
+};
+
+// Feeds the constriction's events to the progress printer.
+class ProgressVisitor final : public Constrict2Visitor {
+ public:
+  ProgressVisitor(Progress& p, std::size_t n) : progress_(p), n_(n) {}
+  void on_event(const Constrict2Event& e) override {
+    if (e.kind == Constrict2Event::Kind::StageBegin) {
+      stage_ = "constricting (" + e.stage + "), triangles removed";
+      progress_.phase(stage_.c_str());
+      removed_ = 0;
+    } else if (e.kind == Constrict2Event::Kind::RemoveTriangle || e.kind == Constrict2Event::Kind::InsertPoint) {
+      if ((++removed_ & 1023u) == 0) progress_.count(removed_, n_);
+    }
+  }
+
+ private:
+  Progress& progress_;
+  std::size_t n_;
+  std::size_t removed_ = 0;
+  std::string stage_;
+};
+
+int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
+                     Clock::time_point t0, Clock::time_point t1) {
+  const PolygonFormat fmt = polygon_format_from_path(a.out);
+  if (fmt == PolygonFormat::Auto)
+    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt or .svg)"});
+  Constrict2Options opt;
+  if (a.fallback == "auto") opt.fallback = Fallback::Auto;
+  else if (a.fallback == "gamma0") opt.fallback = Fallback::Gamma0;
+  else if (a.fallback == "degree4") opt.fallback = Fallback::Degree4;
+  else opt.fallback = Fallback::None;
+  opt.stop_after = a.stop_after;
+  opt.validate = false;  // validated below, also when incomplete, and reported
+  progress.phase("delaunay + gamma-values");
+  ProgressVisitor visitor(progress, pts.size());
+  Polygon2Result r;
+  if (Status s = reconstruct2(pts, opt, r, &visitor); !s) return fail(s);
+  const auto t2 = Clock::now();
+
+  progress.phase("validating");
+  PolygonCheck chk;
+  const Status vs = validate_polygon(pts, r.boundary, &chk);
+  const auto t3 = Clock::now();
+  const bool valid = vs.is_ok();
+  // A complete result must validate; anything else is a bug in the library.
+  if (r.complete && !valid)
+    return fail({StatusCode::Internal, "the reconstructed polygon failed validation (please report): " + chk.reason});
+
+  progress.phase("writing");
+  PolygonSvgLayers layers;
+  GammaFaces dt_edges;
+  if (fmt == PolygonFormat::Svg) {
+    GraphSpec spec;
+    (void)GraphSpec::from_preset("delaunay", spec);
+    if (Status s = build_gamma_graph(pts, spec, dt_edges); !s) return fail(s);
+    layers.graph = &dt_edges;
+    layers.highlight_points = r.stuck_points;
+    layers.highlight_edges = r.fallback_edges;
+    layers.title = "constrict: " + a.in.path + " (" + r.method + ")";
+  }
+  if (Status s = write_polygon2(a.out, pts, r.boundary, fmt, &layers); !s) return fail(s);
+  const auto t4 = Clock::now();
+
+  const std::size_t n = pts.size(), nb = r.boundary.size();
+  const bool used_fallback = r.method != "gamma" && r.method != "locked" && r.method != "stopped";
+  if (!a.report.empty()) {
+    nlohmann::json j;
+    j["command"] = "reconstruct";
+    j["input"] = a.in.path;
+    j["output"] = a.out;
+    j["dimension"] = 2;
+    j["points"] = n;
+    j["points_read"] = rep.points_read;
+    j["merged_duplicates"] = rep.merged_duplicates;
+    j["boundary_points"] = nb;
+    j["complete"] = r.complete;
+    j["valid"] = valid && r.complete;
+    j["validation"] = {{"simple", chk.simple}, {"counter_clockwise", chk.ccw}, {"all_points_once", chk.all_points},
+                       {"reason", chk.reason}};
+    j["method"] = r.method;
+    j["fallback_mode"] = a.fallback;
+    j["fallback"] = used_fallback ? nlohmann::json(r.method) : nlohmann::json(nullptr);
+    j["locked"] = r.locked_at_gamma0;
+    j["stuck_points"] = r.stuck_points;
+    nlohmann::json stages = nlohmann::json::array();
+    for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}});
+    j["stages"] = stages;
+    j["removed_simplices"] = r.removed_simplices;
+    j["fallback_insertions"] = r.fallback_insertions;
+    j["fallback_edges"] = r.fallback_edges.size();
+    j["area"] = r.area;
+    j["perimeter"] = r.perimeter;
+    j["timings_ms"] = {{"read", ms(t0, t1)},         {"delaunay", r.ms_delaunay},  {"gamma", 0.0},
+                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"validate", ms(t2, t3)},
+                       {"write", ms(t3, t4)},        {"total", ms(t0, Clock::now())}};
+    j["warnings"] = rep.warnings;
+    if (Status s = write_report(a.report, j); !s) return fail(s);
+  }
+  if (!r.complete) {
+    const char* why = r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked (--fallback none)";
+    return fail({StatusCode::Incomplete, std::string(why) + ": " + std::to_string(n - nb) + " of " + std::to_string(n) +
+                                             " points left inside; the polygon in " + a.out +
+                                             " passes through " + std::to_string(nb) + " points"});
+  }
+  if (!a.quiet) {
+    std::printf("polygon through %zu/%zu points: valid (simple, counter-clockwise, every point once); method %s",
+                nb, n, r.method.c_str());
+    if (r.locked_at_gamma0) std::printf(" (gamma locked with %zu inside)", r.stuck_points.size());
+    std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));
+  }
+  return 0;
+}
+
+int run_reconstruct(const ReconstructArgs& a) {
+  const auto t0 = Clock::now();
+  Progress progress(!a.quiet);
+  progress.phase("reading");
+  PointSet pts;
+  ReadReport rep;
+  if (Status s = read_input(a.in, pts, rep, a.quiet); !s) return fail(s);
+  const auto t1 = Clock::now();
+  if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);
+  return fail({StatusCode::Unsupported, "3D reconstruction is not available in this build yet"});
+}
+
+}  // namespace
+
+Command add_reconstruct_command(CLI::App& app) {
+  auto a = std::make_shared<ReconstructArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "reconstruct", "reconstruct a simple polygon (2D) through all points by gamma-constriction");
+  add_input_options(cmd, a->in);
+  cmd->add_option("-o,--output", a->out, "output: 2D .idx .csv .geojson .wkt .svg")->required();
+  cmd->add_option("--report", a->report, "write a JSON report (method, counts, area, timings)");
+  cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 | none")
+      ->check(CLI::IsMember({"auto", "gamma0", "degree4", "none"}));
+  cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
+  cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
+  return {cmd, [a] { return run_reconstruct(*a); }};
+}
+
+}  // namespace constrict::cli

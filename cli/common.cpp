@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "common.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+namespace constrict::cli {
+
+int fail(const Status& s) {
+  std::fprintf(stderr, "constrict: error [%s]: %s\n", to_string(s.code()), s.message().c_str());
+  return exit_code(s.code());
+}
+
+void add_input_options(CLI::App* cmd, InputArgs& in) {
+  cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj)")->required();
+  cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")->check(CLI::IsMember({2, 3}));
+  cmd->add_flag("--merge-duplicates", in.merge_duplicates,
+                "keep the first of identical points (default: duplicates are an error)");
+}
+
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet) {
+  ReadOptions opt;
+  opt.dim = in.dim;
+  opt.merge_duplicates = in.merge_duplicates;
+  Status s = read_points(in.path, opt, pts, &rep);
+  if (s && !quiet)
+    for (const auto& w : rep.warnings) std::fprintf(stderr, "constrict: warning: %s\n", w.c_str());
+  return s;
+}
+
+bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out) {
+  out.clear();
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(item, &used);
+      if (used != item.size()) return false;
+      out.push_back(v);
+    } catch (...) {
+      return false;
+    }
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return out.size() == count;
+}
+
+Status write_report(const std::string& path, const nlohmann::json& j) {
+  std::ofstream f(path);
+  if (!f) return {StatusCode::WriteFailed, path + ": cannot open report for writing"};
+  f << j.dump(2) << '\n';
+  if (!f) return {StatusCode::WriteFailed, path + ": writing the report failed"};
+  return Status::ok();
+}
+
+Progress::Progress(bool enabled) : enabled_(enabled), start_(Clock::now()) {
+  if (enabled_) thread_ = std::thread([this] { run(); });
+}
+
+Progress::~Progress() {
+  if (!enabled_) return;
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void Progress::phase(const char* name) {
+  phase_.store(name);
+  done_.store(0);
+  total_.store(0);
+}
+
+void Progress::count(std::size_t done, std::size_t total) {
+  total_.store(total);
+  done_.store(done);
+}
+
+void Progress::run() {
+  std::unique_lock<std::mutex> lock(m_);
+  auto next = start_ + std::chrono::seconds(1);
+  while (!cv_.wait_until(lock, next, [this] { return stop_; })) {
+    const double s = ms(start_, Clock::now()) / 1000.0;
+    const std::size_t total = total_.load(), done = done_.load();
+    if (total > 0)
+      std::fprintf(stderr, "constrict: %6.1f s  %s %zu/%zu\n", s, phase_.load(), done, total);
+    else
+      std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.load());
+    next += std::chrono::seconds(1);
+  }
+}
+
+}  // namespace constrict::cli

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Shared pieces of the constrict subcommands: error reporting, input options, JSON reports,
+// progress on stderr. No geometry here.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "constrict/io.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict::cli {
+
+using Clock = std::chrono::steady_clock;
+
+inline double ms(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+/// Prints `constrict: error [Code]: message` and returns the exit code of the status.
+int fail(const Status& s);
+
+struct InputArgs {
+  std::string path;
+  int dim = 0;
+  bool merge_duplicates = false;
+};
+
+void add_input_options(CLI::App* cmd, InputArgs& in);
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet);
+
+/// Splits "a,b,c" into exactly @p count doubles; false on a malformed list or another count.
+bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out);
+
+Status write_report(const std::string& path, const nlohmann::json& j);
+
+/// Progress lines on stderr for long runs: silent during the first second, then one line per
+/// second with the current phase and an optional counter. Thread-safe setters; the printing
+/// thread stops in the destructor.
+class Progress {
+ public:
+  explicit Progress(bool enabled);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void phase(const char* name);
+  void count(std::size_t done, std::size_t total);
+
+ private:
+  void run();
+  bool enabled_;
+  Clock::time_point start_;
+  std::atomic<const char*> phase_{"starting"};
+  std::atomic<std::size_t> done_{0}, total_{0};
+  std::mutex m_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace constrict::cli

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// 2D reference files (.gt) and combinatorial comparison of a polygon with a reference.
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <string>
+
+#include "constrict/metrics.hpp"
+
+namespace constrict {
+namespace {
+
+std::array<int, 2> edge(int u, int v) { return u < v ? std::array<int, 2>{{u, v}} : std::array<int, 2>{{v, u}}; }
+
+void add_path(std::vector<std::array<int, 2>>& out, const std::vector<int>& p, bool closed) {
+  if (p.size() < 2) return;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) out.push_back(edge(p[i], p[i + 1]));
+  if (closed && p.size() > 2) out.push_back(edge(p.back(), p.front()));
+}
+
+}  // namespace
+
+std::vector<std::array<int, 2>> Reference2::edges() const {
+  std::vector<std::array<int, 2>> e;
+  for (const auto& c : closed) add_path(e, c, true);
+  for (const auto& o : open) add_path(e, o, false);
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
+}
+
+Status read_reference2(const std::string& path, std::size_t n_points, Reference2& out) {
+  std::ifstream f(path);
+  if (!f) return {StatusCode::FileNotFound, path + ": cannot open reference file"};
+  Reference2 r;
+  std::string line;
+  std::size_t lineno = 0;
+  while (std::getline(f, line)) {
+    ++lineno;
+    std::size_t pos = line.find_first_not_of(" \t\r");
+    if (pos == std::string::npos || line[pos] == '#') continue;
+    const char kind = line[pos];
+    if ((kind != 'c' && kind != 'o') || pos + 1 >= line.size() || (line[pos + 1] != ' ' && line[pos + 1] != '\t'))
+      return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": a component line starts with 'c' or 'o'"};
+    std::vector<int> ids;
+    const char* p = line.data() + pos + 1;
+    const char* end = line.data() + line.size();
+    while (true) {
+      while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+      if (p >= end) break;
+      long long v = 0;
+      auto [q, ec] = std::from_chars(p, end, v);
+      if (ec != std::errc() || (q < end && *q != ' ' && *q != '\t' && *q != '\r'))
+        return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": malformed index"};
+      if (v < 0 || static_cast<unsigned long long>(v) >= n_points)
+        return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": index " + std::to_string(v) +
+                                            " out of range (" + std::to_string(n_points) + " points)"};
+      ids.push_back(static_cast<int>(v));
+      p = q;
+    }
+    if (ids.empty()) return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": empty component"};
+    (kind == 'c' ? r.closed : r.open).push_back(std::move(ids));
+  }
+  if (r.closed.empty() && r.open.empty()) return {StatusCode::EmptyInput, path + ": no component in reference file"};
+  out = std::move(r);
+  return Status::ok();
+}
+
+PolygonComparison compare_polygon2(const std::vector<int>& polygon, const Reference2& reference) {
+  PolygonComparison c;
+  std::vector<std::array<int, 2>> pe;
+  add_path(pe, polygon, true);
+  std::sort(pe.begin(), pe.end());
+  pe.erase(std::unique(pe.begin(), pe.end()), pe.end());
+  const std::vector<std::array<int, 2>> re = reference.edges();
+  std::vector<std::array<int, 2>> common;
+  std::set_intersection(pe.begin(), pe.end(), re.begin(), re.end(), std::back_inserter(common));
+  c.reference_edges = re.size();
+  c.polygon_edges = pe.size();
+  c.recovered_edges = common.size();
+  c.edge_recall = re.empty() ? 1.0 : static_cast<double>(common.size()) / static_cast<double>(re.size());
+  c.edge_precision = pe.empty() ? 0.0 : static_cast<double>(common.size()) / static_cast<double>(pe.size());
+  c.exact_match = reference.single_closed_curve() && pe == re;
+  return c;
+}
+
+}  // namespace constrict

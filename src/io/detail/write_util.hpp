@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Small helpers shared by the writers: exact shortest decimals (std::to_chars), whole-file writes
+// with one-line errors, extensions, XML/JSON escaping, and an SVG frame (y axis up).
+#pragma once
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "constrict/points.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict {
+namespace detail {
+
+inline void put_double(std::string& s, double v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+inline void put_int(std::string& s, long long v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+
+/// Lower-case extension without the dot ("" if none).
+inline std::string extension(const std::string& path) {
+  const auto slash = path.find_last_of("/\\");
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+inline Status write_file(const std::string& path, const std::string& data) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return {StatusCode::WriteFailed, path + ": cannot open for writing: " + std::strerror(errno)};
+  const std::size_t w = std::fwrite(data.data(), 1, data.size(), f);
+  const int c = std::fclose(f);
+  if (w != data.size() || c != 0) return {StatusCode::WriteFailed, path + ": write failed: " + std::strerror(errno)};
+  return Status::ok();
+}
+
+inline std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') { o += '\\'; o += c; }
+    else if (static_cast<unsigned char>(c) < 0x20) o += ' ';
+    else o += c;
+  }
+  return o;
+}
+
+inline std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '&': o += "&amp;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
+/// Maps 2D data coordinates into an SVG canvas of at most `size` pixels, y axis up.
+struct SvgFrame {
+  double lo[2] = {0, 0}, scale = 1, W = 0, H = 0, margin = 20;
+  explicit SvgFrame(const PointSet& pts, double size = 800.0) {
+    lo[0] = lo[1] = std::numeric_limits<double>::max();
+    double hi[2] = {-lo[0], -lo[1]};
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      for (int k = 0; k < 2; ++k) {
+        lo[k] = std::min(lo[k], pts[i][k]);
+        hi[k] = std::max(hi[k], pts[i][k]);
+      }
+    const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300);
+    scale = (size - 2 * margin) / std::max(w, h);
+    W = w * scale + 2 * margin;
+    H = h * scale + 2 * margin;
+  }
+  double x(double v) const { return margin + (v - lo[0]) * scale; }
+  double y(double v) const { return H - margin - (v - lo[1]) * scale; }
+  /// XML header, <svg> with size and viewBox, title, white background.
+  std::string open(const std::string& title) const {
+    std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
+    put_double(s, W);
+    s += "\" height=\"";
+    put_double(s, H);
+    s += "\" viewBox=\"0 0 ";
+    put_double(s, W);
+    s += ' ';
+    put_double(s, H);
+    s += "\">\n<title>" + xml_escape(title) + "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    return s;
+  }
+  /// Point radius that keeps dense sets readable.
+  static double point_radius(std::size_t n) {
+    return std::clamp(400.0 / std::sqrt(static_cast<double>(n) + 1.0), 0.5, 4.0);
+  }
+  void line(std::string& s, const double* a, const double* b) const {
+    s += "<line x1=\"";
+    put_double(s, x(a[0]));
+    s += "\" y1=\"";
+    put_double(s, y(a[1]));
+    s += "\" x2=\"";
+    put_double(s, x(b[0]));
+    s += "\" y2=\"";
+    put_double(s, y(b[1]));
+    s += "\"/>\n";
+  }
+  void circle(std::string& s, const double* p, double r) const {
+    s += "<circle cx=\"";
+    put_double(s, x(p[0]));
+    s += "\" cy=\"";
+    put_double(s, y(p[1]));
+    s += "\" r=\"";
+    put_double(s, r);
+    s += "\"/>\n";
+  }
+};
+
+}  // namespace detail
+}  // namespace constrict
