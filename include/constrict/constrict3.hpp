@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file constrict3.hpp
+/// @brief 3D reconstruction: a closed genus-0 polyhedron through all points by γ-constriction of
+/// the Delaunay tetrahedralization (Veltkamp, seed paper §4.2, §4.3, §5; spec gamma-graph.md
+/// §3), with a local fallback when the greedy constriction locks and an optional sculpting
+/// post-pass. Algorithm, guarantees and measurements: docs/reconstruction-3d.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "constrict/mesh.hpp"
+#include "constrict/points.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict {
+
+/// What to do when the Delaunay constriction locks (heap empty, points still inside).
+enum class Fallback3 {
+  Auto,  ///< star-cavity re-tetrahedralization around each stuck point, then continue (default)
+  None,  ///< stop at the lock: result.complete = false, stuck_points listed
+};
+
+/// Sculpting after every point is on the boundary (paper §4.2, candlestick figure).
+enum class Sculpt3 {
+  None,     ///< stop as soon as all points are on the boundary (the paper's rule)
+  TwoFace,  ///< keep removing removable two-face tetrahedra while their criterion (sum of
+            ///< 1 - γ over the two boundary faces) is >= sculpt_threshold
+};
+
+/// Criterion of a removable tetrahedron with two boundary faces.
+enum class TwoFaceKey {
+  Sum,  ///< (1 - γ1) + (1 - γ2), in [0, 4] (paper §4.2, spec §3.4; default)
+  Max,  ///< max(1 - γ1, 1 - γ2), in [0, 2]: same scale as one-face tetrahedra (measured
+        ///< alternative, docs/reconstruction-3d.md §5)
+};
+
+/// Options of reconstruct3(). Defaults: the paper's algorithm plus the lock fallback.
+struct Constrict3Options {
+  Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
+  Sculpt3 sculpt = Sculpt3::None;        ///< post-pass (measured in docs/reconstruction-3d.md)
+  TwoFaceKey two_face_key = TwoFaceKey::Sum;  ///< criterion of two-face tetrahedra
+  /// Minimum criterion for the TwoFace post-pass, in [0, 4] (the two_face_key scale). 2 = the average γ of the two faces
+  /// is < 0 (the tetrahedron's circumcentre lies outside the current surface, spec §3.5).
+  double sculpt_threshold = 2.0;
+  /// Cavity size limit (tetrahedra) of one fallback attempt.
+  std::size_t max_cavity_tets = 2048;
+  /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
+  /// then incomplete (no fallback runs) unless all points were already on the boundary.
+  std::size_t stop_after = SIZE_MAX;
+  /// Validate the surface (validate_mesh3) and the body (positive tetrahedra whose free faces are
+  /// exactly the surface triangles); a failure is a bug and throws InternalError.
+  bool validate = true;
+  /// Include the exact self-intersection test in the validation (O(F log F + K); off by default:
+  /// the surface is the boundary of a tetrahedralization, which already excludes it).
+  bool validate_self_intersections = false;
+};
+
+/// One stage and how many points it placed on the boundary.
+struct Constrict3Stage {
+  std::string name;          ///< "hull", "gamma", "cavity", "sculpt"
+  std::size_t placed = 0;    ///< points that joined the boundary in this stage
+  std::size_t removed = 0;   ///< tetrahedra removed in this stage
+};
+
+/// Result of reconstruct3().
+struct Mesh3Result {
+  TriMesh3 mesh;                          ///< outward triangles over input ids
+  std::vector<std::array<int, 4>> tets;   ///< the body (positively oriented); includes the
+                                          ///< non-Delaunay tetrahedra made by the fallback
+  bool complete = false;                  ///< every point on the surface
+  bool locked = false;                    ///< the Delaunay constriction locked
+  std::vector<int> stuck_points;          ///< points inside when it locked (ascending)
+  std::vector<int> unplaced_points;       ///< points still inside at the end (empty if complete)
+  /// "gamma" (no fallback needed), "cavity" (fallback placed points), "locked" (Fallback3::None
+  /// or fallback exhausted), "stopped" (stop_after).
+  std::string method;
+  std::vector<Constrict3Stage> stages;    ///< every stage run, in order
+  std::size_t removed_one_face = 0;       ///< tetrahedra removed by the one-face rule
+  std::size_t removed_two_face = 0;       ///< ... by the two-face rule (sculpting included)
+  std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
+  std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
+  std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
+  std::size_t non_delaunay_tets = 0;      ///< body tetrahedra made by the fallback
+  std::size_t delaunay_tets = 0;          ///< tetrahedra of the Delaunay tetrahedralization
+  double volume = 0, surface_area = 0;    ///< of the final surface (double arithmetic)
+  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_validate = 0;
+};
+
+/// Event passed to a visitor.
+struct Constrict3Event {
+  enum class Kind { RemoveTet, Lock, Cavity, StageBegin };
+  Kind kind = Kind::RemoveTet;
+  std::array<int, 4> tet{{-1, -1, -1, -1}};  ///< removed tetrahedron (RemoveTet)
+  int boundary_faces = 0;                    ///< 1 or 2 (RemoveTet)
+  double criterion = 0;                      ///< sum of 1 - γ over its boundary faces
+  int point = -1;                            ///< Cavity: the stuck point it is built around
+  std::size_t cavity_size = 0;               ///< Cavity: tetrahedra replaced
+  std::string stage;                         ///< stage name
+};
+
+/// Observer of the constriction (figures, debugging, tests). Called synchronously.
+class Constrict3Visitor {
+ public:
+  virtual ~Constrict3Visitor() = default;
+  virtual void on_event(const Constrict3Event& event) = 0;
+};
+
+/// Step-able constrictor. Usage: init(); while (step()) {...}; finish(result).
+/// reconstruct3() does exactly this.
+class Constrictor3 {
+ public:
+  Constrictor3();
+  ~Constrictor3();
+  Constrictor3(const Constrictor3&) = delete;
+  Constrictor3& operator=(const Constrictor3&) = delete;
+
+  /// Checks the points, builds the Delaunay tetrahedralization with γ-values, starts from the
+  /// convex hull.
+  /// @param[in] points 3D points (kept by reference: must outlive the constrictor)
+  /// @return check_points() failures (TooFewPoints, Coplanar, Duplicate, ...) or Ok
+  Status init(const PointSet& points, const Constrict3Options& options,
+              Constrict3Visitor* visitor = nullptr);
+  /// Removes one tetrahedron of the Delaunay constriction (spec §3.5).
+  /// @return false when this stage is over: all points on the boundary, locked, or stop_after.
+  /// @note O(log T) amortised.
+  bool step();
+  /// Current surface (outward triangles).
+  TriMesh3 surface() const;
+  /// Points not (yet) on the surface, ascending.
+  std::vector<int> inside_points() const;
+  /// Runs the fallback and the sculpting post-pass per the options, validates, fills @p result.
+  /// @return Ok (see result.complete), or Internal if init() was not successful.
+  Status finish(Mesh3Result& result);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Reconstructs a closed genus-0 polyhedron through all points (3D).
+/// @param[in] points dim == 3, at least 4 points, no duplicates, not all coplanar
+/// @param[in] options fallback, sculpting, validation
+/// @param[out] result surface, body and diagnostics
+/// @return Ok, or the check_points() status for bad input. A lock is not an error: with
+///   Fallback3::None (or if the fallback is exhausted) Ok is returned with result.complete ==
+///   false and result.unplaced_points filled.
+/// @note Guarantee: result.mesh is always a closed, oriented, vertex-manifold genus-0 surface
+///   (the boundary of result.tets), checked exactly when options.validate. Completeness is
+///   measured, not proved (docs/reconstruction-3d.md). Complexity O(T log T) for T Delaunay
+///   tetrahedra plus the local fallback work.
+Status reconstruct3(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
+                    Constrict3Visitor* visitor = nullptr);
+
+}  // namespace constrict

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file mesh.hpp
+/// @brief Closed triangle meshes over the input points (3D reconstruction output): exact
+/// validation, volume/area, and writers (OFF, PLY, OBJ, STL, VTK body). See
+/// docs/reconstruction-3d.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "constrict/points.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict {
+
+/// A triangle mesh whose vertex ids are input point indices. Triangles are oriented outward
+/// (counter-clockwise seen from outside; the signed volume is positive).
+struct TriMesh3 {
+  std::vector<std::array<int, 3>> triangles;
+  std::size_t n_faces() const noexcept { return triangles.size(); }
+};
+
+/// Options of validate_mesh3().
+struct MeshCheckOptions {
+  /// Require every input point to be a vertex (and hence F = 2N - 4). Off for partial results.
+  bool require_all_points = true;
+  /// Also test that no two triangles intersect except in their shared vertex / edge (exact,
+  /// orient3-based). Cost O(F log F + K) with K = pairs of overlapping x-extents (a sweep);
+  /// meant for tests and small meshes.
+  bool self_intersections = false;
+};
+
+/// What validate_mesh3() found. Flags after the first failing check may be left false.
+/// Order of checks: indices, degenerate faces, edges (closed / manifold / oriented), vertex links,
+/// points used, components, Euler characteristic, face count, orientation (volume),
+/// self-intersections.
+struct MeshCheck {
+  bool indices_ok = false;        ///< every id in [0, N), three distinct ids per face
+  bool non_degenerate = false;    ///< no face with collinear vertices (exact)
+  bool closed = false;            ///< every edge in at least two faces (no border edge)
+  bool edge_manifold = false;     ///< every edge in exactly two faces
+  bool oriented = false;          ///< the two faces of every edge use it in opposite directions
+  bool vertex_manifold = false;   ///< the link of every vertex is one cycle
+  bool all_points = false;        ///< every input point is a vertex
+  bool one_component = false;     ///< the faces form one edge-connected component
+  bool euler_ok = false;          ///< V - E + F == 2 (genus 0)
+  bool face_count_ok = false;     ///< F == 2V - 4 (V = used vertices; = 2N - 4 with all points)
+  bool outward = false;           ///< signed volume > 0
+  bool self_intersection_checked = false;
+  bool no_self_intersections = false;  ///< meaningful when self_intersection_checked
+  long long vertices = 0, edges = 0, faces = 0;
+  long long euler = 0;            ///< V - E + F
+  int genus = -1;                 ///< (2 - χ) / 2 for a closed connected manifold, else -1
+  int components = 0;
+  int missing_point = -1;         ///< first input point that is not a vertex
+  int bad_vertex = -1;            ///< first vertex with a bad link
+  std::array<int, 2> bad_edge{{-1, -1}};       ///< first bad edge
+  std::array<int, 2> intersecting_faces{{-1, -1}};  ///< first intersecting pair (face indices)
+  double volume = 0;              ///< signed volume (double arithmetic)
+  std::string reason;             ///< one line; empty when valid
+};
+
+/// Checks that @p mesh is the boundary of a solid: a closed, edge- and vertex-manifold,
+/// consistently and outward oriented, connected triangle mesh of genus 0 through every input point.
+/// Combinatorial checks are exact; degeneracy and self-intersection tests use exact orient3; the
+/// outward test uses the signed volume in double arithmetic (origin at the first vertex's
+/// bounding-box centre), which only misjudges volumes at rounding level.
+/// @param[in] points dim == 3
+/// @param[in] mesh triangles over input ids
+/// @param[out] details optional diagnostics
+/// @return Ok, or InvalidArgument with a one-line reason (also in details->reason)
+/// @note O(F log F) without the self-intersection test.
+Status validate_mesh3(const PointSet& points, const TriMesh3& mesh, MeshCheck* details = nullptr,
+                      const MeshCheckOptions& options = {});
+
+/// Exact test whether the closed triangles (a,b,c) and (d,e,f) intersect in more than their
+/// shared vertices/edge (ids equal ⇔ shared). Exact (orient3/orient2 on coordinate projections).
+/// @pre neither triangle is degenerate.
+bool triangles_intersect_improperly(const PointSet& points, const std::array<int, 3>& t1,
+                                    const std::array<int, 3>& t2);
+
+/// Signed volume enclosed by an oriented closed mesh (divergence theorem, double arithmetic,
+/// origin at the bounding-box centre of the points). O(F).
+double mesh_volume(const PointSet& points, const TriMesh3& mesh);
+/// Total area of the triangles (double arithmetic). O(F).
+double mesh_area(const PointSet& points, const TriMesh3& mesh);
+
+/// Options of write_mesh().
+struct MeshWriteOptions {
+  bool ply_ascii = false;  ///< PLY: ASCII instead of binary little-endian
+};
+
+/// Writes a mesh. The format follows the extension: .off (ASCII), .ply (binary little-endian
+/// double vertices and int32 face lists unless ply_ascii), .obj (ASCII, 1-based), .stl (binary,
+/// float32; STL has no shared vertices). Vertices are all input points in input order, so face
+/// indices are input indices. ASCII numbers are the shortest round-trip decimals.
+/// @return Ok, or WriteFailed with a one-line reason (unknown extension, cannot open, I/O error)
+Status write_mesh(const std::string& path, const PointSet& points, const TriMesh3& mesh,
+                  const MeshWriteOptions& options = {});
+
+/// Writes a tetrahedral body as a VTK legacy unstructured grid (ASCII, cell type 10), vertices =
+/// all input points in input order. Opens in ParaView.
+/// @return Ok, or WriteFailed with a one-line reason
+Status write_body_vtk(const std::string& path, const PointSet& points,
+                      const std::vector<std::array<int, 4>>& tets);
+
+}  // namespace constrict

@@ -1,0 +1,659 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// 3D γ-constriction of the Delaunay tetrahedralization (seed paper §4.2, §5; spec §3.1-3.5), the
+// star-cavity fallback after a lock (paper §4.3) and the optional two-face sculpting post-pass
+// (paper §4.2, candlestick). See docs/reconstruction-3d.md for the algorithm and guarantees.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "constrict/constrict3.hpp"
+#include "constrict/delaunay.hpp"
+#include "constrict/gamma_graph.hpp"
+#include "constrict/mesh.hpp"
+#include "constrict/predicates.hpp"
+
+namespace constrict {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Face opposite local vertex i of a positively oriented tetrahedron, oriented outward (the
+// tetrahedron's vertex i lies on its negative side).
+constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+enum : std::uint8_t { kOutside = 0, kAlive = 1, kReplaced = 2 };
+
+// Sign of the permutation (a, b, c, d) of (0, 1, 2, 3).
+int parity4(int a, int b, int c, int d) {
+  const int v[4] = {a, b, c, d};
+  int inv = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inv += v[i] > v[j];
+  return (inv & 1) ? -1 : 1;
+}
+
+std::array<int, 4> sorted4(std::array<int, 4> t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+std::uint64_t edge_key(int u, int v) {
+  if (u > v) std::swap(u, v);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
+}
+
+struct Entry {
+  double key;
+  int tet;
+  std::uint32_t version;
+};
+
+std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+}  // namespace
+
+struct Constrictor3::Impl {
+  const PointSet* pts = nullptr;
+  Constrict3Options opt;
+  Constrict3Visitor* visitor = nullptr;
+  bool ready = false;
+
+  DelaunayGamma3 dg;                         // faces + simplex_face of the Delaunay tets
+  std::vector<std::array<int, 4>> tets;      // Delaunay tets, then fallback tets appended
+  std::vector<std::array<int, 4>> nbr;       // neighbor across the face opposite vertex i
+  std::size_t T0 = 0;                        // number of Delaunay tets
+  std::vector<std::uint8_t> state;
+  std::vector<std::uint32_t> ver;
+  std::vector<char> onb;
+  std::size_t n = 0, n_onb = 0, n_hull = 0;
+  std::vector<Entry> heap;
+
+  std::size_t removed = 0, removed1 = 0, removed2 = 0, removed_sculpt = 0;
+  bool locked_now = false, stopped = false, first_lock = false;
+  std::vector<int> stuck;
+  double ms_delaunay = 0, ms_constrict = 0;
+
+  // Fallback state.
+  std::vector<int> vert_tet;                 // an alive tet incident to each vertex (built on lock)
+  std::vector<std::uint32_t> mark;           // per tet epoch marks
+  std::uint32_t epoch = 0;
+  std::size_t cavities = 0, cavity_attempts = 0;
+
+  const double* P(int v) const { return (*pts)[uz(v)]; }
+  bool alive(int t) const { return t >= 0 && state[uz(t)] == kAlive; }
+  bool boundary_face(int t, int i) const { return !alive(nbr[uz(t)][uz(i)]); }
+
+  // ---- heap (max by key, ties -> smallest sorted vertex-id tuple; spec §3.5) -------------------
+  bool less(const Entry& a, const Entry& b) const {
+    if (a.key != b.key) return a.key < b.key;
+    return sorted4(tets[uz(a.tet)]) > sorted4(tets[uz(b.tet)]);
+  }
+  void heap_push(const Entry& e) {
+    heap.push_back(e);
+    std::push_heap(heap.begin(), heap.end(), [this](const Entry& a, const Entry& b) { return less(a, b); });
+  }
+  Entry heap_pop() {
+    std::pop_heap(heap.begin(), heap.end(), [this](const Entry& a, const Entry& b) { return less(a, b); });
+    Entry e = heap.back();
+    heap.pop_back();
+    return e;
+  }
+
+  // 1 - γ(face opposite i; apex tets[t][i]) (spec §3.2, §3.4). For a Delaunay tet this is the
+  // stored side value of the face on the side of the apex (spec §2.3); fallback tets use the apex
+  // value directly.
+  double face_term(int t, int i) const {
+    const auto& v = tets[uz(t)];
+    if (uz(t) < T0) {
+      const int f = dg.simplex_face[uz(t)][uz(i)];
+      std::array<std::pair<int, int>, 3> fv{};
+      int k = 0;
+      for (int l = 0; l < 4; ++l)
+        if (l != i) fv[uz(k++)] = {v[uz(l)], l};
+      std::sort(fv.begin(), fv.end());
+      const int side = parity4(fv[0].second, fv[1].second, fv[2].second, i);
+      const double g = side > 0 ? dg.faces.gamma_a[uz(f)] : dg.faces.gamma_b[uz(f)];
+      return 1.0 - g;
+    }
+    const int* fo = kFaceOut[i];
+    return 1.0 - apex_gamma3(P(v[uz(fo[0])]), P(v[uz(fo[1])]), P(v[uz(fo[2])]), P(v[uz(i)]));
+  }
+
+  int local_index(int t, int vertex) const {
+    const auto& v = tets[uz(t)];
+    for (int l = 0; l < 4; ++l)
+      if (v[uz(l)] == vertex) return l;
+    return -1;
+  }
+
+  // Is the edge (tets[t][i], tets[t][j]) on the surface? Walk around it from t through the faces
+  // that contain it; it is on the surface iff the walk meets a non-alive tet before closing.
+  bool edge_on_boundary(int t, int i, int j) const {
+    const int a = tets[uz(t)][uz(i)], b = tets[uz(t)][uz(j)];
+    int k = 0;
+    while (k == i || k == j) ++k;
+    int l = 0;
+    while (l == i || l == j || l == k) ++l;
+    int cur = t, exit_v = tets[uz(t)][uz(k)], keep = tets[uz(t)][uz(l)];
+    for (std::size_t guard = 0; guard < tets.size() + 1; ++guard) {
+      const int li = local_index(cur, exit_v);
+      CONSTRICT_CHECK(li >= 0, "edge walk lost its way");
+      const int nx = nbr[uz(cur)][uz(li)];
+      if (!alive(nx)) return true;
+      if (nx == t) return false;
+      int w = -1;
+      for (int x : tets[uz(nx)])
+        if (x != a && x != b && x != keep) w = x;
+      exit_v = keep;
+      keep = w;
+      cur = nx;
+    }
+    CONSTRICT_CHECK(false, "edge walk did not terminate");
+    return true;
+  }
+
+  // Removability (spec §3.3): 1 / 2 boundary faces by the one-face / two-face rule, else 0.
+  int removable(int t, double* key) const {
+    int bi[4], nb = 0;
+    for (int i = 0; i < 4; ++i)
+      if (boundary_face(t, i)) bi[nb++] = i;
+    int r = 0;
+    if (nb == 1) r = onb[uz(tets[uz(t)][uz(bi[0])])] ? 0 : 1;
+    else if (nb == 2) r = edge_on_boundary(t, bi[0], bi[1]) ? 0 : 2;
+    if (r && key) {
+      *key = face_term(t, bi[0]);
+      if (nb == 2) {
+        // Paper §4.2: the sum of the two terms; TwoFaceKey::Max is the measured alternative.
+        const double k2 = face_term(t, bi[1]);
+        *key = opt.two_face_key == TwoFaceKey::Sum ? *key + k2 : std::max(*key, k2);
+      }
+    }
+    return r;
+  }
+
+  void try_push(int t) {
+    double key = 0;
+    if (removable(t, &key)) heap_push({key, t, ver[uz(t)]});
+  }
+
+  void remove(int t, int kind, double key, const char* stage) {
+    state[uz(t)] = kOutside;
+    ++ver[uz(t)];
+    ++removed;
+    if (kind == 1) {
+      ++removed1;
+      for (int i = 0; i < 4; ++i) {
+        const int x = tets[uz(t)][uz(i)];
+        if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
+      }
+    } else {
+      ++removed2;
+    }
+    for (int i = 0; i < 4; ++i) {
+      const int m = nbr[uz(t)][uz(i)];
+      if (alive(m)) {
+        ++ver[uz(m)];
+        try_push(m);
+      }
+    }
+    // Spec §3.3 (ii): after a two-face removal the common edge leaves the surface; a tet around it
+    // could become removable. Around that edge the only alive tet was t itself (the surface is a
+    // 2-manifold, so the edge had exactly the two faces of t), so there is nothing to re-examine.
+    if (visitor) {
+      Constrict3Event e;
+      e.kind = Constrict3Event::Kind::RemoveTet;
+      e.tet = tets[uz(t)];
+      e.boundary_faces = kind;
+      e.criterion = key;
+      e.stage = stage;
+      visitor->on_event(e);
+    }
+  }
+
+  // Pops until one removal is done. min_key: stop (return false) when the best key is below it.
+  bool pop_and_remove(double min_key, const char* stage) {
+    while (!heap.empty()) {
+      if (heap.front().key < min_key) return false;
+      const Entry e = heap_pop();
+      if (!alive(e.tet) || e.version != ver[uz(e.tet)]) continue;
+      double key = 0;
+      const int kind = removable(e.tet, &key);
+      if (!kind) continue;
+      remove(e.tet, kind, key, stage);
+      return true;
+    }
+    return false;
+  }
+
+  bool step() {
+    if (!ready || stopped || n_onb == n) return false;
+    if (removed >= opt.stop_after) { stopped = true; return false; }
+    if (pop_and_remove(-1e300, "gamma")) return true;
+    locked_now = true;
+    if (visitor) {
+      Constrict3Event e;
+      e.kind = Constrict3Event::Kind::Lock;
+      e.stage = "gamma";
+      visitor->on_event(e);
+    }
+    return false;
+  }
+
+  std::vector<int> inside() const {
+    std::vector<int> r;
+    for (std::size_t v = 0; v < n; ++v)
+      if (!onb[v]) r.push_back(static_cast<int>(v));
+    return r;
+  }
+
+  TriMesh3 surface() const {
+    TriMesh3 m;
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      if (state[t] != kAlive) continue;
+      for (int i = 0; i < 4; ++i)
+        if (boundary_face(static_cast<int>(t), i)) {
+          const auto& v = tets[t];
+          m.triangles.push_back({{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}});
+        }
+    }
+    return m;
+  }
+
+  // ---- fallback: star-cavity re-tetrahedralization (docs/reconstruction-3d.md §3) ------------
+
+  int new_tet(const std::array<int, 4>& v) {
+    tets.push_back(v);
+    nbr.push_back({{-1, -1, -1, -1}});
+    state.push_back(kAlive);
+    ver.push_back(0);
+    mark.push_back(0);
+    return static_cast<int>(tets.size() - 1);
+  }
+
+  void build_vert_tet() {
+    vert_tet.assign(n, -1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive)
+        for (int x : tets[t]) vert_tet[uz(x)] = static_cast<int>(t);
+  }
+
+  // The tets around vertex p (all alive: p is not on the surface).
+  bool star_of(int p, std::vector<int>& out) {
+    out.clear();
+    const int t0 = vert_tet[uz(p)];
+    if (!alive(t0) || local_index(t0, p) < 0) return false;
+    ++epoch;
+    mark[uz(t0)] = epoch;
+    out.push_back(t0);
+    for (std::size_t q = 0; q < out.size(); ++q) {
+      const int t = out[q];
+      for (int i = 0; i < 4; ++i) {
+        if (tets[uz(t)][uz(i)] == p) continue;
+        const int m = nbr[uz(t)][uz(i)];
+        if (!alive(m)) return false;  // p would be on the surface
+        if (mark[uz(m)] != epoch) { mark[uz(m)] = epoch; out.push_back(m); }
+      }
+      if (out.size() > 100000) return false;
+    }
+    return true;
+  }
+
+  struct Target {
+    double key;
+    int t, i;
+    std::array<int, 3> ids;
+  };
+
+  // Surface faces within `depth` face-hops of p's star that p sees from inside, best key first.
+  void targets_of(int p, const std::vector<int>& star, int depth, std::vector<Target>& out) {
+    out.clear();
+    ++epoch;
+    std::vector<int> cur = star, next;
+    for (int t : cur) mark[uz(t)] = epoch;
+    for (int d = 0; d <= depth && !cur.empty(); ++d) {
+      next.clear();
+      for (int t : cur) {
+        for (int i = 0; i < 4; ++i) {
+          const int m = nbr[uz(t)][uz(i)];
+          if (!alive(m)) {
+            const auto& v = tets[uz(t)];
+            const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
+            if (orient3(P(a), P(b), P(c), P(p)) < 0) {
+              std::array<int, 3> ids{{a, b, c}};
+              std::sort(ids.begin(), ids.end());
+              out.push_back({1.0 - apex_gamma3(P(a), P(b), P(c), P(p)), t, i, ids});
+            }
+          } else if (mark[uz(m)] != epoch) {
+            mark[uz(m)] = epoch;
+            next.push_back(m);
+          }
+        }
+      }
+      std::swap(cur, next);
+    }
+    std::sort(out.begin(), out.end(), [](const Target& x, const Target& y) {
+      return x.key != y.key ? x.key > y.key : x.ids < y.ids;
+    });
+  }
+
+  // Grows U = star(p) ∪ {tet behind the target face} until every face of its boundary is seen
+  // from p strictly from inside (orient3 < 0), then replaces U by the cone from p over its
+  // boundary. All tests exact. Returns false (and leaves everything unchanged) when U would have
+  // to grow across the surface, exceeds the size limit, swallows a vertex, or is not a sphere.
+  bool try_cavity(int p, const std::vector<int>& star, const Target& tg) {
+    ++cavity_attempts;
+    ++epoch;
+    const std::uint32_t in_u = epoch;
+    std::vector<int> U;
+    for (int t : star) { mark[uz(t)] = in_u; U.push_back(t); }
+    if (mark[uz(tg.t)] != in_u) { mark[uz(tg.t)] = in_u; U.push_back(tg.t); }
+    // Visibility closure. Faces are re-scanned per added tet (worklist).
+    std::vector<int> work = U;
+    while (!work.empty()) {
+      const int t = work.back();
+      work.pop_back();
+      if (mark[uz(t)] != in_u) continue;
+      for (int i = 0; i < 4; ++i) {
+        const int m = nbr[uz(t)][uz(i)];
+        if (m >= 0 && mark[uz(m)] == in_u) continue;
+        const auto& v = tets[uz(t)];
+        const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
+        if (a == p || b == p || c == p) return false;  // p on U's boundary: cannot happen, be safe
+        if (orient3(P(a), P(b), P(c), P(p)) < 0) continue;  // visible
+        if (!alive(m)) return false;                        // would cross the surface
+        if (U.size() >= opt.max_cavity_tets) return false;
+        mark[uz(m)] = in_u;
+        U.push_back(m);
+        work.push_back(m);
+        // t's own other faces stay valid; m's faces are scanned when popped.
+      }
+    }
+    // U's boundary faces, outward from U.
+    struct BFace { int a, b, c, outside; };
+    std::vector<BFace> bf;
+    for (int t : U)
+      for (int i = 0; i < 4; ++i) {
+        const int m = nbr[uz(t)][uz(i)];
+        if (m >= 0 && mark[uz(m)] == in_u) continue;
+        const auto& v = tets[uz(t)];
+        bf.push_back({v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])], m});
+      }
+    // No vertex of U may disappear: every vertex of U other than p lies on its boundary.
+    {
+      std::vector<int> vb, vu;
+      for (const auto& f : bf) { vb.push_back(f.a); vb.push_back(f.b); vb.push_back(f.c); }
+      for (int t : U)
+        for (int x : tets[uz(t)])
+          if (x != p) vu.push_back(x);
+      std::sort(vb.begin(), vb.end());
+      vb.erase(std::unique(vb.begin(), vb.end()), vb.end());
+      std::sort(vu.begin(), vu.end());
+      vu.erase(std::unique(vu.begin(), vu.end()), vu.end());
+      if (vb != vu) return false;
+    }
+    // Edge pairing of the boundary (must be a closed 2-manifold: every edge in exactly 2 faces).
+    std::unordered_map<std::uint64_t, std::array<int, 4>> edge_slots;  // -> (tet, local, tet, local)
+    edge_slots.reserve(bf.size() * 2);
+    std::vector<int> created;
+    created.reserve(bf.size());
+    // Create the cone tets (f.a, f.c, f.b, p): positively oriented since orient3(a,b,c,p) < 0.
+    const std::size_t first_new = tets.size();
+    for (std::size_t k = 0; k < bf.size(); ++k) {
+      const auto& f = bf[k];
+      const std::array<int, 4> v{{f.a, f.c, f.b, p}};
+      // local faces containing p: opposite w0 (edge w1w2), w1 (edge w0w2), w2 (edge w0w1)
+      const std::uint64_t keys[3] = {edge_key(v[1], v[2]), edge_key(v[0], v[2]), edge_key(v[0], v[1])};
+      const int tid = static_cast<int>(first_new + k);
+      for (int j = 0; j < 3; ++j) {
+        auto it = edge_slots.find(keys[j]);
+        if (it == edge_slots.end()) {
+          edge_slots.emplace(keys[j], std::array<int, 4>{{tid, j, -1, -1}});
+        } else {
+          if (it->second[2] != -1) return false;  // edge in > 2 boundary faces
+          it->second[2] = tid;
+          it->second[3] = j;
+        }
+      }
+    }
+    for (const auto& kv : edge_slots)
+      if (kv.second[2] == -1) return false;
+    // Commit.
+    for (std::size_t k = 0; k < bf.size(); ++k) {
+      const auto& f = bf[k];
+      const int tid = new_tet({{f.a, f.c, f.b, p}});
+      created.push_back(tid);
+      nbr[uz(tid)][3] = f.outside;
+      if (f.outside >= 0) {
+        // Repoint the outside tet's neighbor (it pointed to the U tet behind this face).
+        for (int j = 0; j < 4; ++j) {
+          const int x = nbr[uz(f.outside)][uz(j)];
+          if (x >= 0 && x < static_cast<int>(first_new) && mark[uz(x)] == in_u) {
+            // the face of f.outside opposite j must be {a,b,c}
+            const auto& w = tets[uz(f.outside)];
+            const int opp = w[uz(j)];
+            if (opp != f.a && opp != f.b && opp != f.c) nbr[uz(f.outside)][uz(j)] = tid;
+          }
+        }
+      }
+    }
+    for (const auto& kv : edge_slots) {
+      const auto& s = kv.second;
+      nbr[uz(s[0])][uz(s[1])] = s[2];
+      nbr[uz(s[2])][uz(s[3])] = s[0];
+    }
+    for (int t : U) { state[uz(t)] = kReplaced; ++ver[uz(t)]; }
+    for (int t : created)
+      for (int x : tets[uz(t)]) vert_tet[uz(x)] = t;
+    for (int t : created)
+      if (boundary_face(t, 3)) try_push(t);
+    // Alive tets outside U keep their faces; their removability is unchanged.
+    ++cavities;
+    if (visitor) {
+      Constrict3Event e;
+      e.kind = Constrict3Event::Kind::Cavity;
+      e.point = p;
+      e.cavity_size = U.size();
+      e.stage = "cavity";
+      visitor->on_event(e);
+    }
+    return true;
+  }
+
+  bool place_by_cavity(int p) {
+    std::vector<int> star;
+    if (!star_of(p, star)) return false;
+    std::vector<Target> tg;
+    for (int depth : {3, 8, 24}) {
+      targets_of(p, star, depth, tg);
+      const std::size_t tries = std::min<std::size_t>(tg.size(), depth == 3 ? 6 : 24);
+      for (std::size_t k = 0; k < tries; ++k)
+        if (try_cavity(p, star, tg[k])) return true;
+    }
+    return false;
+  }
+
+  // ---- validation of the body -------------------------------------------------------------
+  void check_body() const {
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      if (state[t] != kAlive) continue;
+      const auto& v = tets[t];
+      CONSTRICT_CHECK(orient3(P(v[0]), P(v[1]), P(v[2]), P(v[3])) > 0, "body tetrahedron not positive");
+      for (int i = 0; i < 4; ++i) {
+        const int m = nbr[t][uz(i)];
+        if (!alive(m)) continue;
+        int j = -1;
+        for (int l = 0; l < 4; ++l)
+          if (nbr[uz(m)][uz(l)] == static_cast<int>(t)) j = l;
+        CONSTRICT_CHECK(j >= 0, "body adjacency not symmetric");
+        std::array<int, 3> f1{}, f2{};
+        int k1 = 0, k2 = 0;
+        for (int l = 0; l < 4; ++l) {
+          if (l != i) f1[uz(k1++)] = v[uz(l)];
+          if (l != j) f2[uz(k2++)] = tets[uz(m)][uz(l)];
+        }
+        std::sort(f1.begin(), f1.end());
+        std::sort(f2.begin(), f2.end());
+        CONSTRICT_CHECK(f1 == f2, "body neighbours do not share the face");
+      }
+    }
+  }
+};
+
+Constrictor3::Constrictor3() : impl_(std::make_unique<Impl>()) {}
+Constrictor3::~Constrictor3() = default;
+
+Status Constrictor3::init(const PointSet& points, const Constrict3Options& options,
+                          Constrict3Visitor* visitor) {
+  Impl& s = *impl_;
+  s = Impl{};
+  if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct3 needs 3D points"};
+  if (!(options.sculpt_threshold >= 0 && options.sculpt_threshold <= 4))
+    return {StatusCode::InvalidArgument, "sculpt_threshold must be in [0, 4]"};
+  if (Status st = check_points(points); !st) return st;
+  s.pts = &points;
+  s.opt = options;
+  s.visitor = visitor;
+  s.n = points.size();
+  const auto t0 = Clock::now();
+  if (Status st = delaunay_gamma3(points, s.dg); !st) return st;
+  s.ms_delaunay = ms_since(t0);
+  s.tets = std::move(s.dg.dt.tets);
+  s.nbr = std::move(s.dg.dt.neighbors);
+  s.T0 = s.tets.size();
+  s.state.assign(s.T0, kAlive);
+  s.ver.assign(s.T0, 0);
+  s.mark.assign(s.T0, 0);
+  s.onb.assign(s.n, 0);
+  for (std::size_t t = 0; t < s.T0; ++t)
+    for (int i = 0; i < 4; ++i)
+      if (s.nbr[t][uz(i)] < 0)
+        for (int k = 0; k < 3; ++k) {
+          const int x = s.tets[t][uz(kFaceOut[i][k])];
+          if (!s.onb[uz(x)]) { s.onb[uz(x)] = 1; ++s.n_onb; }
+        }
+  s.n_hull = s.n_onb;
+  s.heap.reserve(s.T0 / 4 + 16);
+  for (std::size_t t = 0; t < s.T0; ++t) {
+    const auto& nb = s.nbr[t];
+    if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0 || nb[3] < 0) s.try_push(static_cast<int>(t));
+  }
+  s.ready = true;
+  return Status::ok();
+}
+
+bool Constrictor3::step() { return impl_->step(); }
+
+TriMesh3 Constrictor3::surface() const { return impl_->surface(); }
+
+std::vector<int> Constrictor3::inside_points() const { return impl_->inside(); }
+
+Status Constrictor3::finish(Mesh3Result& r) {
+  Impl& s = *impl_;
+  if (!s.ready) return {StatusCode::Internal, "Constrictor3::finish before a successful init"};
+  r = Mesh3Result{};
+  r.ms_delaunay = s.ms_delaunay;
+  r.delaunay_tets = s.T0;
+  auto stage_event = [&](const char* name) {
+    if (!s.visitor) return;
+    Constrict3Event e;
+    e.kind = Constrict3Event::Kind::StageBegin;
+    e.stage = name;
+    s.visitor->on_event(e);
+  };
+  r.stages.push_back({"hull", s.n_hull, 0});
+  // (1) Delaunay constriction (the caller may have stepped already).
+  auto t0 = Clock::now();
+  const std::size_t removed_before = s.removed;
+  while (s.step()) {
+  }
+  r.ms_constrict = ms_since(t0);
+  r.stages.push_back({"gamma", s.n_onb - s.n_hull, s.removed});
+  (void)removed_before;
+  r.method = "gamma";
+  if (s.n_onb < s.n && !s.stopped) {
+    r.locked = true;
+    r.stuck_points = s.inside();
+    // (2) fallback
+    if (s.opt.fallback == Fallback3::Auto) {
+      stage_event("cavity");
+      t0 = Clock::now();
+      const std::size_t onb0 = s.n_onb, rem0 = s.removed;
+      s.build_vert_tet();
+      bool progress = true;
+      while (s.n_onb < s.n && progress) {
+        progress = false;
+        for (int p : s.inside()) {
+          if (s.onb[uz(p)]) continue;
+          if (s.place_by_cavity(p)) {
+            progress = true;
+            while (s.pop_and_remove(-1e300, "cavity")) {
+              if (s.n_onb == s.n) break;
+            }
+            if (s.n_onb == s.n) break;
+          }
+        }
+      }
+      r.ms_fallback = ms_since(t0);
+      r.stages.push_back({"cavity", s.n_onb - onb0, s.removed - rem0});
+      if (s.n_onb > onb0) r.method = "cavity";
+    }
+  }
+  r.complete = s.n_onb == s.n;
+  if (!r.complete) r.method = s.stopped ? "stopped" : "locked";
+  // (3) sculpting post-pass (only on complete surfaces: all points stay on the boundary since
+  // two-face removals add no point and remove none).
+  if (r.complete && s.opt.sculpt == Sculpt3::TwoFace) {
+    stage_event("sculpt");
+    t0 = Clock::now();
+    const std::size_t rem0 = s.removed, r2 = s.removed2;
+    while (s.pop_and_remove(s.opt.sculpt_threshold, "sculpt")) {
+    }
+    CONSTRICT_CHECK(s.removed - rem0 == s.removed2 - r2, "sculpting removed a one-face tetrahedron");
+    s.removed_sculpt = s.removed - rem0;
+    r.ms_sculpt = ms_since(t0);
+    r.stages.push_back({"sculpt", 0, s.removed_sculpt});
+  }
+  r.removed_one_face = s.removed1;
+  r.removed_two_face = s.removed2;
+  r.removed_sculpt = s.removed_sculpt;
+  r.cavities = s.cavities;
+  r.cavity_attempts = s.cavity_attempts;
+  r.unplaced_points = s.inside();
+  r.mesh = s.surface();
+  for (std::size_t t = 0; t < s.tets.size(); ++t)
+    if (s.state[t] == kAlive) {
+      r.tets.push_back(s.tets[t]);
+      if (t >= s.T0) ++r.non_delaunay_tets;
+    }
+  r.volume = mesh_volume(*s.pts, r.mesh);
+  r.surface_area = mesh_area(*s.pts, r.mesh);
+  if (s.opt.validate) {
+    t0 = Clock::now();
+    s.check_body();
+    MeshCheckOptions mo;
+    mo.require_all_points = r.complete;
+    mo.self_intersections = s.opt.validate_self_intersections;
+    MeshCheck mc;
+    const Status vs = validate_mesh3(*s.pts, r.mesh, &mc, mo);
+    CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
+    r.ms_validate = ms_since(t0);
+  }
+  return Status::ok();
+}
+
+Status reconstruct3(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
+                    Constrict3Visitor* visitor) {
+  Constrictor3 c;
+  if (Status s = c.init(points, options, visitor); !s) return s;
+  return c.finish(result);
+}
+
+}  // namespace constrict

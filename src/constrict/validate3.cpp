@@ -1,0 +1,390 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact validation of closed triangle meshes (3D reconstruction output), mesh volume and area.
+// Combinatorics are exact; geometric tests use the exact orient3 / orient2 predicates only.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "constrict/mesh.hpp"
+#include "constrict/predicates.hpp"
+
+namespace constrict {
+namespace {
+
+using P2 = std::array<double, 2>;
+
+P2 proj(const double* p, int drop) {
+  if (drop == 0) return {{p[1], p[2]}};
+  if (drop == 1) return {{p[2], p[0]}};
+  return {{p[0], p[1]}};
+}
+
+// A coordinate plane on which the (non-degenerate) triangle abc projects to a proper triangle.
+int drop_axis(const double* a, const double* b, const double* c) {
+  for (int d : {2, 0, 1}) {
+    const P2 pa = proj(a, d), pb = proj(b, d), pc = proj(c, d);
+    if (orient2(pa.data(), pb.data(), pc.data()) != 0) return d;
+  }
+  return 2;  // collinear triangle (excluded by the callers)
+}
+
+bool on_collinear_segment2(const P2& p, const P2& q, const P2& r) {  // r collinear with pq
+  return std::min(p[0], q[0]) <= r[0] && r[0] <= std::max(p[0], q[0]) &&
+         std::min(p[1], q[1]) <= r[1] && r[1] <= std::max(p[1], q[1]);
+}
+
+bool segments_meet2(const P2& p, const P2& q, const P2& r, const P2& s) {
+  const int o1 = orient2(p.data(), q.data(), r.data()), o2 = orient2(p.data(), q.data(), s.data());
+  const int o3 = orient2(r.data(), s.data(), p.data()), o4 = orient2(r.data(), s.data(), q.data());
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  if (o1 == 0 && on_collinear_segment2(p, q, r)) return true;
+  if (o2 == 0 && on_collinear_segment2(p, q, s)) return true;
+  if (o3 == 0 && on_collinear_segment2(r, s, p)) return true;
+  if (o4 == 0 && on_collinear_segment2(r, s, q)) return true;
+  return false;
+}
+
+bool in_closed_triangle2(const P2& p, const P2& a, const P2& b, const P2& c) {
+  const int s = orient2(a.data(), b.data(), c.data());
+  return orient2(a.data(), b.data(), p.data()) * s >= 0 && orient2(b.data(), c.data(), p.data()) * s >= 0 &&
+         orient2(c.data(), a.data(), p.data()) * s >= 0;
+}
+
+// Closed segment pq against the closed triangle abc, all coplanar.
+bool coplanar_segment_triangle(const double* p, const double* q, const double* a, const double* b,
+                               const double* c) {
+  const int d = drop_axis(a, b, c);
+  const P2 pp = proj(p, d), pq = proj(q, d), pa = proj(a, d), pb = proj(b, d), pc = proj(c, d);
+  return in_closed_triangle2(pp, pa, pb, pc) || in_closed_triangle2(pq, pa, pb, pc) ||
+         segments_meet2(pp, pq, pa, pb) || segments_meet2(pp, pq, pb, pc) || segments_meet2(pp, pq, pc, pa);
+}
+
+// Closed segment pq against the closed triangle abc (exact).
+bool segment_meets_triangle(const double* p, const double* q, const double* a, const double* b,
+                            const double* c) {
+  const int s1 = orient3(a, b, c, p), s2 = orient3(a, b, c, q);
+  if (s1 == s2 && s1 != 0) return false;
+  if (s1 == 0 && s2 == 0) return coplanar_segment_triangle(p, q, a, b, c);
+  // The segment crosses (or touches) the plane in one point; it is in the closed triangle iff
+  // the three edge planes through the line pq agree in sign (zeros allowed).
+  const int o1 = orient3(p, q, a, b), o2 = orient3(p, q, b, c), o3 = orient3(p, q, c, a);
+  const bool pos = o1 > 0 || o2 > 0 || o3 > 0, neg = o1 < 0 || o2 < 0 || o3 < 0;
+  return !(pos && neg);
+}
+
+// x coplanar with a, d, e: is x in the closed wedge at a spanned by d and e?
+bool in_closed_wedge(const double* a, const double* d, const double* e, const double* x) {
+  const int ax = drop_axis(a, d, e);
+  const P2 pa = proj(a, ax), pd = proj(d, ax), pe = proj(e, ax), px = proj(x, ax);
+  const int s = orient2(pa.data(), pd.data(), pe.data());
+  return orient2(pa.data(), pd.data(), px.data()) * s >= 0 && orient2(pa.data(), px.data(), pe.data()) * s >= 0;
+}
+
+struct Box {
+  double lo[3], hi[3];
+};
+
+}  // namespace
+
+bool triangles_intersect_improperly(const PointSet& pts, const std::array<int, 3>& t1,
+                                    const std::array<int, 3>& t2) {
+  int shared = 0;
+  for (int u : t1)
+    for (int v : t2) shared += (u == v);
+  auto P = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  if (shared >= 3) return true;
+  if (shared == 0) {
+    for (int k = 0; k < 3; ++k) {
+      if (segment_meets_triangle(P(t1[k]), P(t1[(k + 1) % 3]), P(t2[0]), P(t2[1]), P(t2[2]))) return true;
+      if (segment_meets_triangle(P(t2[k]), P(t2[(k + 1) % 3]), P(t1[0]), P(t1[1]), P(t1[2]))) return true;
+    }
+    return false;
+  }
+  auto in = [](const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; };
+  if (shared == 2) {
+    // Common edge uv; c, d the other vertices. Proper unless coplanar and on the same side.
+    int u = -1, v = -1, c = -1, d = -1;
+    for (int x : t1) {
+      if (in(t2, x)) (u < 0 ? u : v) = x; else c = x;
+    }
+    for (int x : t2)
+      if (!in(t1, x)) d = x;
+    if (orient3(P(u), P(v), P(c), P(d)) != 0) return false;
+    const int ax = drop_axis(P(u), P(v), P(c));
+    const P2 pu = proj(P(u), ax), pv = proj(P(v), ax), pc = proj(P(c), ax), pd = proj(P(d), ax);
+    return orient2(pu.data(), pv.data(), pc.data()) * orient2(pu.data(), pv.data(), pd.data()) > 0;
+  }
+  // One shared vertex a: t1 = (a,b,c), t2 = (a,d,e). Any extra common point shows up as the far
+  // edge of one triangle meeting the other, or as an edge at a lying in the plane of the other
+  // triangle inside its closed wedge at a.
+  int a = -1;
+  for (int x : t1)
+    if (in(t2, x)) a = x;
+  int b = -1, c = -1, d = -1, e = -1;
+  for (int x : t1)
+    if (x != a) (b < 0 ? b : c) = x;
+  for (int x : t2)
+    if (x != a) (d < 0 ? d : e) = x;
+  if (segment_meets_triangle(P(b), P(c), P(a), P(d), P(e))) return true;
+  if (segment_meets_triangle(P(d), P(e), P(a), P(b), P(c))) return true;
+  for (int x : {b, c})
+    if (orient3(P(a), P(d), P(e), P(x)) == 0 && in_closed_wedge(P(a), P(d), P(e), P(x))) return true;
+  for (int x : {d, e})
+    if (orient3(P(a), P(b), P(c), P(x)) == 0 && in_closed_wedge(P(a), P(b), P(c), P(x))) return true;
+  return false;
+}
+
+namespace {
+
+std::array<double, 3> bbox_centre(const PointSet& pts) {
+  std::array<double, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
+  if (pts.size() == 0) return lo;
+  for (int k = 0; k < 3; ++k) lo[static_cast<std::size_t>(k)] = hi[static_cast<std::size_t>(k)] = pts[0][k];
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], pts[i][k]);
+      hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], pts[i][k]);
+    }
+  return {{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}};
+}
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[static_cast<std::size_t>(x)] != x) {
+    parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    x = parent[static_cast<std::size_t>(x)];
+  }
+  return x;
+}
+
+Status fail(MeshCheck& d, std::string reason) {
+  d.reason = std::move(reason);
+  return {StatusCode::InvalidArgument, d.reason};
+}
+
+}  // namespace
+
+double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
+  const auto o = bbox_centre(pts);
+  double vol = 0;
+  for (const auto& t : mesh.triangles) {
+    const double* a = pts[static_cast<std::size_t>(t[0])];
+    const double* b = pts[static_cast<std::size_t>(t[1])];
+    const double* c = pts[static_cast<std::size_t>(t[2])];
+    const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
+    const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
+    const double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
+    vol += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+  }
+  return vol / 6.0;
+}
+
+double mesh_area(const PointSet& pts, const TriMesh3& mesh) {
+  double area = 0;
+  for (const auto& t : mesh.triangles) {
+    const double* a = pts[static_cast<std::size_t>(t[0])];
+    const double* b = pts[static_cast<std::size_t>(t[1])];
+    const double* c = pts[static_cast<std::size_t>(t[2])];
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    area += 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+  }
+  return area;
+}
+
+Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* details,
+                      const MeshCheckOptions& options) {
+  MeshCheck local;
+  MeshCheck& d = details ? *details : local;
+  d = MeshCheck{};
+  if (pts.dim != 3) return fail(d, "validate_mesh3: points must be 3D");
+  const std::size_t n = pts.size();
+  const std::size_t nf = mesh.triangles.size();
+  d.faces = static_cast<long long>(nf);
+  if (nf == 0) return fail(d, "mesh has no faces");
+  if (n > 0x7fffffffu) return fail(d, "too many points");
+
+  // 1. indices
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& t = mesh.triangles[f];
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= n)
+        return fail(d, "face " + std::to_string(f) + " has vertex id " + std::to_string(v) + " out of range");
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      return fail(d, "face " + std::to_string(f) + " repeats a vertex");
+  }
+  d.indices_ok = true;
+  // 2. degenerate faces
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& t = mesh.triangles[f];
+    if (collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
+                   pts[static_cast<std::size_t>(t[2])]))
+      return fail(d, "face " + std::to_string(f) + " is degenerate (collinear vertices)");
+  }
+  d.non_degenerate = true;
+
+  // 3. edges: key (min, max) << 1 | direction, sorted.
+  std::vector<std::uint64_t> half;
+  half.reserve(3 * nf);
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const auto u = static_cast<std::uint64_t>(t[static_cast<std::size_t>(k)]);
+      const auto v = static_cast<std::uint64_t>(t[static_cast<std::size_t>((k + 1) % 3)]);
+      const std::uint64_t lo = std::min(u, v), hi = std::max(u, v);
+      half.push_back((lo << 33) | (hi << 1) | (u < v ? 0u : 1u));
+    }
+  std::sort(half.begin(), half.end());
+  long long n_edges = 0;
+  bool closed = true, manifold = true, oriented = true;
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i;
+    int fwd = 0;
+    while (j < half.size() && (half[j] >> 1) == (half[i] >> 1)) {
+      fwd += (half[j] & 1u) == 0;
+      ++j;
+    }
+    const std::size_t cnt = j - i;
+    ++n_edges;
+    const int u = static_cast<int>(half[i] >> 33), v = static_cast<int>((half[i] >> 1) & 0xffffffffu);
+    if (cnt == 1 && closed) { closed = false; d.bad_edge = {{u, v}}; }
+    if (cnt > 2 && manifold) { manifold = false; if (closed) d.bad_edge = {{u, v}}; }
+    if (cnt == 2 && fwd != 1 && oriented) { oriented = false; if (closed && manifold) d.bad_edge = {{u, v}}; }
+    i = j;
+  }
+  d.edges = n_edges;
+  d.closed = closed;
+  if (!closed)
+    return fail(d, "not closed: edge (" + std::to_string(d.bad_edge[0]) + "," + std::to_string(d.bad_edge[1]) + ") has one face");
+  d.edge_manifold = manifold;
+  if (!manifold)
+    return fail(d, "not edge-manifold: edge (" + std::to_string(d.bad_edge[0]) + "," + std::to_string(d.bad_edge[1]) + ") has more than two faces");
+  d.oriented = oriented;
+  if (!oriented)
+    return fail(d, "not consistently oriented at edge (" + std::to_string(d.bad_edge[0]) + "," + std::to_string(d.bad_edge[1]) + ")");
+
+  // 4. vertex links: at vertex a of face (a,b,c) the link edge is b->c; one cycle of length deg.
+  std::vector<std::size_t> off(n + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) ++off[static_cast<std::size_t>(v) + 1];
+  for (std::size_t i = 0; i < n; ++i) off[i + 1] += off[i];
+  std::vector<std::array<int, 2>> link(3 * nf);
+  {
+    std::vector<std::size_t> fill(off.begin(), off.end() - 1);
+    for (const auto& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k)
+        link[fill[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])]++] =
+            {{t[static_cast<std::size_t>((k + 1) % 3)], t[static_cast<std::size_t>((k + 2) % 3)]}};
+  }
+  long long n_vertices = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::size_t b = off[v], e = off[v + 1];
+    if (b == e) continue;
+    ++n_vertices;
+    std::sort(link.begin() + static_cast<std::ptrdiff_t>(b), link.begin() + static_cast<std::ptrdiff_t>(e));
+    bool ok = true;
+    for (std::size_t k = b + 1; k < e && ok; ++k) ok = link[k][0] != link[k - 1][0];
+    std::size_t steps = 0;
+    int cur = link[b][0];
+    if (ok) {
+      do {
+        auto it = std::lower_bound(link.begin() + static_cast<std::ptrdiff_t>(b),
+                                   link.begin() + static_cast<std::ptrdiff_t>(e), std::array<int, 2>{{cur, -1}});
+        if (it == link.begin() + static_cast<std::ptrdiff_t>(e) || (*it)[0] != cur) { ok = false; break; }
+        cur = (*it)[1];
+        ++steps;
+      } while (cur != link[b][0] && steps <= e - b);
+      ok = ok && cur == link[b][0] && steps == e - b;
+    }
+    if (!ok) {
+      d.bad_vertex = static_cast<int>(v);
+      return fail(d, "not vertex-manifold: the link of vertex " + std::to_string(v) + " is not one cycle");
+    }
+  }
+  d.vertex_manifold = true;
+  d.vertices = n_vertices;
+
+  // 5. points used
+  d.all_points = static_cast<std::size_t>(n_vertices) == n;
+  if (!d.all_points) {
+    for (std::size_t v = 0; v < n; ++v)
+      if (off[v] == off[v + 1]) { d.missing_point = static_cast<int>(v); break; }
+    if (options.require_all_points)
+      return fail(d, "point " + std::to_string(d.missing_point) + " is not a vertex (" +
+                         std::to_string(n - static_cast<std::size_t>(n_vertices)) + " points missing)");
+  }
+
+  // 6. components (union-find over vertices along face edges)
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto& t : mesh.triangles) {
+    const int r0 = find_root(parent, t[0]);
+    for (int k = 1; k < 3; ++k) {
+      const int r = find_root(parent, t[static_cast<std::size_t>(k)]);
+      if (r != r0) parent[static_cast<std::size_t>(r)] = r0;
+    }
+  }
+  int comps = 0;
+  for (std::size_t v = 0; v < n; ++v)
+    if (off[v] != off[v + 1] && find_root(parent, static_cast<int>(v)) == static_cast<int>(v)) ++comps;
+  d.components = comps;
+  d.one_component = comps == 1;
+  d.euler = n_vertices - n_edges + static_cast<long long>(nf);
+  if (d.one_component && d.euler % 2 == 0 && d.euler <= 2) d.genus = static_cast<int>((2 - d.euler) / 2);
+  if (!d.one_component) return fail(d, "mesh has " + std::to_string(comps) + " components");
+  d.euler_ok = d.euler == 2;
+  if (!d.euler_ok)
+    return fail(d, "Euler characteristic " + std::to_string(d.euler) + " (genus " + std::to_string(d.genus) + "), expected 2");
+  d.face_count_ok = static_cast<long long>(nf) == 2 * n_vertices - 4;
+  if (!d.face_count_ok) return fail(d, "face count " + std::to_string(nf) + " != 2V-4");
+
+  // 7. outward
+  d.volume = mesh_volume(pts, mesh);
+  d.outward = d.volume > 0;
+  if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
+
+  // 8. self-intersections (sweep over x-extents)
+  if (options.self_intersections) {
+    d.self_intersection_checked = true;
+    std::vector<Box> box(nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        box[f].lo[k] = box[f].hi[k] = pts[static_cast<std::size_t>(mesh.triangles[f][0])][k];
+        for (int j = 1; j < 3; ++j) {
+          const double x = pts[static_cast<std::size_t>(mesh.triangles[f][static_cast<std::size_t>(j)])][k];
+          box[f].lo[k] = std::min(box[f].lo[k], x);
+          box[f].hi[k] = std::max(box[f].hi[k], x);
+        }
+      }
+    }
+    std::vector<std::size_t> order(nf);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return box[a].lo[0] != box[b].lo[0] ? box[a].lo[0] < box[b].lo[0] : a < b;
+    });
+    std::vector<std::size_t> active;
+    for (std::size_t f : order) {
+      std::size_t w = 0;
+      for (std::size_t g : active)
+        if (box[g].hi[0] >= box[f].lo[0]) active[w++] = g;
+      active.resize(w);
+      for (std::size_t g : active) {
+        if (box[g].hi[1] < box[f].lo[1] || box[f].hi[1] < box[g].lo[1] || box[g].hi[2] < box[f].lo[2] ||
+            box[f].hi[2] < box[g].lo[2])
+          continue;
+        if (triangles_intersect_improperly(pts, mesh.triangles[g], mesh.triangles[f])) {
+          d.intersecting_faces = {{static_cast<int>(std::min(f, g)), static_cast<int>(std::max(f, g))}};
+          return fail(d, "faces " + std::to_string(d.intersecting_faces[0]) + " and " +
+                             std::to_string(d.intersecting_faces[1]) + " intersect");
+        }
+      }
+      active.push_back(f);
+    }
+    d.no_self_intersections = true;
+  }
+  return Status::ok();
+}
+
+}  // namespace constrict

@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Hand cases for the 3D reconstruction (spec gamma-graph.md §5.3) and degenerate inputs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <vector>
+
+#include "constrict/constrict3.hpp"
+#include "constrict/gamma_graph.hpp"
+#include "constrict/mesh.hpp"
+
+namespace constrict {
+namespace {
+
+PointSet make3(const std::vector<std::array<double, 3>>& xyz) {
+  PointSet p;
+  p.dim = 3;
+  for (const auto& q : xyz) p.coords.insert(p.coords.end(), q.begin(), q.end());
+  return p;
+}
+
+std::set<std::array<int, 3>> sorted_faces(const TriMesh3& m) {
+  std::set<std::array<int, 3>> s;
+  for (auto t : m.triangles) {
+    std::sort(t.begin(), t.end());
+    s.insert(t);
+  }
+  return s;
+}
+
+struct Recorder : Constrict3Visitor {
+  std::vector<Constrict3Event> events;
+  void on_event(const Constrict3Event& e) override { events.push_back(e); }
+  std::vector<Constrict3Event> removals() const {
+    std::vector<Constrict3Event> r;
+    for (const auto& e : events)
+      if (e.kind == Constrict3Event::Kind::RemoveTet) r.push_back(e);
+    return r;
+  }
+};
+
+void expect_valid(const PointSet& p, const Mesh3Result& r) {
+  MeshCheck mc;
+  MeshCheckOptions mo;
+  mo.self_intersections = true;
+  EXPECT_TRUE(validate_mesh3(p, r.mesh, &mc, mo).is_ok()) << mc.reason;
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.mesh.triangles.size(), 2 * p.size() - 4);
+}
+
+TEST(Constrict3Unit, UnitTetrahedron) {
+  const PointSet p = make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  expect_valid(p, r);
+  EXPECT_EQ(r.tets.size(), 1u);
+  EXPECT_NEAR(r.volume, 1.0 / 6.0, 1e-15);
+  EXPECT_EQ(r.method, "gamma");
+  EXPECT_FALSE(r.locked);
+  // Sculpting without threshold: the only tet has 4 boundary faces, nothing to remove.
+  Constrict3Options o;
+  o.sculpt = Sculpt3::TwoFace;
+  o.sculpt_threshold = 0;
+  ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
+  EXPECT_EQ(r.removed_sculpt, 0u);
+}
+
+TEST(Constrict3Unit, TetrahedronPlusInteriorPoint) {
+  const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
+  Recorder rec;
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  expect_valid(p, r);
+  const auto rm = rec.removals();
+  ASSERT_EQ(rm.size(), 1u);
+  std::array<int, 4> t = rm[0].tet;
+  std::sort(t.begin(), t.end());
+  EXPECT_EQ(t, (std::array<int, 4>{{1, 2, 3, 4}}));
+  EXPECT_EQ(rm[0].boundary_faces, 1);
+  EXPECT_NEAR(rm[0].criterion, 2.0 - 4.0 * std::sqrt(34.0) / 51.0, 1e-12);  // 1.542670
+  EXPECT_EQ(sorted_faces(r.mesh), (std::set<std::array<int, 3>>{{0, 1, 2}, {0, 1, 3}, {0, 2, 3},
+                                                                {1, 2, 4}, {1, 3, 4}, {2, 3, 4}}));
+  EXPECT_EQ(r.removed_one_face, 1u);
+  EXPECT_EQ(r.removed_two_face, 0u);
+  EXPECT_EQ(r.tets.size(), 3u);
+  EXPECT_NEAR(r.volume, 36.0 - 12.0, 1e-9);  // hull minus tet (1,2,3,4)
+}
+
+TEST(Constrict3Unit, BipyramidTieBreak) {
+  const PointSet p = make3({{3, 0, 0}, {-1, 2, 0}, {-1, -2, 0}, {0, 0, 2}, {0, 0, -2}});
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  expect_valid(p, r);
+  EXPECT_EQ(r.removed_one_face + r.removed_two_face, 0u);  // all points on the hull: nothing removed
+  EXPECT_EQ(r.tets.size(), 3u);
+
+  Constrict3Options o;
+  o.sculpt = Sculpt3::TwoFace;
+  o.sculpt_threshold = 0;  // post-pass without threshold (spec §5.3)
+  Recorder rec;
+  ASSERT_TRUE(reconstruct3(p, o, r, &rec).is_ok());
+  expect_valid(p, r);
+  const auto rm = rec.removals();
+  ASSERT_EQ(rm.size(), 1u);
+  std::array<int, 4> t = rm[0].tet;
+  std::sort(t.begin(), t.end());
+  EXPECT_EQ(t, (std::array<int, 4>{{0, 1, 3, 4}}));  // tie with (0,2,3,4), smallest ids win
+  EXPECT_EQ(rm[0].boundary_faces, 2);
+  EXPECT_NEAR(rm[0].criterion, 2.0 * (9.0 * std::sqrt(13949.0) / 1073.0), 1e-12);  // 1.981273
+  EXPECT_EQ(r.removed_sculpt, 1u);
+  EXPECT_EQ(r.tets.size(), 2u);
+}
+
+TEST(Constrict3Unit, UnitTetrahedronFaceValues) {
+  // Spec §5.3: axis faces γ = 1 - sqrt(6)/3, slanted face (1,2,3) with apex 0: γ = 2 sqrt(2)/3 - 1.
+  const double o[3] = {0, 0, 0}, x[3] = {1, 0, 0}, y[3] = {0, 1, 0}, z[3] = {0, 0, 1};
+  EXPECT_NEAR(apex_gamma3(o, x, y, z), 1 - std::sqrt(6.0) / 3, 1e-12);
+  EXPECT_NEAR(apex_gamma3(o, y, z, x), 1 - std::sqrt(6.0) / 3, 1e-12);
+  EXPECT_NEAR(apex_gamma3(x, y, z, o), 2 * std::sqrt(2.0) / 3 - 1, 1e-12);
+  // The slanted face seen from a point just behind it is removed first (largest 1 - γ).
+  const PointSet p = make3({{0, 0, 0}, {3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {0.9, 0.9, 0.9}});
+  Mesh3Result r;
+  Recorder rec;
+  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  expect_valid(p, r);
+  const auto rm = rec.removals();
+  ASSERT_EQ(rm.size(), 1u);
+  std::array<int, 4> t = rm[0].tet;
+  std::sort(t.begin(), t.end());
+  EXPECT_EQ(t, (std::array<int, 4>{{1, 2, 3, 4}}));
+}
+
+TEST(Constrict3Unit, LockWithoutFallbackIsReported) {
+  // Points on a sphere with many interior points: whatever happens, the result is consistent.
+  PointSet p;
+  p.dim = 3;
+  const double pts[][3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}, {10, 10, 10},
+                           {3, 3, 3}, {4, 5, 3},  {2, 6, 5},  {6, 2, 5},  {5, 5, 6}};
+  for (const auto& q : pts) p.coords.insert(p.coords.end(), q, q + 3);
+  Constrict3Options o;
+  o.fallback = Fallback3::None;
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
+  MeshCheckOptions mo;
+  mo.require_all_points = false;
+  EXPECT_TRUE(validate_mesh3(p, r.mesh, nullptr, mo).is_ok());
+  if (!r.complete) {
+    EXPECT_TRUE(r.locked);
+    EXPECT_EQ(r.method, "locked");
+    EXPECT_EQ(r.unplaced_points, r.stuck_points);
+    EXPECT_FALSE(r.stuck_points.empty());
+  }
+  Mesh3Result r2;
+  ASSERT_TRUE(reconstruct3(p, {}, r2).is_ok());
+  expect_valid(p, r2);
+}
+
+TEST(Constrict3Unit, BadInput) {
+  Mesh3Result r;
+  EXPECT_EQ(reconstruct3(make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), {}, r).code(), StatusCode::TooFewPoints);
+  EXPECT_EQ(reconstruct3(make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}), {}, r).code(), StatusCode::Coplanar);
+  EXPECT_EQ(reconstruct3(make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 0}}), {}, r).code(),
+            StatusCode::Duplicate);
+  Constrict3Options o;
+  o.sculpt_threshold = 5;
+  EXPECT_EQ(reconstruct3(make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), o, r).code(),
+            StatusCode::InvalidArgument);
+}
+
+// Degenerate inputs: co-spherical and co-planar subsets (CGAL's symbolic perturbation).
+TEST(Constrict3Unit, OctahedronAndCube) {
+  Mesh3Result r;
+  const PointSet oct = make3({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+  ASSERT_TRUE(reconstruct3(oct, {}, r).is_ok());
+  expect_valid(oct, r);
+  EXPECT_NEAR(r.volume, 4.0 / 3.0, 1e-12);
+  std::vector<std::array<double, 3>> cube;
+  for (int i = 0; i < 8; ++i) cube.push_back({{double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)}});
+  const PointSet c = make3(cube);
+  ASSERT_TRUE(reconstruct3(c, {}, r).is_ok());
+  expect_valid(c, r);
+  EXPECT_NEAR(r.volume, 1.0, 1e-12);
+}
+
+TEST(Constrict3Unit, CubeWithFaceGridsAndRegularGrid) {
+  for (int k : {2, 3, 5}) {
+    SCOPED_TRACE(k);
+    std::vector<std::array<double, 3>> pts, grid;
+    for (int x = 0; x <= k; ++x)
+      for (int y = 0; y <= k; ++y)
+        for (int z = 0; z <= k; ++z) {
+          grid.push_back({{double(x), double(y), double(z)}});
+          if (x == 0 || y == 0 || z == 0 || x == k || y == k || z == k) pts.push_back({{double(x), double(y), double(z)}});
+        }
+    Mesh3Result r;
+    const PointSet p = make3(pts);
+    ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+    expect_valid(p, r);
+    EXPECT_NEAR(r.volume, double(k * k * k), 1e-9);  // all points on the hull: nothing carved
+    const PointSet g = make3(grid);
+    ASSERT_TRUE(reconstruct3(g, {}, r).is_ok());
+    expect_valid(g, r);
+  }
+}
+
+TEST(Constrict3Unit, Deterministic) {
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 0.1 + 3.0 * i / 200.0, ph = 2.399963 * i;
+    pts.push_back({{std::sin(t) * std::cos(ph), std::sin(t) * std::sin(ph) * 0.7, std::cos(t) * 1.3}});
+  }
+  const PointSet p = make3(pts);
+  Mesh3Result a, b;
+  ASSERT_TRUE(reconstruct3(p, {}, a).is_ok());
+  ASSERT_TRUE(reconstruct3(p, {}, b).is_ok());
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.tets, b.tets);
+}
+
+TEST(Constrict3Unit, StepperAndStopAfter) {
+  const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
+  Constrictor3 c;
+  ASSERT_TRUE(c.init(p, {}).is_ok());
+  EXPECT_EQ(c.inside_points(), std::vector<int>{4});
+  EXPECT_EQ(c.surface().triangles.size(), 4u);
+  EXPECT_TRUE(c.step());
+  EXPECT_FALSE(c.step());
+  EXPECT_TRUE(c.inside_points().empty());
+  Mesh3Result r;
+  ASSERT_TRUE(c.finish(r).is_ok());
+  expect_valid(p, r);
+
+  Constrict3Options o;
+  o.stop_after = 0;
+  ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
+  EXPECT_FALSE(r.complete);
+  EXPECT_EQ(r.method, "stopped");
+  EXPECT_EQ(r.unplaced_points, std::vector<int>{4});
+  EXPECT_EQ(r.mesh.triangles.size(), 4u);
+}
+
+// Uniform clouds whose Delaunay constriction locks (found by search; splitmix64 so the points are
+// the same on every platform): the lock is reported, the star-cavity fallback places the stuck
+// point, and the body contains non-Delaunay tetrahedra. Fallback3::None returns the lock.
+std::uint64_t splitmix(std::uint64_t& s) {
+  std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+TEST(Constrict3Unit, LockedCloudsAreCompletedByTheCavityFallback) {
+  for (std::uint64_t seed : {78u, 151u, 189u, 284u}) {
+    SCOPED_TRACE(seed);
+    std::uint64_t st = seed;
+    PointSet p;
+    p.dim = 3;
+    for (int i = 0; i < 3 * 150; ++i) p.coords.push_back(static_cast<double>(splitmix(st) >> 11) * 0x1.0p-53);
+    Recorder rec;
+    Mesh3Result r;
+    Constrict3Options o;
+    o.validate_self_intersections = true;
+    ASSERT_TRUE(reconstruct3(p, o, r, &rec).is_ok());
+    expect_valid(p, r);
+    EXPECT_TRUE(r.locked);
+    EXPECT_EQ(r.stuck_points.size(), 1u);
+    EXPECT_EQ(r.method, "cavity");
+    EXPECT_GE(r.cavities, 1u);
+    EXPECT_GT(r.non_delaunay_tets, 0u);
+    EXPECT_TRUE(r.unplaced_points.empty());
+    bool saw_lock = false, saw_cavity = false;
+    for (const auto& e : rec.events) {
+      saw_lock = saw_lock || e.kind == Constrict3Event::Kind::Lock;
+      if (e.kind == Constrict3Event::Kind::Cavity) {
+        saw_cavity = true;
+        EXPECT_EQ(e.point, r.stuck_points[0]);
+      }
+    }
+    EXPECT_TRUE(saw_lock);
+    EXPECT_TRUE(saw_cavity);
+    // stages: hull + gamma + cavity placed everything
+    std::size_t placed = 0;
+    for (const auto& sg : r.stages) placed += sg.placed;
+    EXPECT_EQ(placed, p.size());
+
+    o.fallback = Fallback3::None;
+    Mesh3Result n;
+    ASSERT_TRUE(reconstruct3(p, o, n).is_ok());
+    EXPECT_FALSE(n.complete);
+    EXPECT_EQ(n.method, "locked");
+    EXPECT_EQ(n.unplaced_points, r.stuck_points);
+    MeshCheckOptions mo;
+    mo.require_all_points = false;
+    EXPECT_TRUE(validate_mesh3(p, n.mesh, nullptr, mo).is_ok());
+  }
+}
+
+}  // namespace
+}  // namespace constrict

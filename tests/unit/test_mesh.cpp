@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// validate_mesh3 must accept closed genus-0 surfaces and reject every defect; writers round trip.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "constrict/io.hpp"
+#include "constrict/mesh.hpp"
+
+namespace constrict {
+namespace {
+
+PointSet make3(const std::vector<std::array<double, 3>>& xyz) {
+  PointSet p;
+  p.dim = 3;
+  for (const auto& q : xyz) p.coords.insert(p.coords.end(), q.begin(), q.end());
+  return p;
+}
+
+constexpr double kPi = 3.14159265358979323846;
+const std::vector<std::array<double, 3>> kTet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+// Outward faces of the tetrahedron above.
+const std::vector<std::array<int, 3>> kTetFaces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+TriMesh3 mesh(std::vector<std::array<int, 3>> f) { return TriMesh3{std::move(f)}; }
+
+TEST(MeshValidate, AcceptsTetrahedron) {
+  const PointSet p = make3(kTet);
+  MeshCheck mc;
+  MeshCheckOptions mo;
+  mo.self_intersections = true;
+  ASSERT_TRUE(validate_mesh3(p, mesh(kTetFaces), &mc, mo).is_ok()) << mc.reason;
+  EXPECT_EQ(mc.genus, 0);
+  EXPECT_EQ(mc.euler, 2);
+  EXPECT_TRUE(mc.no_self_intersections);
+  EXPECT_NEAR(mc.volume, 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(mesh_area(p, mesh(kTetFaces)), 1.5 + std::sqrt(3.0) / 2, 1e-12);
+}
+
+TEST(MeshValidate, RejectsOpen) {
+  const PointSet p = make3(kTet);
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(p, mesh({kTetFaces[0], kTetFaces[1], kTetFaces[2]}), &mc).is_ok());
+  EXPECT_FALSE(mc.closed);
+}
+
+TEST(MeshValidate, RejectsMisorientedAndInward) {
+  const PointSet p = make3(kTet);
+  auto f = kTetFaces;
+  std::swap(f[0][1], f[0][2]);
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(p, mesh(f), &mc).is_ok());
+  EXPECT_TRUE(mc.closed);
+  EXPECT_FALSE(mc.oriented);
+  for (auto& t : f) std::swap(t[1], t[2]);
+  f[0] = kTetFaces[0];
+  std::swap(f[0][1], f[0][2]);  // all inward now
+  EXPECT_FALSE(validate_mesh3(p, mesh(f), &mc).is_ok());
+  EXPECT_TRUE(mc.oriented);
+  EXPECT_FALSE(mc.outward);
+}
+
+TEST(MeshValidate, RejectsMissingPointAndDegenerate) {
+  auto pts = kTet;
+  pts.push_back({{5, 5, 5}});
+  const PointSet p = make3(pts);
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(p, mesh(kTetFaces), &mc).is_ok());
+  EXPECT_EQ(mc.missing_point, 4);
+  MeshCheckOptions mo;
+  mo.require_all_points = false;
+  EXPECT_TRUE(validate_mesh3(p, mesh(kTetFaces), &mc, mo).is_ok());
+  // collinear face
+  const PointSet q = make3({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}});
+  EXPECT_FALSE(validate_mesh3(q, mesh({{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}), &mc).is_ok());
+  EXPECT_FALSE(mc.non_degenerate);
+  // bad index
+  EXPECT_FALSE(validate_mesh3(make3(kTet), mesh({{0, 1, 7}}), &mc).is_ok());
+  EXPECT_FALSE(mc.indices_ok);
+}
+
+// Two tetrahedra glued at one vertex (bowtie): every edge has two faces, but the link of the
+// shared vertex is two cycles.
+TEST(MeshValidate, RejectsNonManifoldVertex) {
+  std::vector<std::array<double, 3>> pts = kTet;
+  for (const auto& q : kTet) pts.push_back({{-q[0], -q[1], -q[2]}});
+  pts.erase(pts.begin() + 4);  // the mirrored origin is the shared vertex 0
+  // mirrored points: 4=(-1,0,0), 5=(0,-1,0), 6=(0,0,-1); mirror flips orientation
+  std::vector<std::array<int, 3>> f = kTetFaces;
+  for (auto t : kTetFaces) {
+    std::array<int, 3> u{};
+    for (int k = 0; k < 3; ++k) u[static_cast<std::size_t>(k)] = t[static_cast<std::size_t>(k)] == 0 ? 0 : t[static_cast<std::size_t>(k)] + 3;
+    std::swap(u[1], u[2]);
+    f.push_back(u);
+  }
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(make3(pts), mesh(f), &mc).is_ok()) << mc.reason;
+  EXPECT_TRUE(mc.edge_manifold);
+  EXPECT_FALSE(mc.vertex_manifold);
+  EXPECT_EQ(mc.bad_vertex, 0);
+}
+
+// Two tetrahedra sharing an edge: that edge has four faces.
+TEST(MeshValidate, RejectsNonManifoldEdge) {
+  // tet A = 0,1,2,3 ; tet B = 0,1,4,5 on the other side sharing edge 01
+  const PointSet p = make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, -1, 0}, {0, 0, -1}});
+  std::vector<std::array<int, 3>> f = kTetFaces;
+  // B = (0,1,4,5): its outward faces, by the same pattern as for a positive tet (v0..v3):
+  // (v1,v2,v3), (v0,v3,v2), (v0,v1,v3), (v0,v2,v1) if positive; orient(0,1,4,5) is positive here.
+  f.push_back({{1, 4, 5}});
+  f.push_back({{0, 5, 4}});
+  f.push_back({{0, 1, 5}});
+  f.push_back({{0, 4, 1}});
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(p, mesh(f), &mc).is_ok());
+  EXPECT_TRUE(mc.closed);
+  EXPECT_FALSE(mc.edge_manifold);
+}
+
+// A triangulated torus (genus 1): closed, manifold, oriented, but χ = 0.
+TEST(MeshValidate, RejectsTorus) {
+  const int nu = 6, nv = 5;
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
+      pts.push_back({{(3 + std::cos(v)) * std::cos(u), (3 + std::cos(v)) * std::sin(u), std::sin(v)}});
+    }
+  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
+  std::vector<std::array<int, 3>> f;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      f.push_back({{id(i, j), id(i + 1, j), id(i + 1, j + 1)}});
+      f.push_back({{id(i, j), id(i + 1, j + 1), id(i, j + 1)}});
+    }
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(make3(pts), mesh(f), &mc).is_ok());
+  EXPECT_TRUE(mc.vertex_manifold);
+  EXPECT_EQ(mc.euler, 0);
+  EXPECT_EQ(mc.genus, 1);
+}
+
+TEST(MeshValidate, RejectsTwoComponents) {
+  std::vector<std::array<double, 3>> pts = kTet;
+  for (const auto& q : kTet) pts.push_back({{q[0] + 5, q[1], q[2]}});
+  std::vector<std::array<int, 3>> f = kTetFaces;
+  for (auto t : kTetFaces) f.push_back({{t[0] + 4, t[1] + 4, t[2] + 4}});
+  MeshCheck mc;
+  EXPECT_FALSE(validate_mesh3(make3(pts), mesh(f), &mc).is_ok());
+  EXPECT_EQ(mc.components, 2);
+}
+
+TEST(MeshValidate, TriangleIntersections) {
+  const PointSet p = make3({{0, 0, 0}, {4, 0, 0}, {0, 4, 0},      // 0..2 triangle in z=0
+                            {1, 1, -1}, {1, 1, 1}, {3, 3, 1},     // 3..5 pierces it
+                            {1, 1, 2}, {2, 1, 2}, {1, 2, 2},      // 6..8 above, disjoint
+                            {1, 1, 0}, {2, 2, 0}, {-1, 1, 0}});   // 9..11 coplanar overlap
+  EXPECT_TRUE(triangles_intersect_improperly(p, {{0, 1, 2}}, {{3, 4, 5}}));
+  EXPECT_FALSE(triangles_intersect_improperly(p, {{0, 1, 2}}, {{6, 7, 8}}));
+  EXPECT_TRUE(triangles_intersect_improperly(p, {{0, 1, 2}}, {{9, 10, 11}}));
+  // shared edge, coplanar, same side -> overlap; other side -> fine
+  const PointSet q = make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, -1, 0}, {0.5, 0.5, 1}});
+  EXPECT_TRUE(triangles_intersect_improperly(q, {{0, 1, 2}}, {{0, 1, 3}}));
+  EXPECT_FALSE(triangles_intersect_improperly(q, {{0, 1, 2}}, {{0, 1, 4}}));
+  EXPECT_FALSE(triangles_intersect_improperly(q, {{0, 1, 2}}, {{0, 1, 5}}));
+  // shared vertex: coplanar wedges overlapping vs. disjoint
+  // shares edge 0-3, coplanar, opposite sides -> proper
+  EXPECT_FALSE(triangles_intersect_improperly(q, {{0, 1, 3}}, {{0, 2, 3}}));
+  const PointSet r = make3({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 1, 0}, {3, 1, 0}, {-1, -1, 0}, {-2, 0, 0}});
+  EXPECT_TRUE(triangles_intersect_improperly(r, {{0, 1, 2}}, {{0, 3, 4}}));   // wedge overlap
+  EXPECT_FALSE(triangles_intersect_improperly(r, {{0, 1, 2}}, {{0, 5, 6}}));  // opposite wedge
+}
+
+TEST(MeshValidate, SelfIntersectingSurface) {
+  // Bipyramid whose lower apex is pulled through an upper face.
+  const PointSet p = make3({{3, 0, 0}, {-1, 2, 0}, {-1, -2, 0}, {0, 0, 2}, {4, 0, 1.5}});
+  std::vector<std::array<int, 3>> f = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {1, 0, 4}, {2, 1, 4}, {0, 2, 4}};
+  MeshCheckOptions mo;
+  mo.self_intersections = true;
+  MeshCheck mc;
+  Status s = validate_mesh3(p, mesh(f), &mc, mo);
+  if (mc.oriented && !mc.outward) {
+    for (auto& t : f) std::swap(t[1], t[2]);
+    s = validate_mesh3(p, mesh(f), &mc, mo);
+  }
+  EXPECT_FALSE(s.is_ok());
+  EXPECT_TRUE(mc.self_intersection_checked);
+  EXPECT_FALSE(mc.no_self_intersections);
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+TEST(MeshWrite, FormatsRoundTripVertices) {
+  const PointSet p = make3({{0, 0, 0}, {1.5, 0, 0}, {0, 1, 0}, {0, 0, 0.1}});
+  const TriMesh3 m = mesh(kTetFaces);
+  const std::string dir = ::testing::TempDir();
+  for (const std::string ext : {"off", "obj", "ply"}) {
+    for (bool ascii : {false, true}) {
+      const std::string path = dir + "/constrict_mesh_test." + ext;
+      MeshWriteOptions wo;
+      wo.ply_ascii = ascii;
+      ASSERT_TRUE(write_mesh(path, p, m, wo).is_ok()) << ext;
+      PointSet q;
+      ReadOptions ro;
+      ASSERT_TRUE(read_points(path, ro, q).is_ok()) << ext;
+      EXPECT_EQ(q.coords, p.coords) << ext;
+      std::remove(path.c_str());
+    }
+  }
+  const std::string stl = dir + "/constrict_mesh_test.stl";
+  ASSERT_TRUE(write_mesh(stl, p, m).is_ok());
+  EXPECT_EQ(slurp(stl).size(), 84u + 50u * 4u);
+  std::remove(stl.c_str());
+  const std::string off = slurp((write_mesh(dir + "/m.off", p, m), dir + "/m.off"));
+  EXPECT_NE(off.find("3 0 2 1\n"), std::string::npos);
+  EXPECT_EQ(write_mesh(dir + "/m.xyz", p, m).code(), StatusCode::WriteFailed);
+  EXPECT_EQ(write_mesh("/nonexistent-dir/x.off", p, m).code(), StatusCode::WriteFailed);
+  const std::string vtk = dir + "/b.vtk";
+  ASSERT_TRUE(write_body_vtk(vtk, p, {{{0, 1, 2, 3}}}).is_ok());
+  const std::string v = slurp(vtk);
+  EXPECT_NE(v.find("CELLS 1 5\n4 0 1 2 3\n"), std::string::npos);
+  EXPECT_NE(v.find("CELL_TYPES 1\n10\n"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace constrict
