@@ -141,7 +141,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   progress.phase("reading");
   PointSet pts;
   ReadReport rep;
-  if (Status s = read_input(a.in, pts, rep, a.quiet); !s) return fail(s);
+  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
   const auto t1 = Clock::now();
   if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);
   return fail({StatusCode::Unsupported, "3D reconstruction is not available in this build yet"});

@@ -18,12 +18,13 @@ void add_input_options(CLI::App* cmd, InputArgs& in) {
                 "keep the first of identical points (default: duplicates are an error)");
 }
 
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet) {
+// Warnings (e.g. merged duplicates) are printed even with --quiet: dropping data is never silent.
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep) {
   ReadOptions opt;
   opt.dim = in.dim;
   opt.merge_duplicates = in.merge_duplicates;
   Status s = read_points(in.path, opt, pts, &rep);
-  if (s && !quiet)
+  if (s)
     for (const auto& w : rep.warnings) std::fprintf(stderr, "constrict: warning: %s\n", w.c_str());
   return s;
 }

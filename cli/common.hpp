@@ -35,7 +35,7 @@ struct InputArgs {
 };
 
 void add_input_options(CLI::App* cmd, InputArgs& in);
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet);
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep);
 
 /// Splits "a,b,c" into exactly @p count doubles; false on a malformed list or another count.
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out);
