@@ -71,8 +71,12 @@ Progress::~Progress() {
   thread_.join();
 }
 
-void Progress::phase(const char* name) {
-  phase_.store(name);
+void Progress::phase(const std::string& name) {
+  if (!enabled_) return;
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    phase_ = name;
+  }
   done_.store(0);
   total_.store(0);
 }
@@ -89,9 +93,9 @@ void Progress::run() {
     const double s = ms(start_, Clock::now()) / 1000.0;
     const std::size_t total = total_.load(), done = done_.load();
     if (total > 0)
-      std::fprintf(stderr, "constrict: %6.1f s  %s %zu/%zu\n", s, phase_.load(), done, total);
+      std::fprintf(stderr, "constrict: %6.1f s  %s %zu/%zu\n", s, phase_.c_str(), done, total);
     else
-      std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.load());
+      std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.c_str());
     next += std::chrono::seconds(1);
   }
 }
