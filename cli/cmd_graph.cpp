@@ -23,7 +23,7 @@ int run_graph(const GraphArgs& a) {
   const auto t0 = Clock::now();
   PointSet pts;
   ReadReport rep;
-  if (Status s = read_input(a.in, pts, rep, a.quiet); !s) return fail(s);
+  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
   const auto t1 = Clock::now();
 
   GraphSpec spec;

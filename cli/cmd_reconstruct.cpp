@@ -29,9 +29,13 @@ class ProgressVisitor final : public Constrict2Visitor {
   void on_event(const Constrict2Event& e) override {
     if (e.kind == Constrict2Event::Kind::StageBegin) {
       stage_ = "constricting (" + e.stage + "), triangles removed";
-      progress_.phase(stage_.c_str());
+      progress_.phase(stage_);
       removed_ = 0;
     } else if (e.kind == Constrict2Event::Kind::RemoveTriangle || e.kind == Constrict2Event::Kind::InsertPoint) {
+      if (stage_.empty()) {
+        stage_ = "constricting (gamma), triangles removed";
+        progress_.phase(stage_);
+      }
       if ((++removed_ & 1023u) == 0) progress_.count(removed_, n_);
     }
   }
@@ -54,18 +58,24 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   else if (a.fallback == "degree4") opt.fallback = Fallback::Degree4;
   else opt.fallback = Fallback::None;
   opt.stop_after = a.stop_after;
-  opt.validate = false;  // validated below, also when incomplete, and reported
   progress.phase("delaunay + gamma-values");
   ProgressVisitor visitor(progress, pts.size());
   Polygon2Result r;
   if (Status s = reconstruct2(pts, opt, r, &visitor); !s) return fail(s);
-  const auto t2 = Clock::now();
 
-  progress.phase("validating");
-  PolygonCheck chk;
-  const Status vs = validate_polygon(pts, r.boundary, &chk);
+  // reconstruct2 validated the polygon exactly (options.validate); an incomplete polygon is
+  // checked again by the general sweep so that the report says whether it is at least simple.
+  PolygonCheck chk = r.check;
+  bool valid = r.validated && chk.reason.empty();
+  double ms_validate = r.ms_validate;
+  if (!r.complete) {
+    progress.phase("validating");
+    const auto tv = Clock::now();
+    Status vs = validate_polygon(pts, r.boundary, &chk);
+    valid = vs.is_ok();
+    ms_validate += ms(tv, Clock::now());
+  }
   const auto t3 = Clock::now();
-  const bool valid = vs.is_ok();
   // A complete result must validate; anything else is a bug in the library.
   if (r.complete && !valid)
     return fail({StatusCode::Internal, "the reconstructed polygon failed validation (please report): " + chk.reason});
@@ -115,7 +125,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["area"] = r.area;
     j["perimeter"] = r.perimeter;
     j["timings_ms"] = {{"read", ms(t0, t1)},         {"delaunay", r.ms_delaunay},  {"gamma", 0.0},
-                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"validate", ms(t2, t3)},
+                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"validate", ms_validate},
                        {"write", ms(t3, t4)},        {"total", ms(t0, Clock::now())}};
     j["warnings"] = rep.warnings;
     if (Status s = write_report(a.report, j); !s) return fail(s);
@@ -141,7 +151,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   progress.phase("reading");
   PointSet pts;
   ReadReport rep;
-  if (Status s = read_input(a.in, pts, rep, a.quiet); !s) return fail(s);
+  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
   const auto t1 = Clock::now();
   if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);
   return fail({StatusCode::Unsupported, "3D reconstruction is not available in this build yet"});

@@ -18,12 +18,13 @@ void add_input_options(CLI::App* cmd, InputArgs& in) {
                 "keep the first of identical points (default: duplicates are an error)");
 }
 
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet) {
+// Warnings (e.g. merged duplicates) are printed even with --quiet: dropping data is never silent.
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep) {
   ReadOptions opt;
   opt.dim = in.dim;
   opt.merge_duplicates = in.merge_duplicates;
   Status s = read_points(in.path, opt, pts, &rep);
-  if (s && !quiet)
+  if (s)
     for (const auto& w : rep.warnings) std::fprintf(stderr, "constrict: warning: %s\n", w.c_str());
   return s;
 }
@@ -70,8 +71,12 @@ Progress::~Progress() {
   thread_.join();
 }
 
-void Progress::phase(const char* name) {
-  phase_.store(name);
+void Progress::phase(const std::string& name) {
+  if (!enabled_) return;
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    phase_ = name;
+  }
   done_.store(0);
   total_.store(0);
 }
@@ -88,9 +93,9 @@ void Progress::run() {
     const double s = ms(start_, Clock::now()) / 1000.0;
     const std::size_t total = total_.load(), done = done_.load();
     if (total > 0)
-      std::fprintf(stderr, "constrict: %6.1f s  %s %zu/%zu\n", s, phase_.load(), done, total);
+      std::fprintf(stderr, "constrict: %6.1f s  %s %zu/%zu\n", s, phase_.c_str(), done, total);
     else
-      std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.load());
+      std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.c_str());
     next += std::chrono::seconds(1);
   }
 }

@@ -35,7 +35,7 @@ struct InputArgs {
 };
 
 void add_input_options(CLI::App* cmd, InputArgs& in);
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool quiet);
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep);
 
 /// Splits "a,b,c" into exactly @p count doubles; false on a malformed list or another count.
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out);
@@ -51,14 +51,14 @@ class Progress {
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
-  void phase(const char* name);
+  void phase(const std::string& name);
   void count(std::size_t done, std::size_t total);
 
  private:
   void run();
   bool enabled_;
   Clock::time_point start_;
-  std::atomic<const char*> phase_{"starting"};
+  std::string phase_ = "starting";  // guarded by m_
   std::atomic<std::size_t> done_{0}, total_{0};
   std::mutex m_;
   std::condition_variable cv_;

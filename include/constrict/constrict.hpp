@@ -15,6 +15,7 @@
 
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
+#include "constrict/validate.hpp"
 
 namespace constrict {
 
@@ -37,7 +38,9 @@ struct Constrict2Options {
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
   /// then incomplete (no fallback runs) unless all points were already on the boundary.
   std::size_t stop_after = SIZE_MAX;
-  /// Validate the final polygon with validate_polygon() (a failure is a bug: InternalError).
+  /// Validate the final polygon exactly (validate_polygon_in_triangulation() with the Delaunay
+  /// triangulation: O(N) when every edge is a Delaunay edge, else the O(N log N) sweep). A complete
+  /// polygon that fails is a bug: InternalError. The outcome is in Polygon2Result::check.
   bool validate = true;
 };
 
@@ -62,6 +65,8 @@ struct Polygon2Result {
   std::size_t fallback_insertions = 0;  ///< points placed by the fallbacks
   std::vector<std::array<int, 2>> fallback_edges;  ///< non-Delaunay polygon edges, (min, max) ids
   double area = 0, perimeter = 0;       ///< of the final polygon (double arithmetic)
+  bool validated = false;  ///< the polygon was validated (Constrict2Options::validate)
+  PolygonCheck check;      ///< the validation outcome (an incomplete polygon misses points)
   double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_validate = 0;
 };
 

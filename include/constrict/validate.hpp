@@ -38,6 +38,17 @@ struct PolygonCheck {
 Status validate_polygon(const PointSet& points, const std::vector<int>& boundary,
                         PolygonCheck* details = nullptr);
 
+/// Same checks as validate_polygon() for a polygon whose edges are (mostly) edges of a known
+/// triangulation of all the points, e.g. the Delaunay triangulation the constriction used.
+/// When every polygon edge is a triangulation edge the simplicity test is O(N): distinct edges of
+/// a triangulation meet only at shared endpoints, so a cycle through every vertex once is simple.
+/// Otherwise the O(N log N) sweep of validate_polygon() runs.
+/// @param[in] triangles a valid triangulation of all @p points (e.g. Delaunay2::triangles); its
+///   validity is the precondition that makes the fast path exact
+Status validate_polygon_in_triangulation(const PointSet& points, const std::vector<int>& boundary,
+                                          const std::vector<std::array<int, 3>>& triangles,
+                                          PolygonCheck* details = nullptr);
+
 /// Reference check by testing all edge pairs: O(N^2). Same semantics as validate_polygon();
 /// meant for tests.
 Status validate_polygon_brute_force(const PointSet& points, const std::vector<int>& boundary,

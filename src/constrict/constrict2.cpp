@@ -450,13 +450,51 @@ struct Constrictor2::Impl {
     const int i = std::min(u, v), j = std::max(u, v);
     double ga, gb;
     bool blocked;
+    // Every point with apex value < gamma0 lies within reach(gamma0): m below is the exact minimum
+    // whenever m < gamma0.
     sides_cached(i, j, reach(i, j, gamma0), ga, gb, blocked);
     if (blocked) return false;
     const double m = std::min(ga, gb);
     if (m >= gamma0) return true;
-    sides_cached(i, j, reach(i, j, m), ga, gb, blocked);
-    const double other = ga == m ? gb : ga;
-    return other >= -m;
+    if (ga == gb) return false;  // both sides below gamma0 < 0 <= -m
+    // In iff the other side has no point with value < -m. -m can be close to 1, where the region
+    // to search is nearly the whole half-plane: stop at the first witness instead (the usual
+    // answer); only pairs with a nearly empty other side are searched far.
+    return !witness_below(i, j, ga == m ? -1 : 1, -m);
+  }
+
+  // Is there a point p with orient2(x_i, x_j, p) == side and apex value < thr, or a point in the
+  // open segment ij? Ring search around the midpoint, nearest cells first, first witness wins.
+  bool witness_below(int i, int j, int side, double thr) {
+    const double* a = P(i);
+    const double* b = P(j);
+    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const int ci = grid.cx(mx), cj = grid.cy(my);
+    const double cs = grid.cell_size();
+    const int kmax = std::max(grid.nx(), grid.ny());
+    const double far = reach(i, j, thr);
+    bool found = false;
+    auto visit = [&](int p) {
+      if (found || p == i || p == j) return;
+      const int o = orient2(a, b, P(p));
+      if (o == 0) {
+        if (diametral_side2(a, b, P(p)) < 0) found = true;
+        return;
+      }
+      if (o == side && apex_gamma2(a, b, P(p)) < thr) found = true;
+    };
+    for (int k = 0; k <= kmax && !found; ++k) {
+      if (k >= 2 && static_cast<double>(k - 1) * cs > far) break;
+      for (int jj = cj - k; jj <= cj + k && !found; ++jj) {
+        if (jj < 0 || jj >= grid.ny()) continue;
+        const bool edge_row = (jj == cj - k || jj == cj + k);
+        for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
+          if (ii >= 0 && ii < grid.nx()) grid.points_in_cell(ii, jj, visit);
+          if (k == 0) break;
+        }
+      }
+    }
+    return found;
   }
 
   // ---------------------------------------------------------------- local constriction
@@ -694,12 +732,12 @@ struct Constrictor2::Impl {
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
       if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(a, b), std::max(a, b)}});
     }
-    if (opt.validate && r.complete) {
+    if (opt.validate) {
       const auto tv = Clock::now();
-      PolygonCheck chk;
-      const Status vs = validate_polygon(*pts, r.boundary, &chk);
+      const Status vs = validate_polygon_in_triangulation(*pts, r.boundary, dt.triangles, &r.check);
+      r.validated = true;
       r.ms_validate = ms_since(tv);
-      CONSTRICT_CHECK(vs.is_ok(), "reconstruct2 produced an invalid polygon: " + vs.message());
+      CONSTRICT_CHECK(vs.is_ok() || !r.complete, "reconstruct2 produced an invalid polygon: " + vs.message());
     }
     return Status::ok();
   }

@@ -214,4 +214,40 @@ Status validate_polygon_brute_force(const PointSet& points, const std::vector<in
   return check_ccw(P, details);
 }
 
+Status validate_polygon_in_triangulation(const PointSet& points, const std::vector<int>& boundary,
+                                          const std::vector<std::array<int, 3>>& triangles,
+                                          PolygonCheck* details) {
+  if (details) *details = PolygonCheck{};
+  Status st = check_indices(points, boundary, details);
+  if (!st) return st;
+  // Mark the polygon edges met as triangle edges: succ[u] is the vertex after u on the polygon.
+  const std::size_t n = points.size();
+  std::vector<int> succ(n, -1);
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    succ[static_cast<std::size_t>(boundary[k])] = boundary[(k + 1) % boundary.size()];
+  std::vector<char> found(n, 0);
+  bool all_edges_in = true;
+  for (const auto& t : triangles) {
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= n) all_edges_in = false;
+    if (!all_edges_in) break;
+    for (int i = 0; i < 3; ++i) {
+      const int u = t[static_cast<std::size_t>(i)], v = t[static_cast<std::size_t>((i + 1) % 3)];
+      if (succ[static_cast<std::size_t>(u)] == v) found[static_cast<std::size_t>(u)] = 1;
+      if (succ[static_cast<std::size_t>(v)] == u) found[static_cast<std::size_t>(v)] = 1;
+    }
+  }
+  for (std::size_t u = 0; u < n && all_edges_in; ++u) all_edges_in = found[u] != 0;
+  Poly P{points, boundary, boundary.size()};
+  if (!all_edges_in) {  // some edge is not a triangulation edge: the general sweep decides
+    Sweep sweep(P);
+    std::size_t e = 0, f = 0;
+    if (sweep.run(e, f)) return report_crossing(P, e, f, details);
+  }
+  // Edges of one triangulation meet only at common endpoints, and the cycle visits every vertex
+  // once: a simple polygon (two edges at a vertex cannot overlap, so no fold-back either).
+  if (details) details->simple = true;
+  return check_ccw(P, details);
+}
+
 }  // namespace constrict

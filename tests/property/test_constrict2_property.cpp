@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
 #include "constrict/validate.hpp"
 
@@ -163,6 +164,15 @@ TEST(Constrict2Property, ValidatorMatchesBruteForce) {
     const bool slow = validate_polygon_brute_force(p, b).is_ok();
     ASSERT_EQ(fast, slow) << "seed " << seed;
     valid += fast;
+    // The triangulation fast path (O(N) when every edge is a Delaunay edge) agrees too, also on
+    // the clockwise copy.
+    Delaunay2 dt;
+    if (build_delaunay2(p, dt).is_ok()) {
+      ASSERT_EQ(validate_polygon_in_triangulation(p, b, dt.triangles).is_ok(), slow) << "seed " << seed;
+      std::vector<int> rev(b.rbegin(), b.rend());
+      ASSERT_EQ(validate_polygon_in_triangulation(p, rev, dt.triangles).is_ok(),
+                validate_polygon_brute_force(p, rev).is_ok()) << "seed " << seed;
+    }
   }
   std::printf("[ Constrict2Property ] validator: %d valid polygons of 3000\n", valid);
 }

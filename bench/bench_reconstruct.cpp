@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Whole 2D reconstruction (Delaunay, constriction, fallbacks, exact validation) next to CGAL's
+// Delaunay_2 alone on the same points: points on a closed smooth curve (issue 3 speed goal:
+// reconstruct2 <= 1.5x CGAL's Delaunay_2), plus a uniform cloud (many locks: fallback cost).
+#include <benchmark/benchmark.h>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "bench_data.hpp"
+#include "constrict/constrict.hpp"
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using namespace constrict;
+
+// n points on the closed curve r(t) = 1 + 0.3 cos(5t) (five petals), t uniform at random:
+// exactly "sampled on a closed curve" up to double rounding (no noise band).
+PointSet curve_points(std::size_t n, std::uint64_t seed = 7) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 2 * M_PI);
+  PointSet p;
+  p.dim = 2;
+  p.coords.resize(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = u(rng), r = 1 + 0.3 * std::cos(5 * t);
+    p.coords[2 * i] = r * std::cos(t);
+    p.coords[2 * i + 1] = r * std::sin(t);
+  }
+  return p;
+}
+
+PointSet make(std::size_t n, int kind) {
+  return kind == 0 ? curve_points(n) : bench::points2(n, bench::Dist::Uniform);
+}
+const char* kind_name(int kind) { return kind == 0 ? "curve" : "uniform"; }
+
+void BM_CgalDelaunay2Same(benchmark::State& state) {
+  const auto pts = make(static_cast<std::size_t>(state.range(0)), static_cast<int>(state.range(1)));
+  std::vector<K::Point_2> v;
+  for (std::size_t i = 0; i < pts.size(); ++i) v.emplace_back(pts[i][0], pts[i][1]);
+  for (auto _ : state) {
+    CGAL::Delaunay_triangulation_2<K> dt(v.begin(), v.end());
+    benchmark::DoNotOptimize(dt.number_of_faces());
+  }
+  state.SetLabel(kind_name(static_cast<int>(state.range(1))));
+}
+
+void BM_Reconstruct2(benchmark::State& state) {
+  const auto pts = make(static_cast<std::size_t>(state.range(0)), static_cast<int>(state.range(1)));
+  std::size_t stuck = 0;
+  for (auto _ : state) {
+    Polygon2Result r;
+    if (!reconstruct2(pts, Constrict2Options{}, r) || !r.complete) state.SkipWithError("reconstruct2 failed");
+    stuck = r.stuck_points.size();
+    benchmark::DoNotOptimize(r.boundary.data());
+  }
+  state.counters["stuck"] = static_cast<double>(stuck);
+  state.SetLabel(kind_name(static_cast<int>(state.range(1))));
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+  for (int kind : {0, 1})
+    for (long n : {10000L, 100000L, 1000000L}) b->Args({n, kind});
+  b->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_CgalDelaunay2Same)->Apply(sizes);
+BENCHMARK(BM_Reconstruct2)->Apply(sizes);
+}  // namespace

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Every shared 2D point set ends with a valid simple polygon through all points; on the
+// single-closed-curve sets with ground truth the exact matches and recovered GT edges never drop
+// below the recorded baseline (tests/data/regression/gt2d_expected.csv). Skips without ../shared.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "constrict/constrict.hpp"
+#include "constrict/io.hpp"
+#include "constrict/metrics.hpp"
+#include "constrict/validate.hpp"
+
+namespace fs = std::filesystem;
+using namespace constrict;
+
+namespace {
+
+const fs::path kShared2d = fs::path(CONSTRICT_SHARED_DIR) / "data" / "2d";
+
+struct Expected {
+  bool exact = false;
+  double recall = 0;
+};
+
+std::map<std::string, Expected> read_expected() {
+  std::map<std::string, Expected> m;
+  std::ifstream f(fs::path(CONSTRICT_TEST_DATA_DIR) / "regression" / "gt2d_expected.csv");
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("name,", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::string name, n, exact, recall;
+    std::getline(ss, name, ',');
+    std::getline(ss, n, ',');
+    std::getline(ss, exact, ',');
+    std::getline(ss, recall, ',');
+    m[name] = {exact == "1", std::stod(recall)};
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST(Shared2D, EveryFileGivesAValidPolygonAndGroundTruthDoesNotRegress) {
+  if (!fs::is_directory(kShared2d / "points")) GTEST_SKIP() << "no shared data at " << kShared2d;
+  const auto expected = read_expected();
+  ASSERT_FALSE(expected.empty()) << "baseline file missing";
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(kShared2d / "points"))
+    if (e.path().extension() == ".xy") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 100u);
+
+  std::size_t exact = 0, gt_sets = 0, expected_exact = 0;
+  std::map<std::string, std::size_t> methods;
+  for (const auto& path : files) {
+    const std::string name = path.stem().string();
+    SCOPED_TRACE(name);
+    PointSet pts;
+    ASSERT_TRUE(read_points(path.string(), ReadOptions{}, pts).is_ok());
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(pts, Constrict2Options{}, r).is_ok());
+    ASSERT_TRUE(r.complete);
+    PolygonCheck chk;
+    ASSERT_TRUE(validate_polygon(pts, r.boundary, &chk).is_ok()) << chk.reason;
+    ++methods[r.method];
+
+    const fs::path gt = kShared2d / "gt" / (name + ".gt");
+    if (!fs::exists(gt)) continue;
+    Reference2 ref;
+    ASSERT_TRUE(read_reference2(gt.string(), pts.size(), ref).is_ok());
+    if (!ref.single_closed_curve()) continue;
+    ++gt_sets;
+    const PolygonComparison c = compare_polygon2(r.boundary, ref);
+    exact += c.exact_match;
+    const auto it = expected.find(name);
+    ASSERT_NE(it, expected.end()) << "no baseline for " << name << ": add it to gt2d_expected.csv";
+    expected_exact += it->second.exact;
+    if (it->second.exact) {
+      EXPECT_TRUE(c.exact_match) << "lost the exact ground-truth match";
+    }
+    EXPECT_GE(c.edge_recall, it->second.recall - 5e-5) << "fewer ground-truth edges recovered";
+  }
+  std::printf("[ shared 2D ] %zu files valid; exact GT matches %zu/%zu (baseline %zu); methods:", files.size(),
+              exact, gt_sets, expected_exact);
+  for (const auto& [m, k] : methods) std::printf(" %s=%zu", m.c_str(), k);
+  std::printf("\n");
+  EXPECT_EQ(gt_sets, expected.size());
+  EXPECT_GE(exact, expected_exact);
+}
