@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `constrict reconstruct`: a simple polygon (2D) through all points. Validates every result.
+#include <cctype>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -8,6 +9,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "constrict/constrict.hpp"
+#include "constrict/constrict3.hpp"
+#include "constrict/mesh.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/validate.hpp"
@@ -17,7 +20,8 @@ namespace {
 
 struct ReconstructArgs {
   InputArgs in;
-  std::string out, report, fallback = "auto";
+  std::string out, report, body, fallback = "auto";
+  bool ascii = false;
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
 };
@@ -145,6 +149,132 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   return 0;
 }
 
+class ProgressVisitor3 final : public Constrict3Visitor {
+ public:
+  ProgressVisitor3(Progress& p, std::size_t n) : progress_(p), n_(n) {}
+  void on_event(const Constrict3Event& e) override {
+    if (e.kind == Constrict3Event::Kind::RemoveTet) {
+      if (!started_) {
+        started_ = true;
+        progress_.phase("constricting, tetrahedra removed");
+      }
+      if ((++removed_ & 4095u) == 0) progress_.count(removed_, 6 * n_);
+    } else if (e.kind == Constrict3Event::Kind::Lock) {
+      progress_.phase("lock: fallback");
+    }
+  }
+
+ private:
+  Progress& progress_;
+  std::size_t n_;
+  std::size_t removed_ = 0;
+  bool started_ = false;
+};
+
+std::string extension_of(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
+                     Clock::time_point t0, Clock::time_point t1) {
+  const std::string ext = extension_of(a.out);
+  if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
+    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 3D surface (use .off, .ply, .obj or .stl)"});
+  if (!a.body.empty() && extension_of(a.body) != "vtk")
+    return fail({StatusCode::InvalidArgument, a.body + ": the body is written as VTK legacy (.vtk)"});
+  if (a.fallback == "gamma0" || a.fallback == "degree4")
+    return fail({StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback; 3D has auto (star cavities) or none"});
+  Constrict3Options opt;
+  opt.fallback = a.fallback == "none" ? Fallback3::None : Fallback3::Auto;
+  opt.stop_after = a.stop_after;
+  opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
+  progress.phase("delaunay + gamma-values");
+  ProgressVisitor3 visitor(progress, pts.size());
+  Mesh3Result r;
+  if (Status s = reconstruct3(pts, opt, r, &visitor); !s) return fail(s);
+
+  progress.phase("validating");
+  const auto tv = Clock::now();
+  MeshCheck chk;
+  MeshCheckOptions copt;
+  copt.require_all_points = true;
+  const bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
+  const double ms_validate = ms(tv, Clock::now());
+  if (r.complete && !valid)
+    return fail({StatusCode::Internal, "the reconstructed surface failed validation (please report): " + chk.reason});
+
+  progress.phase("writing");
+  const auto tw = Clock::now();
+  MeshWriteOptions wopt;
+  wopt.ply_ascii = a.ascii;
+  if (Status s = write_mesh(a.out, pts, r.mesh, wopt); !s) return fail(s);
+  if (!a.body.empty())
+    if (Status s = write_body_vtk(a.body, pts, r.tets); !s) return fail(s);
+  const double ms_write = ms(tw, Clock::now());
+
+  const std::size_t n = pts.size(), nb = n - r.unplaced_points.size();
+  if (!a.report.empty()) {
+    nlohmann::json j;
+    j["command"] = "reconstruct";
+    j["input"] = a.in.path;
+    j["output"] = a.out;
+    if (!a.body.empty()) j["body"] = a.body;
+    j["dimension"] = 3;
+    j["points"] = n;
+    j["points_read"] = rep.points_read;
+    j["merged_duplicates"] = rep.merged_duplicates;
+    j["boundary_points"] = nb;
+    j["complete"] = r.complete;
+    j["valid"] = valid && r.complete;
+    j["closed"] = chk.closed;
+    j["manifold"] = chk.edge_manifold && chk.vertex_manifold;
+    j["oriented"] = chk.oriented && chk.outward;
+    j["genus"] = chk.genus;
+    j["components"] = chk.components;
+    j["faces"] = r.mesh.triangles.size();
+    j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
+    j["method"] = r.method;
+    j["fallback_mode"] = a.fallback;
+    j["fallback"] = r.cavities > 0 ? nlohmann::json("cavity") : nlohmann::json(nullptr);
+    j["locked"] = r.locked;
+    j["stuck_points"] = r.stuck_points;
+    j["unplaced_points"] = r.unplaced_points;
+    nlohmann::json stages = nlohmann::json::array();
+    for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}, {"removed", s.removed}});
+    j["stages"] = stages;
+    j["removed_one_face"] = r.removed_one_face;
+    j["removed_two_face"] = r.removed_two_face;
+    j["cavities"] = r.cavities;
+    j["body_tetrahedra"] = r.tets.size();
+    j["non_delaunay_tetrahedra"] = r.non_delaunay_tets;
+    j["volume"] = r.volume;
+    j["surface_area"] = r.surface_area;
+    j["timings_ms"] = {{"read", ms(t0, t1)},          {"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict},
+                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"validate", ms_validate},
+                       {"write", ms_write},           {"total", ms(t0, Clock::now())}};
+    j["warnings"] = rep.warnings;
+    if (Status s = write_report(a.report, j); !s) return fail(s);
+  }
+  if (!r.complete) {
+    const char* why = r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked";
+    return fail({StatusCode::Incomplete, std::string(why) + ": " + std::to_string(n - nb) + " of " + std::to_string(n) +
+                                             " points left inside; the surface in " + a.out + " passes through " +
+                                             std::to_string(nb) + " points"});
+  }
+  if (!a.quiet) {
+    std::printf("surface through %zu/%zu points: valid (closed, manifold, outward, genus %d, %zu triangles); method %s",
+                nb, n, chk.genus, r.mesh.triangles.size(), r.method.c_str());
+    if (r.locked) std::printf(" (gamma locked with %zu inside)", r.stuck_points.size());
+    std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));
+  }
+  return 0;
+}
+
 int run_reconstruct(const ReconstructArgs& a) {
   const auto t0 = Clock::now();
   Progress progress(!a.quiet);
@@ -154,7 +284,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
   const auto t1 = Clock::now();
   if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);
-  return fail({StatusCode::Unsupported, "3D reconstruction is not available in this build yet"});
+  return run_reconstruct3(a, pts, rep, progress, t0, t1);
 }
 
 }  // namespace
@@ -162,11 +292,14 @@ int run_reconstruct(const ReconstructArgs& a) {
 Command add_reconstruct_command(CLI::App& app) {
   auto a = std::make_shared<ReconstructArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "reconstruct", "reconstruct a simple polygon (2D) through all points by gamma-constriction");
+      "reconstruct",
+      "reconstruct a simple polygon (2D) / closed genus-0 surface (3D) through all points by gamma-constriction");
   add_input_options(cmd, a->in);
-  cmd->add_option("-o,--output", a->out, "output: 2D .idx .csv .geojson .wkt .svg")->required();
+  cmd->add_option("-o,--output", a->out, "output: 2D .idx .csv .geojson .wkt .svg; 3D .off .ply .obj .stl")->required();
+  cmd->add_option("--body", a->body, "3D: also write the tetrahedral body (VTK legacy .vtk)");
+  cmd->add_flag("--ascii", a->ascii, "3D: ASCII PLY instead of binary");
   cmd->add_option("--report", a->report, "write a JSON report (method, counts, area, timings)");
-  cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 | none")
+  cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 (2D) | none")
       ->check(CLI::IsMember({"auto", "gamma0", "degree4", "none"}));
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");

@@ -8,6 +8,20 @@ EX=examples/data
 mkdir -p "$OUT"
 run() { echo "+ constrict $*"; "$CLI" "$@"; }
 
+# Reconstruction, 2D: a simple polygon through all points (SVG: polygon solid, Delaunay graph
+# dashed, stuck points circled, fallback edges orange), plus GeoJSON and a JSON report.
+for f in flower greedy_lock nonhamiltonian9 rectangle_point; do
+  run reconstruct "$EX/2d/$f.xy" -o "$OUT/${f}_polygon.svg" --report "$OUT/${f}_polygon.json"
+done
+run reconstruct "$EX/2d/flower.xy" -o "$OUT/flower_polygon.geojson" --quiet
+
+# Reconstruction, 3D: closed genus-0 surfaces through all points (PLY/OFF) and the tetrahedral
+# body (VTK, opens in ParaView).
+run reconstruct "$EX/3d/candlestick.xyz" -o "$OUT/candlestick_surface.ply" --body "$OUT/candlestick_body.vtk" \
+    --report "$OUT/candlestick_surface.json"
+run reconstruct "$EX/3d/ellipsoid.xyz" -o "$OUT/ellipsoid_surface.off"
+run reconstruct "$EX/3d/tetra_interior.xyz" -o "$OUT/tetra_interior_surface.obj"
+
 # The γ-graph family on a 2D curve sample: Delaunay, Gabriel, a β-skeleton, the convex hull and a
 # γ0 < 0 graph with crossing edges (pictures as SVG, values as CSV).
 for preset in delaunay gabriel hull beta-circle=1.5; do
