@@ -55,14 +55,14 @@ void expect_valid(const PointSet& p, const Mesh3Result& r) {
 TEST(Constrict3Unit, UnitTetrahedron) {
   const PointSet p = make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r).is_ok());
   expect_valid(p, r);
   EXPECT_EQ(r.tets.size(), 1u);
   EXPECT_NEAR(r.volume, 1.0 / 6.0, 1e-15);
   EXPECT_EQ(r.method, "gamma");
   EXPECT_FALSE(r.locked);
   // Sculpting without threshold: the only tet has 4 boundary faces, nothing to remove.
-  Constrict3Options o;
+  Constrict3Options o = Constrict3Options::paper();
   o.sculpt = Sculpt3::TwoFace;
   o.sculpt_threshold = 0;
   ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
@@ -73,7 +73,7 @@ TEST(Constrict3Unit, TetrahedronPlusInteriorPoint) {
   const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
   Recorder rec;
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r, &rec).is_ok());
   expect_valid(p, r);
   const auto rm = rec.removals();
   ASSERT_EQ(rm.size(), 1u);
@@ -93,12 +93,12 @@ TEST(Constrict3Unit, TetrahedronPlusInteriorPoint) {
 TEST(Constrict3Unit, BipyramidTieBreak) {
   const PointSet p = make3({{3, 0, 0}, {-1, 2, 0}, {-1, -2, 0}, {0, 0, 2}, {0, 0, -2}});
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r).is_ok());
   expect_valid(p, r);
   EXPECT_EQ(r.removed_one_face + r.removed_two_face, 0u);  // all points on the hull: nothing removed
   EXPECT_EQ(r.tets.size(), 3u);
 
-  Constrict3Options o;
+  Constrict3Options o = Constrict3Options::paper();
   o.sculpt = Sculpt3::TwoFace;
   o.sculpt_threshold = 0;  // post-pass without threshold (spec §5.3)
   Recorder rec;
@@ -125,7 +125,7 @@ TEST(Constrict3Unit, UnitTetrahedronFaceValues) {
   const PointSet p = make3({{0, 0, 0}, {3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {0.9, 0.9, 0.9}});
   Mesh3Result r;
   Recorder rec;
-  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r, &rec).is_ok());
   expect_valid(p, r);
   const auto rm = rec.removals();
   ASSERT_EQ(rm.size(), 1u);
@@ -262,7 +262,7 @@ TEST(Constrict3Unit, LockedCloudsAreCompletedByTheCavityFallback) {
     for (int i = 0; i < 3 * 150; ++i) p.coords.push_back(static_cast<double>(splitmix(st) >> 11) * 0x1.0p-53);
     Recorder rec;
     Mesh3Result r;
-    Constrict3Options o;
+    Constrict3Options o = Constrict3Options::paper();  // the seeds lock with the paper's key
     o.validate_self_intersections = true;
     ASSERT_TRUE(reconstruct3(p, o, r, &rec).is_ok());
     expect_valid(p, r);
