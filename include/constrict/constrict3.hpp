@@ -48,10 +48,12 @@ enum class Refine3 {
   None,          ///< the paper's result, unchanged (spec §5.3 golden behaviour)
   Area,          ///< energy = surface area: fills the deep dents and bridging pits
   Circumradius,  ///< energy = sum of face circumradii: prefers well-shaped small triangles
+  Alternate,     ///< Area, then up to 3 rounds of (Circumradius, Area) while flips happen; each
+                 ///< energy leaves the other's local minimum (default, best measured)
 };
 
 /// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, the lock
-/// fallback and the Refine3::Area post-pass (best GT recovery measured, docs/reconstruction-3d.md
+/// fallback and the Refine3::Alternate post-pass (best GT recovery measured, docs/reconstruction-3d.md
 /// §4). paper() selects the paper's plain behaviour (spec §5.3 golden tests).
 struct Constrict3Options {
   /// The paper's algorithm: TwoFaceKey::Sum, no post-pass (plus the lock fallback).
@@ -64,7 +66,7 @@ struct Constrict3Options {
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
   Sculpt3 sculpt = Sculpt3::None;        ///< post-pass (measured in docs/reconstruction-3d.md)
   TwoFaceKey two_face_key = TwoFaceKey::Max;  ///< criterion of two-face tetrahedra
-  Refine3 refine = Refine3::Area;             ///< flip post-pass on complete surfaces
+  Refine3 refine = Refine3::Alternate;        ///< flip post-pass on complete surfaces
   /// Minimum criterion for the TwoFace post-pass, in [0, 4] (the two_face_key scale). 2 = the average γ of the two faces
   /// is < 0 (the tetrahedron's circumcentre lies outside the current surface, spec §3.5).
   double sculpt_threshold = 2.0;

@@ -520,7 +520,7 @@ struct Constrictor3::Impl {
     const double w[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
     const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
     const double area2 = std::sqrt(cx * cx + cy * cy + cz * cz);  // twice the area
-    if (opt.refine == Refine3::Area) return 0.5 * area2;
+    if (energy == Refine3::Area) return 0.5 * area2;
     const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     const double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     const double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
@@ -563,6 +563,7 @@ struct Constrictor3::Impl {
 
   mutable std::vector<int> ring_buf;
   std::size_t refine_added = 0, refine_removed = 0;
+  Refine3 energy = Refine3::Area;
 
   void refine() {
     heap.clear();
@@ -752,7 +753,20 @@ Status Constrictor3::finish(Mesh3Result& r) {
   if (r.complete && s.opt.refine != Refine3::None) {
     stage_event("refine");
     t0 = Clock::now();
+    s.energy = s.opt.refine == Refine3::Alternate ? Refine3::Area : s.opt.refine;
     s.refine();
+    if (s.opt.refine == Refine3::Alternate) {
+      // Each energy's local minimum is not the other's: alternate while flips happen (<= 3
+      // rounds, measured: docs/reconstruction-3d.md §4), ending on Area.
+      for (int round = 0; round < 3; ++round) {
+        const std::size_t f0 = s.refine_added + s.refine_removed;
+        s.energy = Refine3::Circumradius;
+        s.refine();
+        s.energy = Refine3::Area;
+        s.refine();
+        if (s.refine_added + s.refine_removed == f0) break;
+      }
+    }
     r.ms_refine = ms_since(t0);
     r.stages.push_back({"refine", 0, s.refine_removed});
   }

@@ -177,7 +177,7 @@ TEST(Constrict3Unit, RefineFlipsLowerTheAreaAndKeepValidity) {
     pts.push_back({{r * x, r * y, r * z}});
   }
   const PointSet p = make3(pts);
-  for (Refine3 e : {Refine3::Area, Refine3::Circumradius}) {
+  for (Refine3 e : {Refine3::Area, Refine3::Circumradius, Refine3::Alternate}) {
     for (TwoFaceKey k : {TwoFaceKey::Sum, TwoFaceKey::Max}) {
       Constrict3Options o, plain;
       o.two_face_key = plain.two_face_key = k;
