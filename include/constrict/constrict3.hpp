@@ -2,8 +2,9 @@
 /// @file constrict3.hpp
 /// @brief 3D reconstruction: a closed genus-0 polyhedron through all points by γ-constriction of
 /// the Delaunay tetrahedralization (Veltkamp, seed paper §4.2, §4.3, §5; spec gamma-graph.md
-/// §3), with a local fallback when the greedy constriction locks and an optional sculpting
-/// post-pass. Algorithm, guarantees and measurements: docs/reconstruction-3d.md.
+/// §3), with a local fallback when the greedy constriction locks, an optional sculpting post-pass
+/// and the Refine3 edge-flip post-pass (default). Algorithm, guarantees and measurements:
+/// docs/reconstruction-3d.md.
 #pragma once
 
 #include <array>
