@@ -49,8 +49,8 @@ enum class Refine3 {
   None,          ///< the paper's result, unchanged (spec §5.3 golden behaviour)
   Area,          ///< energy = surface area: fills the deep dents and bridging pits
   Circumradius,  ///< energy = sum of face circumradii: prefers well-shaped small triangles
-  Alternate,     ///< Area, then up to 3 rounds of (Circumradius, Area) while flips happen; each
-                 ///< energy leaves the other's local minimum (default, best measured)
+  Alternate,     ///< Area, then Circumradius, then Area again: each energy leaves the other's
+                 ///< local minimum (default, best measured)
 };
 
 /// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, the lock
