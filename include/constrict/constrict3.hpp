@@ -2,8 +2,9 @@
 /// @file constrict3.hpp
 /// @brief 3D reconstruction: a closed genus-0 polyhedron through all points by γ-constriction of
 /// the Delaunay tetrahedralization (Veltkamp, seed paper §4.2, §4.3, §5; spec gamma-graph.md
-/// §3), with a local fallback when the greedy constriction locks and an optional sculpting
-/// post-pass. Algorithm, guarantees and measurements: docs/reconstruction-3d.md.
+/// §3), with a local fallback when the greedy constriction locks, an optional sculpting post-pass
+/// and the Refine3 edge-flip post-pass (default). Algorithm, guarantees and measurements:
+/// docs/reconstruction-3d.md.
 #pragma once
 
 #include <array>
@@ -34,16 +35,39 @@ enum class Sculpt3 {
 
 /// Criterion of a removable tetrahedron with two boundary faces.
 enum class TwoFaceKey {
-  Sum,  ///< (1 - γ1) + (1 - γ2), in [0, 4] (paper §4.2, spec §3.4; default)
-  Max,  ///< max(1 - γ1, 1 - γ2), in [0, 2]: same scale as one-face tetrahedra (measured
-        ///< alternative, docs/reconstruction-3d.md §5)
+  Sum,  ///< (1 - γ1) + (1 - γ2), in [0, 4] (paper §4.2, spec §3.4)
+  Max,  ///< max(1 - γ1, 1 - γ2), in [0, 2]: same scale as one-face tetrahedra (default, chosen
+        ///< by measurement with Refine3::Area, docs/reconstruction-3d.md §4)
 };
 
-/// Options of reconstruct3(). Defaults: the paper's algorithm plus the lock fallback.
+/// Post-pass after every point is on the surface (docs/reconstruction-3d.md §4): surface edge
+/// flips through Delaunay tetrahedra in both directions — remove a body tetrahedron with two
+/// surface faces (the paper's two-face rule) or add back a removed one with two faces on the
+/// surface (its exact reverse) — whenever the flip lowers the energy of the surface, best first.
+/// Every point stays on the surface and the surface stays a closed genus-0 2-manifold.
+enum class Refine3 {
+  None,          ///< the paper's result, unchanged (spec §5.3 golden behaviour)
+  Area,          ///< energy = surface area: fills the deep dents and bridging pits
+  Circumradius,  ///< energy = sum of face circumradii: prefers well-shaped small triangles
+  Alternate,     ///< Area, then Circumradius, then Area again: each energy leaves the other's
+                 ///< local minimum (default, best measured)
+};
+
+/// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, the lock
+/// fallback and the Refine3::Alternate post-pass (best GT recovery measured, docs/reconstruction-3d.md
+/// §4). paper() selects the paper's plain behaviour (spec §5.3 golden tests).
 struct Constrict3Options {
+  /// The paper's algorithm: TwoFaceKey::Sum, no post-pass (plus the lock fallback).
+  static Constrict3Options paper() {
+    Constrict3Options o;
+    o.two_face_key = TwoFaceKey::Sum;
+    o.refine = Refine3::None;
+    return o;
+  }
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
   Sculpt3 sculpt = Sculpt3::None;        ///< post-pass (measured in docs/reconstruction-3d.md)
-  TwoFaceKey two_face_key = TwoFaceKey::Sum;  ///< criterion of two-face tetrahedra
+  TwoFaceKey two_face_key = TwoFaceKey::Max;  ///< criterion of two-face tetrahedra
+  Refine3 refine = Refine3::Alternate;        ///< flip post-pass on complete surfaces
   /// Minimum criterion for the TwoFace post-pass, in [0, 4] (the two_face_key scale). 2 = the average γ of the two faces
   /// is < 0 (the tetrahedron's circumcentre lies outside the current surface, spec §3.5).
   double sculpt_threshold = 2.0;
@@ -62,7 +86,7 @@ struct Constrict3Options {
 
 /// One stage and how many points it placed on the boundary.
 struct Constrict3Stage {
-  std::string name;          ///< "hull", "gamma", "cavity", "sculpt"
+  std::string name;          ///< "hull", "gamma", "cavity", "sculpt", "refine"
   std::size_t placed = 0;    ///< points that joined the boundary in this stage
   std::size_t removed = 0;   ///< tetrahedra removed in this stage
 };
@@ -85,10 +109,12 @@ struct Mesh3Result {
   std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
+  std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
+  std::size_t refine_removed = 0;         ///< tetrahedra removed by the Refine3 post-pass
   std::size_t non_delaunay_tets = 0;      ///< body tetrahedra made by the fallback
   std::size_t delaunay_tets = 0;          ///< tetrahedra of the Delaunay tetrahedralization
   double volume = 0, surface_area = 0;    ///< of the final surface (double arithmetic)
-  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_validate = 0;
+  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_refine = 0, ms_validate = 0;
 };
 
 /// Event passed to a visitor.

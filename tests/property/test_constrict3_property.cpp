@@ -212,6 +212,22 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
         EXPECT_TRUE(r2.complete);
         EXPECT_TRUE(validate_mesh3(p, r2.mesh, &mc).is_ok()) << mc.reason;
       }
+      // The Refine3::Area post-pass only lowers the area of the same constriction result; the paper's
+      // plain algorithm stays valid.
+      if (s % 4 == 1 && r.complete) {
+        Constrict3Options area = o, plain = o;
+        area.refine = Refine3::Area;
+        plain.refine = Refine3::None;
+        Mesh3Result r3, ra;
+        ASSERT_TRUE(reconstruct3(p, plain, r3).is_ok());
+        ASSERT_TRUE(reconstruct3(p, area, ra).is_ok());
+        EXPECT_LE(ra.surface_area, r3.surface_area * (1 + 1e-12));
+        EXPECT_EQ(r3.refine_added + r3.refine_removed, 0u);
+        Mesh3Result r4;
+        ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r4).is_ok());
+        EXPECT_TRUE(r4.complete);
+        EXPECT_TRUE(validate_mesh3(p, r4.mesh, &mc).is_ok()) << mc.reason;
+      }
     }
     std::cout << "[ lock-stats ] " << name(fam) << ": runs " << runs << ", locked " << locks
               << ", stuck points " << stuck << ", cavities " << cavities << "\n";

@@ -55,14 +55,14 @@ void expect_valid(const PointSet& p, const Mesh3Result& r) {
 TEST(Constrict3Unit, UnitTetrahedron) {
   const PointSet p = make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r).is_ok());
   expect_valid(p, r);
   EXPECT_EQ(r.tets.size(), 1u);
   EXPECT_NEAR(r.volume, 1.0 / 6.0, 1e-15);
   EXPECT_EQ(r.method, "gamma");
   EXPECT_FALSE(r.locked);
   // Sculpting without threshold: the only tet has 4 boundary faces, nothing to remove.
-  Constrict3Options o;
+  Constrict3Options o = Constrict3Options::paper();
   o.sculpt = Sculpt3::TwoFace;
   o.sculpt_threshold = 0;
   ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
@@ -73,7 +73,7 @@ TEST(Constrict3Unit, TetrahedronPlusInteriorPoint) {
   const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
   Recorder rec;
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r, &rec).is_ok());
   expect_valid(p, r);
   const auto rm = rec.removals();
   ASSERT_EQ(rm.size(), 1u);
@@ -93,12 +93,12 @@ TEST(Constrict3Unit, TetrahedronPlusInteriorPoint) {
 TEST(Constrict3Unit, BipyramidTieBreak) {
   const PointSet p = make3({{3, 0, 0}, {-1, 2, 0}, {-1, -2, 0}, {0, 0, 2}, {0, 0, -2}});
   Mesh3Result r;
-  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r).is_ok());
   expect_valid(p, r);
   EXPECT_EQ(r.removed_one_face + r.removed_two_face, 0u);  // all points on the hull: nothing removed
   EXPECT_EQ(r.tets.size(), 3u);
 
-  Constrict3Options o;
+  Constrict3Options o = Constrict3Options::paper();
   o.sculpt = Sculpt3::TwoFace;
   o.sculpt_threshold = 0;  // post-pass without threshold (spec §5.3)
   Recorder rec;
@@ -125,7 +125,7 @@ TEST(Constrict3Unit, UnitTetrahedronFaceValues) {
   const PointSet p = make3({{0, 0, 0}, {3, 0, 0}, {0, 3, 0}, {0, 0, 3}, {0.9, 0.9, 0.9}});
   Mesh3Result r;
   Recorder rec;
-  ASSERT_TRUE(reconstruct3(p, {}, r, &rec).is_ok());
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::paper(), r, &rec).is_ok());
   expect_valid(p, r);
   const auto rm = rec.removals();
   ASSERT_EQ(rm.size(), 1u);
@@ -157,6 +157,46 @@ TEST(Constrict3Unit, LockWithoutFallbackIsReported) {
   Mesh3Result r2;
   ASSERT_TRUE(reconstruct3(p, {}, r2).is_ok());
   expect_valid(p, r2);
+}
+
+// Refine3 on a bumpy sphere (300 points, both keys, both energies): the flip post-pass keeps a
+// valid, self-intersection-free genus-0 surface through all points, the Area energy never raises
+// the area of the same constriction result, and the body changes by exactly the flipped tets.
+TEST(Constrict3Unit, RefineFlipsLowerTheAreaAndKeepValidity) {
+  std::vector<std::array<double, 3>> pts;
+  std::uint64_t seed = 7;
+  for (int i = 0; i < 300; ++i) {
+    // points on a bumpy sphere
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(seed >> 11) * 0x1.0p-53 * 2 - 1;
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double ph = static_cast<double>(seed >> 11) * 0x1.0p-53 * 6.283185307179586;
+    const double s = std::sqrt(1 - u * u);
+    const double x = s * std::cos(ph), y = s * std::sin(ph), z = u;
+    const double r = 1 + 0.2 * std::sin(3 * x + 2 * y) + 0.1 * std::sin(5 * z);
+    pts.push_back({{r * x, r * y, r * z}});
+  }
+  const PointSet p = make3(pts);
+  for (Refine3 e : {Refine3::Area, Refine3::Circumradius, Refine3::Alternate}) {
+    for (TwoFaceKey k : {TwoFaceKey::Sum, TwoFaceKey::Max}) {
+      Constrict3Options o, plain;
+      o.two_face_key = plain.two_face_key = k;
+      o.refine = e;
+      o.validate_self_intersections = true;
+      plain.refine = Refine3::None;
+      Mesh3Result a, b;
+      ASSERT_TRUE(reconstruct3(p, o, a).is_ok());
+      ASSERT_TRUE(reconstruct3(p, plain, b).is_ok());
+      expect_valid(p, a);
+      expect_valid(p, b);
+      if (e == Refine3::Area) {
+        EXPECT_LE(a.surface_area, b.surface_area * (1 + 1e-12));
+      }
+      EXPECT_EQ(a.stages.back().name, "refine");
+      EXPECT_EQ(b.refine_added + b.refine_removed, 0u);
+      EXPECT_EQ(a.tets.size(), b.tets.size() + a.refine_added - a.refine_removed);
+    }
+  }
 }
 
 TEST(Constrict3Unit, BadInput) {
@@ -262,7 +302,7 @@ TEST(Constrict3Unit, LockedCloudsAreCompletedByTheCavityFallback) {
     for (int i = 0; i < 3 * 150; ++i) p.coords.push_back(static_cast<double>(splitmix(st) >> 11) * 0x1.0p-53);
     Recorder rec;
     Mesh3Result r;
-    Constrict3Options o;
+    Constrict3Options o = Constrict3Options::paper();  // the seeds lock with the paper's key
     o.validate_self_intersections = true;
     ASSERT_TRUE(reconstruct3(p, o, r, &rec).is_ok());
     expect_valid(p, r);
