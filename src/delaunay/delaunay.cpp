@@ -1,20 +1,42 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // CGAL Delaunay triangulations exported as plain index arrays. This is the only translation unit
 // that includes CGAL's triangulation packages (GPL; swappable behind include/constrict/delaunay.hpp).
+//
+// The insertion is exactly CGAL's range insertion with info (Delaunay_triangulation_2/3::
+// insert_with_info: spatial_sort with the fixed-seed BRIO + Hilbert median policy, then hinted
+// insertion in that order), so the triangulation and its face order are CGAL's. We sort
+// (point, index) pairs instead of CGAL's indices into a point array: spatial_sort only compares
+// coordinates, so the permutation is the same, and the sort touches memory sequentially; the
+// sort's independent subranges run in parallel (below).
+// Vertex info = the insertion rank ("local" id); simplex info = the finite simplex index, -1 for
+// infinite ones, so a neighbour is one load (no is_infinite(), no hash map).
 #include "constrict/delaunay.hpp"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/Hilbert_sort_median_2.h>
+#include <CGAL/Hilbert_sort_median_3.h>
+#include <CGAL/algorithm.h>
+#include <CGAL/spatial_sort.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "gamma/detail/big_vector.hpp"
+#include "gamma/detail/delaunay_local.hpp"
 
 namespace constrict {
 namespace {
@@ -30,80 +52,375 @@ using Cb3 = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_tri
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using DT3 = CGAL::Delaunay_triangulation_3<K, Tds3>;
 
-Status check_count(const DT2& dt, std::size_t n) {
-  if (dt.number_of_vertices() != n)
-    return {StatusCode::Duplicate, "Delaunay: " + std::to_string(n - dt.number_of_vertices()) +
-                                       " input points coincide with others (remove duplicates first)"};
-  if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
-  return Status::ok();
+constexpr std::size_t kGrain = 8192;
+constexpr std::size_t kAhead = 16;  // prefetch distance (simplices) of the export loops
+
+// parallel_for over [0, n) in chunks of kGrain; small ranges run inline (task dispatch and thread
+// wake-up cost more than they save below a few chunks).
+template <class F>
+void par_for(std::size_t n, const F& f) {
+  if (n <= 4 * kGrain) {
+    f(tbb::blocked_range<std::size_t>(0, n, kGrain));
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), f);
 }
+
+std::string duplicate_message(std::size_t n, std::size_t nv) {
+  return "Delaunay: " + std::to_string(n - nv) + " input points coincide with others (remove duplicates first)";
+}
+
+// ---- CGAL's spatial_sort (Hilbert median policy, multiscale BRIO), run in parallel ---------
+// Same operations as CGAL::spatial_sort<Sequential_tag> on each subrange (the same fixed-seed
+// random_shuffle, the same std::nth_element splits, the same recursion), only the four (2D) /
+// eight (3D) subranges of a split are sorted concurrently: they are disjoint, so the
+// permutation is exactly the sequential one, whatever the number of threads.
+constexpr std::ptrdiff_t kParallelSort = std::ptrdiff_t{1} << 15;
+
+template <class Traits, int x, bool upx, bool upy, class It>
+void hilbert2(const CGAL::Hilbert_sort_median_2<Traits, CGAL::Sequential_tag>& hs, const Traits& k, It begin, It end,
+              std::ptrdiff_t limit) {
+  if (end - begin <= limit) return;
+  if (end - begin <= kParallelSort) {
+    hs.template recursive_sort<x, upx, upy>(begin, end);
+    return;
+  }
+  constexpr int y = (x + 1) % 2;
+  using CGAL::internal::hilbert_split;
+  using CGAL::internal::Hilbert_cmp_2;
+  It m0 = begin, m1, m3, m4 = end;
+  It m2 = hilbert_split(m0, m4, Hilbert_cmp_2<Traits, x, upx>(k));
+  tbb::parallel_invoke([&] { m1 = hilbert_split(m0, m2, Hilbert_cmp_2<Traits, y, upy>(k)); },
+                       [&] { m3 = hilbert_split(m2, m4, Hilbert_cmp_2<Traits, y, !upy>(k)); });
+  tbb::parallel_invoke([&] { hilbert2<Traits, y, upy, upx>(hs, k, m0, m1, limit); },
+                       [&] { hilbert2<Traits, x, upx, upy>(hs, k, m1, m2, limit); },
+                       [&] { hilbert2<Traits, x, upx, upy>(hs, k, m2, m3, limit); },
+                       [&] { hilbert2<Traits, y, !upy, !upx>(hs, k, m3, m4, limit); });
+}
+
+template <class Traits, int x, bool upx, bool upy, bool upz, class It>
+void hilbert3(const CGAL::Hilbert_sort_median_3<Traits, CGAL::Sequential_tag>& hs, const Traits& k, It begin, It end,
+              std::ptrdiff_t limit) {
+  if (end - begin <= limit) return;
+  if (end - begin <= kParallelSort) {
+    hs.template recursive_sort<x, upx, upy, upz>(begin, end);
+    return;
+  }
+  constexpr int y = (x + 1) % 3, z = (x + 2) % 3;
+  using CGAL::internal::hilbert_split;
+  using CGAL::internal::Hilbert_cmp_3;
+  It m0 = begin, m1, m2, m3, m5, m6, m7, m8 = end;
+  It m4 = hilbert_split(m0, m8, Hilbert_cmp_3<Traits, x, upx>(k));
+  tbb::parallel_invoke(
+      [&] {
+        m2 = hilbert_split(m0, m4, Hilbert_cmp_3<Traits, y, upy>(k));
+        tbb::parallel_invoke([&] { m1 = hilbert_split(m0, m2, Hilbert_cmp_3<Traits, z, upz>(k)); },
+                             [&] { m3 = hilbert_split(m2, m4, Hilbert_cmp_3<Traits, z, !upz>(k)); });
+      },
+      [&] {
+        m6 = hilbert_split(m4, m8, Hilbert_cmp_3<Traits, y, !upy>(k));
+        tbb::parallel_invoke([&] { m5 = hilbert_split(m4, m6, Hilbert_cmp_3<Traits, z, upz>(k)); },
+                             [&] { m7 = hilbert_split(m6, m8, Hilbert_cmp_3<Traits, z, !upz>(k)); });
+      });
+  tbb::parallel_invoke([&] { hilbert3<Traits, z, upz, upx, upy>(hs, k, m0, m1, limit); },
+                       [&] { hilbert3<Traits, y, upy, upz, upx>(hs, k, m1, m2, limit); },
+                       [&] { hilbert3<Traits, y, upy, upz, upx>(hs, k, m2, m3, limit); },
+                       [&] { hilbert3<Traits, x, upx, !upy, !upz>(hs, k, m3, m4, limit); });
+  tbb::parallel_invoke([&] { hilbert3<Traits, x, upx, !upy, !upz>(hs, k, m4, m5, limit); },
+                       [&] { hilbert3<Traits, y, !upy, upz, !upx>(hs, k, m5, m6, limit); },
+                       [&] { hilbert3<Traits, y, !upy, upz, !upx>(hs, k, m6, m7, limit); },
+                       [&] { hilbert3<Traits, z, !upz, !upx, upy>(hs, k, m7, m8, limit); });
+}
+
+// CGAL's Multiscale_sort: the first `ratio` part recursively, then the rest.
+template <class It, class Sort>
+void multiscale(It begin, It end, std::ptrdiff_t threshold, double ratio, const Sort& sort) {
+  It middle = begin;
+  if (end - begin >= threshold) {
+    middle = begin + static_cast<std::ptrdiff_t>(static_cast<double>(end - begin) * ratio);
+    multiscale(begin, middle, threshold, ratio, sort);
+  }
+  sort(middle, end);
+}
+
+// Spatially sorted (point, input index) pairs, in the order of CGAL's insert_with_info:
+// spatial_sort's random_shuffle is applied to an index array (same swaps, less memory), then
+// the pairs are gathered in that order.
+template <int D, class Point>
+std::vector<std::pair<Point, int>> sorted_input(const PointSet& points) {
+  const std::size_t n = points.size();
+  std::vector<int> perm;
+  detail::resize_big(perm, n);
+  for (std::size_t i = 0; i < n; ++i) perm[i] = static_cast<int>(i);
+  {
+    boost::rand48 random;
+    boost::random_number_generator<boost::rand48, std::ptrdiff_t> rng(random);
+    CGAL::cpp98::random_shuffle(perm.begin(), perm.end(), rng);
+  }
+  std::vector<std::pair<Point, int>> items;
+  detail::resize_big(items, n);
+  par_for(n, [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const double* p = points[static_cast<std::size_t>(perm[k])];
+      if constexpr (D == 2) items[k] = {Point(p[0], p[1]), perm[k]};
+      else items[k] = {Point(p[0], p[1], p[2]), perm[k]};
+    }
+  });
+  using Pmap = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
+  using It = typename std::vector<std::pair<Point, int>>::iterator;
+  if constexpr (D == 2) {
+    using Traits = CGAL::Spatial_sort_traits_adapter_2<K, Pmap>;
+    const Traits k{Pmap(), K()};
+    const CGAL::Hilbert_sort_median_2<Traits, CGAL::Sequential_tag> hs(k, 4);
+    multiscale(items.begin(), items.end(), 16, 0.25,
+               [&](It b, It e) { hilbert2<Traits, 0, false, false>(hs, k, b, e, 4); });
+  } else {
+    using Traits = CGAL::Spatial_sort_traits_adapter_3<K, Pmap>;
+    const Traits k{Pmap(), K()};
+    const CGAL::Hilbert_sort_median_3<Traits, CGAL::Sequential_tag> hs(k, 8);
+    multiscale(items.begin(), items.end(), 64, 0.125,
+               [&](It b, It e) { hilbert3<Traits, 0, false, false, false>(hs, k, b, e, 8); });
+  }
+  return items;
+}
+
+template <int D, class Point>
+void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMesh<D>& local, bool coords) {
+  const std::size_t n = items.size();
+  local.id.allocate(n);
+  if (coords) local.coords.allocate(D * n);
+  par_for(n, [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      local.id[k] = items[k].second;
+      if (coords)
+        for (int c = 0; c < D; ++c) local.coords[D * k + static_cast<std::size_t>(c)] = items[k].first[c];
+    }
+  });
+}
+
 }  // namespace
 
-Status build_delaunay2(const PointSet& points, Delaunay2& out) {
+namespace detail {
+
+Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
   const std::size_t n = points.size();
-  std::vector<std::pair<K::Point_2, int>> input;
-  input.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    input.emplace_back(K::Point_2(points[i][0], points[i][1]), static_cast<int>(i));
-  // Range insertion: CGAL's spatial sort (BRIO with a fixed-seed boost::rand48, so the result
-  // is deterministic, also for co-circular points) then hinted insertion.
+  const auto items = sorted_input<2, K::Point_2>(points);
   DT2 dt;
-  dt.insert(input.begin(), input.end());
-  if (Status s = check_count(dt, n); !s) return s;
-
-  out.n_vertices = n;
-  out.triangles.clear();
-  out.neighbors.clear();
-  out.triangles.reserve(dt.number_of_faces());
-  out.neighbors.reserve(dt.number_of_faces());
-  int id = 0;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) f->info() = id++;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    std::array<int, 3> tri{}, nb{};
-    for (int i = 0; i < 3; ++i) {
-      tri[i] = f->vertex(i)->info();
-      auto g = f->neighbor(i);
-      nb[i] = dt.is_infinite(g) ? -1 : g->info();
+  {
+    DT2::Face_handle hint;
+    int rank = 0;
+    for (const auto& it : items) {
+      const DT2::Vertex_handle v = dt.insert(it.first, hint);
+      if (v != DT2::Vertex_handle()) {
+        v->info() = rank;
+        hint = v->face();
+      }
+      ++rank;
     }
-    out.triangles.push_back(tri);
-    out.neighbors.push_back(nb);
+  }
+  if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
+  if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
+
+  detail::LocalMesh<2> local_own;
+  detail::LocalMesh<2>& lm = local ? *local : local_own;
+  fill_local<2>(items, lm, local != nullptr);
+  const detail::BigArray<int>& id = lm.id;
+
+  // Finite faces in CGAL's finite_faces order (= all faces, infinite ones skipped).
+  const DT2::Vertex_handle inf = dt.infinite_vertex();
+  std::vector<DT2::Face_handle> fh;
+  fh.reserve(2 * n);
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
+    if (f->vertex(0) == inf || f->vertex(1) == inf || f->vertex(2) == inf) {
+      f->info() = -1;
+    } else {
+      f->info() = static_cast<int>(fh.size());
+      fh.push_back(f);
+    }
+  }
+  const std::size_t T = fh.size();
+  out.n_vertices = n;
+  detail::resize_big(out.triangles, T);
+  detail::resize_big(out.neighbors, T);
+  if (local) {
+    lm.simplices.allocate(T);
+    lm.opposite.allocate(T);
+    lm.mirror.allocate(T);
+    lm.owned.allocate(T);
+  }
+  par_for(T, [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      // The neighbours are scattered in memory: prefetch them, then their far vertex.
+      if (t + 2 * kAhead < r.end())
+        for (int i = 0; i < 3; ++i) __builtin_prefetch(&*fh[t + 2 * kAhead]->neighbor(i));
+      if (t + kAhead < r.end()) {
+        const DT2::Face_handle fa = fh[t + kAhead];
+        for (int i = 0; i < 3; ++i) {
+          const DT2::Face_handle g = fa->neighbor(i);
+          __builtin_prefetch(&*g->vertex(g->index(fa)));
+        }
+      }
+      const DT2::Face_handle f = fh[t];
+      std::array<int, 3> tri{}, nb{}, loc{}, opp{};
+      unsigned mir = 0;
+      for (int i = 0; i < 3; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        loc[k] = f->vertex(i)->info();
+        tri[k] = id[static_cast<std::size_t>(loc[k])];
+        const DT2::Face_handle g = f->neighbor(i);
+        nb[k] = g->info();
+        opp[k] = -1;
+        if (nb[k] >= 0) {
+          const int j = g->index(f);
+          opp[k] = g->vertex(j)->info();
+          mir |= static_cast<unsigned>(j) << (2 * i);
+        }
+      }
+      out.triangles[t] = tri;
+      out.neighbors[t] = nb;
+      if (local) {
+        lm.simplices[t] = loc;
+        lm.opposite[t] = opp;
+        lm.mirror[t] = static_cast<unsigned char>(mir);
+        unsigned own = 0;
+        for (int i = 0; i < 3; ++i)
+          if (nb[static_cast<std::size_t>(i)] == -1 || static_cast<std::size_t>(nb[static_cast<std::size_t>(i)]) > t)
+            own |= 1u << i;
+        lm.owned[t] = static_cast<unsigned char>(own);
+      }
+    }
+  });
+  return Status::ok();
+}
+
+Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local) {
+  if (points.dim != 3) return {StatusCode::InvalidArgument, "build_delaunay3: points are not 3D"};
+  const std::size_t n = points.size();
+  const auto items = sorted_input<3, K::Point_3>(points);
+  DT3 dt;
+  {
+    DT3::Vertex_handle hint;
+    int rank = 0;
+    for (const auto& it : items) {
+      hint = dt.insert(it.first, hint);
+      if (hint != DT3::Vertex_handle()) hint->info() = rank;
+      ++rank;
+    }
+  }
+  if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
+  if (dt.dimension() < 3) return {StatusCode::Coplanar, "Delaunay: all points are coplanar"};
+
+  detail::LocalMesh<3> local_own;
+  detail::LocalMesh<3>& lm = local ? *local : local_own;
+  fill_local<3>(items, lm, local != nullptr);
+  const detail::BigArray<int>& id = lm.id;
+
+  // Finite cells in CGAL's finite_cells order (= all cells, infinite ones skipped).
+  const DT3::Vertex_handle inf = dt.infinite_vertex();
+  std::vector<DT3::Cell_handle> ch;
+  ch.reserve(dt.number_of_finite_cells());
+  std::vector<DT3::Cell_handle> inf_cells;
+  if (local) inf_cells.reserve(dt.number_of_cells() - dt.number_of_finite_cells());
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    if (c->vertex(0) == inf || c->vertex(1) == inf || c->vertex(2) == inf || c->vertex(3) == inf) {
+      c->info() = -1;
+      if (local) inf_cells.push_back(c);
+    } else {
+      c->info() = static_cast<int>(ch.size());
+      ch.push_back(c);
+    }
+  }
+  const std::size_t T = ch.size();
+  out.n_vertices = n;
+  detail::resize_big(out.tets, T);
+  detail::resize_big(out.neighbors, T);
+  if (local) {
+    lm.simplices.allocate(T);
+    lm.opposite.allocate(T);
+    lm.mirror.allocate(T);
+    lm.owned.allocate(T);
+  }
+  par_for(T, [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      // The neighbours are scattered in memory: prefetch them, then their far vertex.
+      if (t + 2 * kAhead < r.end())
+        for (int i = 0; i < 4; ++i) __builtin_prefetch(&*ch[t + 2 * kAhead]->neighbor(i));
+      if (t + kAhead < r.end()) {
+        const DT3::Cell_handle ca = ch[t + kAhead];
+        for (int i = 0; i < 4; ++i) {
+          const DT3::Cell_handle d = ca->neighbor(i);
+          __builtin_prefetch(&*d->vertex(d->index(ca)));
+        }
+      }
+      const DT3::Cell_handle c = ch[t];
+      std::array<int, 4> tet{}, nb{}, loc{}, opp{};
+      unsigned mir = 0;
+      for (int i = 0; i < 4; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        loc[k] = c->vertex(i)->info();
+        tet[k] = id[static_cast<std::size_t>(loc[k])];
+        const DT3::Cell_handle d = c->neighbor(i);
+        nb[k] = d->info();
+        opp[k] = -1;
+        if (nb[k] >= 0) {
+          const int j = d->index(c);
+          opp[k] = d->vertex(j)->info();
+          mir |= static_cast<unsigned>(j) << (2 * i);
+        }
+      }
+      out.tets[t] = tet;
+      out.neighbors[t] = nb;
+      if (local) {
+        lm.simplices[t] = loc;
+        lm.opposite[t] = opp;
+        lm.mirror[t] = static_cast<unsigned char>(mir);
+        unsigned own = 0;
+        for (int i = 0; i < 4; ++i)
+          if (nb[static_cast<std::size_t>(i)] == -1 || static_cast<std::size_t>(nb[static_cast<std::size_t>(i)]) > t)
+            own |= 1u << i;
+        lm.owned[t] = static_cast<unsigned char>(own);
+      }
+    }
+  });
+  if (local) {
+    // Hull facets and their adjacency, from the infinite cells (one per hull facet; two hull
+    // facets share an edge iff their infinite cells are neighbours across a face through the
+    // infinite vertex).
+    const std::size_t H = inf_cells.size();
+    lm.hull.resize(H);
+    par_for(H, [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t h = r.begin(); h != r.end(); ++h) {
+        const DT3::Cell_handle ic = inf_cells[h];
+        const int ki = ic->index(inf);
+        const DT3::Cell_handle fc = ic->neighbor(ki);
+        detail::HullFace& hf = lm.hull[h];
+        hf.t = fc->info();
+        hf.i = fc->index(ic);
+        int k = 0;
+        for (int m = 0; m < 4; ++m) {
+          if (m == ki) continue;
+          const DT3::Cell_handle ic2 = ic->neighbor(m);
+          const DT3::Cell_handle fc2 = ic2->neighbor(ic2->index(inf));
+          hf.adj_t[k] = fc2->info();
+          hf.adj_i[k] = fc2->index(ic2);
+          hf.far[k] = ic2->vertex(ic2->index(ic))->info();
+          ++k;
+        }
+      }
+    });
   }
   return Status::ok();
+}
+
+}  // namespace detail
+
+Status build_delaunay2(const PointSet& points, Delaunay2& out) {
+  return detail::build_delaunay2_local(points, out, nullptr);
 }
 
 Status build_delaunay3(const PointSet& points, Delaunay3& out) {
-  if (points.dim != 3) return {StatusCode::InvalidArgument, "build_delaunay3: points are not 3D"};
-  const std::size_t n = points.size();
-  std::vector<std::pair<K::Point_3, int>> input;
-  input.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    input.emplace_back(K::Point_3(points[i][0], points[i][1], points[i][2]), static_cast<int>(i));
-  DT3 dt;
-  dt.insert(input.begin(), input.end());  // spatial sort (fixed seed) + hinted insertion
-  if (dt.number_of_vertices() != n)
-    return {StatusCode::Duplicate, "Delaunay: " + std::to_string(n - dt.number_of_vertices()) +
-                                       " input points coincide with others (remove duplicates first)"};
-  if (dt.dimension() < 3) return {StatusCode::Coplanar, "Delaunay: all points are coplanar"};
-
-  out.n_vertices = n;
-  out.tets.clear();
-  out.neighbors.clear();
-  out.tets.reserve(dt.number_of_finite_cells());
-  out.neighbors.reserve(dt.number_of_finite_cells());
-  int id = 0;
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = id++;
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    std::array<int, 4> tet{}, nb{};
-    for (int i = 0; i < 4; ++i) {
-      tet[i] = c->vertex(i)->info();
-      auto d = c->neighbor(i);
-      nb[i] = dt.is_infinite(d) ? -1 : d->info();
-    }
-    out.tets.push_back(tet);
-    out.neighbors.push_back(nb);
-  }
-  return Status::ok();
+  return detail::build_delaunay3_local(points, out, nullptr);
 }
 
 }  // namespace constrict

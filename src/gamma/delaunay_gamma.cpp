@@ -13,15 +13,48 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
+#include "gamma/detail/big_vector.hpp"
+#include "gamma/detail/delaunay_local.hpp"
 #include "gamma/detail/reconcile.hpp"
 
 namespace constrict {
 namespace {
 
 constexpr std::size_t kMaxCompletionFaces = 20'000'000;
+
+// The per-face loops run over fixed blocks of simplices (the block layout, hence every result,
+// does not depend on the number of threads; each face is written to its own slot).
+constexpr std::size_t kBlock = 1024;
+// The apexes across the faces are scattered in memory: prefetch their coordinates.
+constexpr std::size_t kAhead = 8;
+template <int V, class Mesh>
+inline void prefetch_far(const Mesh& loc, const double* X, std::size_t dim, std::size_t t, std::size_t end) {
+  if (t >= end) return;
+  for (int i = 0; i < V; ++i) {
+    const int q = loc.opposite[t][static_cast<std::size_t>(i)];
+    if (q >= 0) __builtin_prefetch(X + dim * static_cast<std::size_t>(q));
+  }
+}
+// first[b + 1] = number of faces owned by the simplices of block b.
+template <class Mesh>
+void count_owned(const Mesh& loc, std::size_t T, std::vector<std::size_t>& first);
+template <class F>
+void for_blocks(std::size_t nblocks, const F& f) {
+  if (nblocks <= 16) {  // small input: inline (task dispatch costs more than it saves)
+    for (std::size_t b = 0; b < nblocks; ++b) f(b);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nblocks), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b != r.end(); ++b) f(b);
+  });
+}
 
 struct UnionFind {
   std::vector<int> parent;
@@ -61,59 +94,104 @@ std::vector<int> lex_sorted(const PointSet& pts, std::vector<int> ids) {
   return ids;
 }
 
+template <class Mesh>
+void count_owned(const Mesh& loc, std::size_t T, std::vector<std::size_t>& first) {
+  const std::size_t nblocks = first.size() - 1;
+  for_blocks(nblocks, [&](std::size_t b) {
+    std::size_t c = 0;
+    for (std::size_t t = b * kBlock, e = std::min(T, t + kBlock); t < e; ++t)
+      c += static_cast<std::size_t>(__builtin_popcount(loc.owned[t]));
+    first[b + 1] = c;
+  });
+}
+
 }  // namespace
 
 Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
-  if (Status s = build_delaunay2(points, out.dt); !s) return s;
+  detail::LocalMesh<2> loc;
+  if (Status s = detail::build_delaunay2_local(points, out.dt, &loc); !s) return s;
   const auto& tri = out.dt.triangles;
   const auto& nbr = out.dt.neighbors;
+  const auto& ltri = loc.simplices;
+  const double* X = loc.coords.data();
+  auto LP = [X](int v) { return X + 2 * static_cast<std::size_t>(v); };
   const std::size_t T = tri.size();
   GammaFaces& faces = out.faces;
   faces.clear();
   faces.dim = 2;
-  faces.reserve(T * 3 / 2 + 3);
-  out.simplex_face.assign(T, {-1, -1, -1});
+  // Face f of triangle t, edge i, exists iff t owns the edge (hull edge, or t < neighbour);
+  // faces are numbered in (t, i) order, so block b of triangles starts at first[b].
+  const std::size_t nblocks = (T + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(nblocks + 1, 0);
+  count_owned(loc, T, first);
+  for (std::size_t b = 0; b < nblocks; ++b) first[b + 1] += first[b];
+  const std::size_t F0 = first[nblocks];
+  detail::resize_big(faces.vertices, 2 * F0);
+  detail::resize_big(faces.gamma_a, F0);
+  detail::resize_big(faces.gamma_b, F0);
+  detail::resize_big(faces.delta, F0);
+  detail::resize_big(faces.flags, F0);
+  detail::resize_big(out.simplex_face, T);
+  // Co-circular neighbour pairs (in_circle == 0), per block.
+  std::vector<std::vector<std::array<int, 2>>> cocirc(nblocks);
+
+  for_blocks(nblocks, [&](std::size_t b) {
+    std::size_t f = first[b];
+    for (std::size_t t = b * kBlock, e = std::min(T, t + kBlock); t < e; ++t) {
+      prefetch_far<3>(loc, X, 2, t + kAhead, e);
+      const auto& lt = ltri[t];
+      for (int i = 0; i < 3; ++i) {
+        if (!((loc.owned[t] >> i) & 1)) continue;
+        const int nb = nbr[t][static_cast<std::size_t>(i)];
+        const std::size_t i1 = static_cast<std::size_t>((i + 1) % 3), i2 = static_cast<std::size_t>((i + 2) % 3);
+        const int v1 = tri[t][i1];
+        const int v2 = tri[t][i2];
+        const bool up = v1 < v2;
+        const double* a = LP(up ? lt[i1] : lt[i2]);  // the smaller input id
+        const double* b2 = LP(up ? lt[i2] : lt[i1]);
+        int sp = 0, sq = 2;
+        double gp, gq = 1.0;  // apex left of v1 -> v2 (the triangle is CCW), apex across
+        int j = -1;
+        if (nb != -1) {
+          j = (loc.mirror[t] >> (2 * i)) & 3;
+          detail::apex2_pair(a, b2, LP(lt[static_cast<std::size_t>(i)]), LP(loc.opposite[t][static_cast<std::size_t>(i)]),
+                             gp, sp, gq, sq);
+        } else {
+          gp = detail::apex2(a, b2, LP(lt[static_cast<std::size_t>(i)]), sp);
+        }
+        double ga = up ? gp : gq;
+        double gb = up ? gq : gp;
+        // The two apexes can be co-circular with the edge, or the sum of the side values change
+        // sign, only when their diametral signs are opposite (angles sum to 180° iff
+        // co-circular); otherwise the exact in-circle test cannot change anything.
+        if (nb != -1 && sp == -sq) {
+          const int q = loc.opposite[t][static_cast<std::size_t>(i)];
+          const int ic = in_circle_ccw(LP(lt[0]), LP(lt[1]), LP(lt[2]), LP(q));
+          detail::reconcile_side_values(ga, gb, ic);
+          if (ic == 0) cocirc[b].push_back({static_cast<int>(t), nb});
+        }
+        faces.vertices[2 * f] = up ? v1 : v2;
+        faces.vertices[2 * f + 1] = up ? v2 : v1;
+        faces.gamma_a[f] = ga;
+        faces.gamma_b[f] = gb;
+        faces.delta[f] = detail::filtration(ga, gb);
+        faces.flags[f] = static_cast<std::uint8_t>(kFaceDelaunay | (nb == -1 ? kFaceHull : 0));
+        out.simplex_face[t][static_cast<std::size_t>(i)] = static_cast<int>(f);
+        if (nb != -1) out.simplex_face[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)] = static_cast<int>(f);
+        ++f;
+      }
+    }
+  });
+  bool any_cocirc = false;
+  for (const auto& v : cocirc) any_cocirc = any_cocirc || !v.empty();
+  if (!any_cocirc) return Status::ok();
   UnionFind clusters(T);
   std::vector<char> in_cluster(T, 0);
-
-  for (std::size_t t = 0; t < T; ++t) {
-    for (int i = 0; i < 3; ++i) {
-      const int nb = nbr[t][static_cast<std::size_t>(i)];
-      if (nb != -1 && static_cast<std::size_t>(nb) < t) continue;
-      const int v1 = tri[t][static_cast<std::size_t>((i + 1) % 3)];
-      const int v2 = tri[t][static_cast<std::size_t>((i + 2) % 3)];
-      const int p = tri[t][static_cast<std::size_t>(i)];  // left of v1 -> v2 (triangle is CCW)
-      const int ids[2] = {std::min(v1, v2), std::max(v1, v2)};
-      const double* a = points[static_cast<std::size_t>(ids[0])];
-      const double* b = points[static_cast<std::size_t>(ids[1])];
-      const double gp = apex_gamma2(a, b, points[static_cast<std::size_t>(p)]);
-      double gq = 1.0;
-      int j = -1;
-      if (nb != -1) {
-        const auto& tn = tri[static_cast<std::size_t>(nb)];
-        for (int k = 0; k < 3; ++k)
-          if (nbr[static_cast<std::size_t>(nb)][static_cast<std::size_t>(k)] == static_cast<int>(t)) j = k;
-        const int q = tn[static_cast<std::size_t>(j)];
-        gq = apex_gamma2(a, b, points[static_cast<std::size_t>(q)]);
-      }
-      double ga = v1 < v2 ? gp : gq;
-      double gb = v1 < v2 ? gq : gp;
-      if (nb != -1) {
-        const int q = tri[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
-        const int ic = in_circle_ccw(points[static_cast<std::size_t>(tri[t][0])], points[static_cast<std::size_t>(tri[t][1])],
-                                 points[static_cast<std::size_t>(tri[t][2])], points[static_cast<std::size_t>(q)]);
-        detail::reconcile_side_values(ga, gb, ic);
-        if (ic == 0) {
-          clusters.unite(static_cast<int>(t), nb);
-          in_cluster[t] = in_cluster[static_cast<std::size_t>(nb)] = 1;
-        }
-      }
-      const int f = static_cast<int>(faces.size());
-      faces.push_back(ids, ga, gb, static_cast<std::uint8_t>(kFaceDelaunay | (nb == -1 ? kFaceHull : 0)));
-      out.simplex_face[t][static_cast<std::size_t>(i)] = f;
-      if (nb != -1) out.simplex_face[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)] = f;
+  for (const auto& v : cocirc)
+    for (const auto& pr : v) {
+      clusters.unite(pr[0], pr[1]);
+      in_cluster[static_cast<std::size_t>(pr[0])] = in_cluster[static_cast<std::size_t>(pr[1])] = 1;
     }
-  }
 
   // Co-circular completion: the triangles sharing one empty circle triangulate the convex polygon
   // of the points on it; every chord of that polygon is a face of γ([-1,1],[0,1]) with side values
@@ -171,78 +249,113 @@ Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
 
 namespace {
 
-// Parity of the permutation taking (0,1,2,3) to (pa,pb,pc,pd): +1 even, -1 odd.
-int parity4(std::array<int, 4> p) {
-  int inv = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      if (p[static_cast<std::size_t>(i)] > p[static_cast<std::size_t>(j)]) ++inv;
-  return (inv % 2 == 0) ? 1 : -1;
-}
+// The face of a positively oriented tet opposite its vertex i: vertex ids ascending, their
+// positions in the tet, and the side of the apex (orient3(ids..., apex) = parity of the
+// permutation (pos..., i)). Scalars only (no small arrays through memory).
+struct FaceOrder {
+  int ids[3];
+  std::size_t pos[3];
+  int side;
+  FaceOrder(const std::array<int, 4>& tv, int i) {
+    int p0 = i == 0 ? 1 : 0;
+    int p1 = i <= 1 ? 2 : 1;
+    int p2 = i <= 2 ? 3 : 2;
+    int a = tv[static_cast<std::size_t>(p0)], b = tv[static_cast<std::size_t>(p1)], c = tv[static_cast<std::size_t>(p2)];
+    auto cswap = [](int& x, int& y, int& px, int& py) {
+      if (y < x) {
+        std::swap(x, y);
+        std::swap(px, py);
+      }
+    };
+    cswap(a, b, p0, p1);
+    cswap(b, c, p1, p2);
+    cswap(a, b, p0, p1);
+    ids[0] = a;
+    ids[1] = b;
+    ids[2] = c;
+    pos[0] = static_cast<std::size_t>(p0);
+    pos[1] = static_cast<std::size_t>(p1);
+    pos[2] = static_cast<std::size_t>(p2);
+    const int inv = (p0 > p1) + (p0 > p2) + (p0 > i) + (p1 > p2) + (p1 > i) + (p2 > i);
+    side = (inv % 2 == 0) ? 1 : -1;
+  }
+};
 
 }  // namespace
 
 Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
-  if (Status s = build_delaunay3(points, out.dt); !s) return s;
+  detail::LocalMesh<3> loc;
+  if (Status s = detail::build_delaunay3_local(points, out.dt, &loc); !s) return s;
   const auto& tet = out.dt.tets;
   const auto& nbr = out.dt.neighbors;
+  const auto& ltet = loc.simplices;
+  const double* X = loc.coords.data();
+  auto LP = [X](int v) { return X + 3 * static_cast<std::size_t>(v); };
   const std::size_t T = tet.size();
   GammaFaces& faces = out.faces;
   faces.clear();
   faces.dim = 3;
-  faces.reserve(T * 2 + 4);
-  out.simplex_face.assign(T, {-1, -1, -1, -1});
-  UnionFind clusters(T);
-  std::vector<char> in_cluster(T, 0);
-  // For each face: the tet and local index on its positive side ("a") and negative side ("b").
-  std::vector<std::array<int, 2>> side_tet;
-  side_tet.reserve(T * 2 + 4);
   auto P = [&](int v) { return points[static_cast<std::size_t>(v)]; };
+  auto owns = [&](std::size_t t, int i) {
+    const int nb = nbr[t][static_cast<std::size_t>(i)];
+    return nb == -1 || static_cast<std::size_t>(nb) > t;
+  };
+  // Faces are numbered in (t, i) order over the owned (t, i); block b starts at first[b].
+  const std::size_t nblocks = (T + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(nblocks + 1, 0);
+  count_owned(loc, T, first);
+  for (std::size_t b = 0; b < nblocks; ++b) first[b + 1] += first[b];
+  const std::size_t F0 = first[nblocks];
+  detail::resize_big(faces.vertices, 3 * F0);
+  detail::resize_big(faces.gamma_a, F0);
+  detail::resize_big(faces.gamma_b, F0);
+  detail::resize_big(faces.delta, F0);
+  detail::resize_big(faces.flags, F0);
+  detail::resize_big(out.simplex_face, T);
+  std::vector<std::vector<std::array<int, 2>>> cocirc(nblocks);  // co-spherical neighbour tets
 
-  for (std::size_t t = 0; t < T; ++t) {
-    for (int i = 0; i < 4; ++i) {
-      const int nb = nbr[t][static_cast<std::size_t>(i)];
-      if (nb != -1 && static_cast<std::size_t>(nb) < t) continue;
-      // Face opposite local vertex i, ids ascending, with their local positions.
-      std::array<std::pair<int, int>, 3> fv{};
-      int k = 0;
-      for (int l = 0; l < 4; ++l)
-        if (l != i) fv[static_cast<std::size_t>(k++)] = {tet[t][static_cast<std::size_t>(l)], l};
-      std::sort(fv.begin(), fv.end());
-      const int ids[3] = {fv[0].first, fv[1].first, fv[2].first};
-      // The tet is positively oriented, so orient3(ids..., apex) = parity of the permutation.
-      const int side_p = parity4({fv[0].second, fv[1].second, fv[2].second, i});
-      const int p = tet[t][static_cast<std::size_t>(i)];
-      const detail::TriangleFrame3 frame(P(ids[0]), P(ids[1]), P(ids[2]));
-      const double gp = frame.apex(P(p));
-      double gq = 1.0;
-      int j = -1;
-      if (nb != -1) {
-        for (int l = 0; l < 4; ++l)
-          if (nbr[static_cast<std::size_t>(nb)][static_cast<std::size_t>(l)] == static_cast<int>(t)) j = l;
-        const int q = tet[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
-        gq = frame.apex(P(q));
-      }
-      double ga = side_p > 0 ? gp : gq;
-      double gb = side_p > 0 ? gq : gp;
-      if (nb != -1) {
-        const int q = tet[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)];
-        const auto& v = tet[t];
-        const int is = in_sphere_positive(P(v[0]), P(v[1]), P(v[2]), P(v[3]), P(q));
-        detail::reconcile_side_values(ga, gb, is);
-        if (is == 0) {
-          clusters.unite(static_cast<int>(t), nb);
-          in_cluster[t] = in_cluster[static_cast<std::size_t>(nb)] = 1;
+  for_blocks(nblocks, [&](std::size_t b) {
+    std::size_t f = first[b];
+    for (std::size_t t = b * kBlock, e = std::min(T, t + kBlock); t < e; ++t) {
+      prefetch_far<4>(loc, X, 3, t + kAhead, e);
+      const auto& lt = ltet[t];
+      for (int i = 0; i < 4; ++i) {
+        if (!((loc.owned[t] >> i) & 1)) continue;
+        const int nb = nbr[t][static_cast<std::size_t>(i)];
+        // Face opposite local vertex i, ids ascending, with their local positions.
+        const FaceOrder fo(tet[t], i);
+        const detail::TriangleFrame3 frame(LP(lt[fo.pos[0]]), LP(lt[fo.pos[1]]), LP(lt[fo.pos[2]]));
+        int sp = 0, sq = 2;
+        const double gp = frame.apex(LP(lt[static_cast<std::size_t>(i)]), sp);
+        double gq = 1.0;
+        int j = -1, q = -1;
+        if (nb != -1) {
+          j = (loc.mirror[t] >> (2 * i)) & 3;
+          q = loc.opposite[t][static_cast<std::size_t>(i)];
+          gq = frame.apex(LP(q), sq);
         }
+        double ga = fo.side > 0 ? gp : gq;
+        double gb = fo.side > 0 ? gq : gp;
+        // Co-sphericity of the two apexes with the face, or a sign change of the sum of the
+        // side values, needs opposite diametral signs (a sphere through the face circle is
+        // outside its diametral sphere on one side and inside on the other): only then can the
+        // exact in-sphere test change anything.
+        if (nb != -1 && sp == -sq) {
+          const int is = in_sphere_positive(LP(lt[0]), LP(lt[1]), LP(lt[2]), LP(lt[3]), LP(q));
+          detail::reconcile_side_values(ga, gb, is);
+          if (is == 0) cocirc[b].push_back({static_cast<int>(t), nb});
+        }
+        for (int k = 0; k < 3; ++k) faces.vertices[3 * f + static_cast<std::size_t>(k)] = fo.ids[k];
+        faces.gamma_a[f] = ga;
+        faces.gamma_b[f] = gb;
+        faces.delta[f] = detail::filtration(ga, gb);
+        faces.flags[f] = static_cast<std::uint8_t>(kFaceDelaunay | (nb == -1 ? kFaceHull : 0));
+        out.simplex_face[t][static_cast<std::size_t>(i)] = static_cast<int>(f);
+        if (nb != -1) out.simplex_face[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)] = static_cast<int>(f);
+        ++f;
       }
-      const int f = static_cast<int>(faces.size());
-      faces.push_back(ids, ga, gb, static_cast<std::uint8_t>(kFaceDelaunay | (nb == -1 ? kFaceHull : 0)));
-      const int tp = static_cast<int>(t);
-      side_tet.push_back(side_p > 0 ? std::array<int, 2>{tp, nb} : std::array<int, 2>{nb, tp});
-      out.simplex_face[t][static_cast<std::size_t>(i)] = f;
-      if (nb != -1) out.simplex_face[static_cast<std::size_t>(nb)][static_cast<std::size_t>(j)] = f;
     }
-  }
+  });
 
   // ---- Degeneracy completion (docs/gamma-graph.md §"Co-spherical input") -------------------
   // (1) disc groups: connected sets of coplanar, co-circular Delaunay faces (on the hull, or on
@@ -251,62 +364,117 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
   // (2) co-spherical clusters: every triple of cluster points with cluster points on both sides
   //     has side values ±g from any cluster point on each side.
   bool any_cluster = false;
-  for (char c : in_cluster) any_cluster = any_cluster || c;
-  const std::size_t F0 = faces.size();
-  // Candidate faces for disc groups: hull faces and faces of clustered tets.
-  std::vector<int> cand;
-  for (std::size_t f = 0; f < F0; ++f) {
-    const auto& st = side_tet[f];
-    const bool hull = st[0] == -1 || st[1] == -1;
-    const bool clus = (st[0] >= 0 && in_cluster[static_cast<std::size_t>(st[0])]) ||
-                      (st[1] >= 0 && in_cluster[static_cast<std::size_t>(st[1])]);
-    if (hull || (clus && !(st[0] >= 0 && st[1] >= 0 && in_cluster[static_cast<std::size_t>(st[0])] &&
-                           in_cluster[static_cast<std::size_t>(st[1])] &&
-                           clusters.find(st[0]) == clusters.find(st[1]))))
-      cand.push_back(static_cast<int>(f));
+  for (const auto& v : cocirc) any_cluster = any_cluster || !v.empty();
+
+  // Without clusters the disc-group candidates are the hull faces only, and two candidates are
+  // related iff they are the two hull faces of a hull edge (CGAL's adjacent infinite cells).
+  std::vector<std::array<int, 2>> disc_pairs;
+  if (!any_cluster) {
+    const std::size_t H = loc.hull.size();
+    const std::size_t nhb = (H + kBlock - 1) / kBlock;
+    std::vector<std::vector<std::array<int, 2>>> pairs(nhb);
+    for_blocks(nhb, [&](std::size_t b) {
+      for (std::size_t h = b * kBlock, e = std::min(H, h + kBlock); h < e; ++h) {
+        const detail::HullFace& hf = loc.hull[h];
+        const std::size_t t = static_cast<std::size_t>(hf.t);
+        const int f1 = out.simplex_face[t][static_cast<std::size_t>(hf.i)];
+        const FaceOrder fo(tet[t], hf.i);
+        const double* A = LP(ltet[t][fo.pos[0]]);
+        const double* B = LP(ltet[t][fo.pos[1]]);
+        const double* C = LP(ltet[t][fo.pos[2]]);
+        for (int k = 0; k < 3; ++k) {
+          const int f2 = out.simplex_face[static_cast<std::size_t>(hf.adj_t[k])][static_cast<std::size_t>(hf.adj_i[k])];
+          if (f2 <= f1) continue;  // each pair once, from its smaller face
+          // Coplanar and co-circular is a property of the four points: test f1 against the
+          // vertex of f2 off the common edge.
+          const double* D = LP(hf.far[k]);
+          if (orient3(A, B, C, D) != 0 || in_circle_coplanar3(A, B, C, D) != 0) continue;
+          pairs[b].push_back({f1, f2});
+        }
+      }
+    });
+    for (const auto& v : pairs) disc_pairs.insert(disc_pairs.end(), v.begin(), v.end());
+    if (disc_pairs.empty()) return Status::ok();
   }
-  // The "owner" of a candidate face: -1 for the hull, else the cluster root it bounds.
-  auto owner = [&](int f, int side) {
-    const int t = side_tet[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
-    if (t < 0) return -2;
-    return in_cluster[static_cast<std::size_t>(t)] ? clusters.find(t) : -3;
-  };
-  std::unordered_map<std::array<int, 2>, std::vector<int>, ArrayHash> edge_faces;
-  for (int f : cand)
-    for (int a = 0; a < 3; ++a)
-      for (int b = a + 1; b < 3; ++b)
-        edge_faces[{faces.vertex(static_cast<std::size_t>(f), a), faces.vertex(static_cast<std::size_t>(f), b)}].push_back(f);
+
+  // Degenerate input from here on (rare): the serial general code.
+  UnionFind clusters(T);
+  std::vector<char> in_cluster(T, 0);
+  for (const auto& v : cocirc)
+    for (const auto& pr : v) {
+      clusters.unite(pr[0], pr[1]);
+      in_cluster[static_cast<std::size_t>(pr[0])] = in_cluster[static_cast<std::size_t>(pr[1])] = 1;
+    }
+  // For each face: the tet on its positive side ("a") and negative side ("b").
+  std::vector<std::array<int, 2>> side_tet(F0);
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (!owns(t, i)) continue;
+      const int nb = nbr[t][static_cast<std::size_t>(i)];
+      const int tp = static_cast<int>(t);
+      side_tet[static_cast<std::size_t>(out.simplex_face[t][static_cast<std::size_t>(i)])] =
+          FaceOrder(tet[t], i).side > 0 ? std::array<int, 2>{tp, nb} : std::array<int, 2>{nb, tp};
+    }
   UnionFind discs(F0);
   std::vector<char> in_disc(F0, 0);
-  std::vector<std::array<int, 2>> keys;
-  keys.reserve(edge_faces.size());
-  for (const auto& kv : edge_faces) keys.push_back(kv.first);
-  std::sort(keys.begin(), keys.end());
-  for (const auto& e : keys) {
-    const auto& fl = edge_faces[e];
-    for (std::size_t x = 0; x < fl.size(); ++x)
-      for (std::size_t y = x + 1; y < fl.size(); ++y) {
-        const int f1 = fl[x], f2 = fl[y];
-        // Same owner on a common side: both hull faces, or both bounding the same cluster.
-        bool same = false;
-        for (int s1 = 0; s1 < 2 && !same; ++s1)
-          for (int s2 = 0; s2 < 2 && !same; ++s2) {
-            const int o1 = owner(f1, s1), o2 = owner(f2, s2);
-            same = (o1 == -2 && o2 == -2) || (o1 >= 0 && o1 == o2);
+  for (const auto& pr : disc_pairs) {
+    discs.unite(pr[0], pr[1]);
+    in_disc[static_cast<std::size_t>(pr[0])] = in_disc[static_cast<std::size_t>(pr[1])] = 1;
+  }
+  if (any_cluster) {
+    // Candidate faces for disc groups: hull faces and faces of clustered tets.
+    std::vector<int> cand;
+    for (std::size_t f = 0; f < F0; ++f) {
+      const auto& st = side_tet[f];
+      const bool hull_face = st[0] == -1 || st[1] == -1;
+      const bool clus = (st[0] >= 0 && in_cluster[static_cast<std::size_t>(st[0])]) ||
+                        (st[1] >= 0 && in_cluster[static_cast<std::size_t>(st[1])]);
+      if (hull_face || (clus && !(st[0] >= 0 && st[1] >= 0 && in_cluster[static_cast<std::size_t>(st[0])] &&
+                                  in_cluster[static_cast<std::size_t>(st[1])] &&
+                                  clusters.find(st[0]) == clusters.find(st[1]))))
+        cand.push_back(static_cast<int>(f));
+    }
+    // The "owner" of a candidate face: -1 for the hull, else the cluster root it bounds.
+    auto owner = [&](int f, int side) {
+      const int t = side_tet[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+      if (t < 0) return -2;
+      return in_cluster[static_cast<std::size_t>(t)] ? clusters.find(t) : -3;
+    };
+    std::unordered_map<std::array<int, 2>, std::vector<int>, ArrayHash> edge_faces;
+    for (int f : cand)
+      for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b)
+          edge_faces[{faces.vertex(static_cast<std::size_t>(f), a), faces.vertex(static_cast<std::size_t>(f), b)}].push_back(f);
+    std::vector<std::array<int, 2>> keys;
+    keys.reserve(edge_faces.size());
+    for (const auto& kv : edge_faces) keys.push_back(kv.first);
+    std::sort(keys.begin(), keys.end());
+    for (const auto& e : keys) {
+      const auto& fl = edge_faces[e];
+      for (std::size_t x = 0; x < fl.size(); ++x)
+        for (std::size_t y = x + 1; y < fl.size(); ++y) {
+          const int f1 = fl[x], f2 = fl[y];
+          // Same owner on a common side: both hull faces, or both bounding the same cluster.
+          bool same = false;
+          for (int s1 = 0; s1 < 2 && !same; ++s1)
+            for (int s2 = 0; s2 < 2 && !same; ++s2) {
+              const int o1 = owner(f1, s1), o2 = owner(f2, s2);
+              same = (o1 == -2 && o2 == -2) || (o1 >= 0 && o1 == o2);
+            }
+          if (!same) continue;
+          int d = -1;
+          for (int a = 0; a < 3; ++a) {
+            const int v = faces.vertex(static_cast<std::size_t>(f2), a);
+            if (v != e[0] && v != e[1]) d = v;
           }
-        if (!same) continue;
-        int d = -1;
-        for (int a = 0; a < 3; ++a) {
-          const int v = faces.vertex(static_cast<std::size_t>(f2), a);
-          if (v != e[0] && v != e[1]) d = v;
+          const double* A = P(faces.vertex(static_cast<std::size_t>(f1), 0));
+          const double* B = P(faces.vertex(static_cast<std::size_t>(f1), 1));
+          const double* C = P(faces.vertex(static_cast<std::size_t>(f1), 2));
+          if (orient3(A, B, C, P(d)) != 0 || in_circle_coplanar3(A, B, C, P(d)) != 0) continue;
+          discs.unite(f1, f2);
+          in_disc[static_cast<std::size_t>(f1)] = in_disc[static_cast<std::size_t>(f2)] = 1;
         }
-        const double* A = P(faces.vertex(static_cast<std::size_t>(f1), 0));
-        const double* B = P(faces.vertex(static_cast<std::size_t>(f1), 1));
-        const double* C = P(faces.vertex(static_cast<std::size_t>(f1), 2));
-        if (orient3(A, B, C, P(d)) != 0 || in_circle_coplanar3(A, B, C, P(d)) != 0) continue;
-        discs.unite(f1, f2);
-        in_disc[static_cast<std::size_t>(f1)] = in_disc[static_cast<std::size_t>(f2)] = 1;
-      }
+    }
   }
   if (!any_cluster && std::none_of(in_disc.begin(), in_disc.end(), [](char c) { return c != 0; }))
     return Status::ok();

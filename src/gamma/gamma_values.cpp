@@ -8,6 +8,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
 #include "gamma/detail/reconcile.hpp"
 
@@ -30,26 +31,12 @@ void GammaFaces::push_back(const int* ids, double ga, double gb, std::uint8_t fl
 }
 
 double filtration_value(double gamma_a, double gamma_b) noexcept {
-  const double ma = std::fabs(gamma_a), mb = std::fabs(gamma_b);
-  if (ma > mb) return gamma_a;
-  if (mb > ma) return gamma_b;
-  return std::max(gamma_a, gamma_b);
+  return detail::filtration(gamma_a, gamma_b);
 }
 
 double apex_gamma2(const double* a, const double* b, const double* p) noexcept {
-  const int s = diametral_side2(a, b, p);  // +1: p outside the diametral circle, angle acute
-  if (s == 0) return 0.0;
-  const double ux = a[0] - p[0], uy = a[1] - p[1];
-  const double vx = b[0] - p[0], vy = b[1] - p[1];
-  const double uu = ux * ux + uy * uy, vv = vx * vx + vy * vy;
-  const double dot = ux * vx + uy * vy;
-  const double cross = std::fabs(ux * vy - uy * vx);
-  const double nn = std::sqrt(uu * vv);
-  // 1 - sin φ = cos²φ / (1 + sin φ): no cancellation near φ = 90°.
-  const double sin_phi = std::min(1.0, cross / nn);
-  const double cos2 = std::min(1.0, (dot / nn) * (dot / nn));
-  const double mag = std::min(1.0, cos2 / (1.0 + sin_phi));
-  return s > 0 ? mag : -mag;
+  int s = 0;
+  return detail::apex2(a, b, p, s);
 }
 
 double apex_gamma3(const double* a, const double* b, const double* c, const double* p) noexcept {

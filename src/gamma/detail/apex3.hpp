@@ -47,12 +47,16 @@ class TriangleFrame3 {
 
   /// γ(abc; p), sign exact (semi-static filter, exact predicate when undecided).
   double apex(const double* p) const noexcept {
+    int s = 0;
+    return apex(p, s);
+  }
+  /// Same, and the exact sign @p s of |p-c|^2 - r^2 (c, r: circumcentre and -radius of abc).
+  double apex(const double* p, int& s) const noexcept {
     const double q[3] = {p[0] - a_[0], p[1] - a_[1], p[2] - a_[2]};
     const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
     const double qwn = q[0] * wn_[0] + q[1] * wn_[1] + q[2] * wn_[2];
     const double d = qq * nn_ - qwn;  // = ρ |n|^2
     const double m = qq * ann_ + (std::fabs(q[0]) * awn_[0] + std::fabs(q[1]) * awn_[1] + std::fabs(q[2]) * awn_[2]);
-    int s;
     if (safe_range(m) && std::fabs(d) > 16 * kU * m) s = d > 0 ? 1 : -1;
     else s = diametral_side3(a_, b_, c_, p);
     if (s == 0) return 0.0;
