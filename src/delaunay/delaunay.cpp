@@ -66,6 +66,58 @@ void par_for(std::size_t n, const F& f) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), f);
 }
 
+// Exports simplices (K = 3 triangles, 4 tetrahedra) given as handles in output order, with their
+// neighbour indices (the handles' info), and optionally the local mesh (vertex ranks, opposite
+// vertex, mirror index, ownership of each face). Shared by 2D and 3D.
+template <int K, class Handle, class LocalMesh>
+void export_simplices(const std::vector<Handle>& hs, const detail::BigArray<int>& id,
+                      std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
+                      LocalMesh& lm, bool local) {
+  par_for(hs.size(), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      // The neighbours are scattered in memory: prefetch them, then their far vertex.
+      if (t + 2 * kAhead < r.end())
+        for (int i = 0; i < K; ++i) __builtin_prefetch(&*hs[t + 2 * kAhead]->neighbor(i));
+      if (t + kAhead < r.end()) {
+        const Handle fa = hs[t + kAhead];
+        for (int i = 0; i < K; ++i) {
+          const Handle g = fa->neighbor(i);
+          __builtin_prefetch(&*g->vertex(g->index(fa)));
+        }
+      }
+      const Handle f = hs[t];
+      std::array<int, K> sim{}, nb{}, loc{}, opp{};
+      unsigned mir = 0;
+      for (int i = 0; i < K; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        loc[k] = f->vertex(i)->info();
+        sim[k] = id[static_cast<std::size_t>(loc[k])];
+        const Handle g = f->neighbor(i);
+        nb[k] = g->info();
+        opp[k] = -1;
+        if (nb[k] >= 0) {
+          const int j = g->index(f);
+          opp[k] = g->vertex(j)->info();
+          mir |= static_cast<unsigned>(j) << (2 * i);
+        }
+      }
+      simplices[t] = sim;
+      neighbors[t] = nb;
+      if (local) {
+        lm.simplices[t] = loc;
+        lm.opposite[t] = opp;
+        lm.mirror[t] = static_cast<unsigned char>(mir);
+        unsigned own = 0;
+        for (int i = 0; i < K; ++i)
+          if (nb[static_cast<std::size_t>(i)] == -1 || static_cast<std::size_t>(nb[static_cast<std::size_t>(i)]) > t)
+            own |= 1u << i;
+        lm.owned[t] = static_cast<unsigned char>(own);
+      }
+    }
+  });
+}
+
+
 std::string duplicate_message(std::size_t n, std::size_t nv) {
   return "Delaunay: " + std::to_string(n - nv) + " input points coincide with others (remove duplicates first)";
 }
@@ -249,48 +301,7 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
     lm.mirror.allocate(T);
     lm.owned.allocate(T);
   }
-  par_for(T, [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t != r.end(); ++t) {
-      // The neighbours are scattered in memory: prefetch them, then their far vertex.
-      if (t + 2 * kAhead < r.end())
-        for (int i = 0; i < 3; ++i) __builtin_prefetch(&*fh[t + 2 * kAhead]->neighbor(i));
-      if (t + kAhead < r.end()) {
-        const DT2::Face_handle fa = fh[t + kAhead];
-        for (int i = 0; i < 3; ++i) {
-          const DT2::Face_handle g = fa->neighbor(i);
-          __builtin_prefetch(&*g->vertex(g->index(fa)));
-        }
-      }
-      const DT2::Face_handle f = fh[t];
-      std::array<int, 3> tri{}, nb{}, loc{}, opp{};
-      unsigned mir = 0;
-      for (int i = 0; i < 3; ++i) {
-        const std::size_t k = static_cast<std::size_t>(i);
-        loc[k] = f->vertex(i)->info();
-        tri[k] = id[static_cast<std::size_t>(loc[k])];
-        const DT2::Face_handle g = f->neighbor(i);
-        nb[k] = g->info();
-        opp[k] = -1;
-        if (nb[k] >= 0) {
-          const int j = g->index(f);
-          opp[k] = g->vertex(j)->info();
-          mir |= static_cast<unsigned>(j) << (2 * i);
-        }
-      }
-      out.triangles[t] = tri;
-      out.neighbors[t] = nb;
-      if (local) {
-        lm.simplices[t] = loc;
-        lm.opposite[t] = opp;
-        lm.mirror[t] = static_cast<unsigned char>(mir);
-        unsigned own = 0;
-        for (int i = 0; i < 3; ++i)
-          if (nb[static_cast<std::size_t>(i)] == -1 || static_cast<std::size_t>(nb[static_cast<std::size_t>(i)]) > t)
-            own |= 1u << i;
-        lm.owned[t] = static_cast<unsigned char>(own);
-      }
-    }
-  });
+  export_simplices<3>(fh, id, out.triangles, out.neighbors, lm, local != nullptr);
   return Status::ok();
 }
 
@@ -341,48 +352,7 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
     lm.mirror.allocate(T);
     lm.owned.allocate(T);
   }
-  par_for(T, [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t != r.end(); ++t) {
-      // The neighbours are scattered in memory: prefetch them, then their far vertex.
-      if (t + 2 * kAhead < r.end())
-        for (int i = 0; i < 4; ++i) __builtin_prefetch(&*ch[t + 2 * kAhead]->neighbor(i));
-      if (t + kAhead < r.end()) {
-        const DT3::Cell_handle ca = ch[t + kAhead];
-        for (int i = 0; i < 4; ++i) {
-          const DT3::Cell_handle d = ca->neighbor(i);
-          __builtin_prefetch(&*d->vertex(d->index(ca)));
-        }
-      }
-      const DT3::Cell_handle c = ch[t];
-      std::array<int, 4> tet{}, nb{}, loc{}, opp{};
-      unsigned mir = 0;
-      for (int i = 0; i < 4; ++i) {
-        const std::size_t k = static_cast<std::size_t>(i);
-        loc[k] = c->vertex(i)->info();
-        tet[k] = id[static_cast<std::size_t>(loc[k])];
-        const DT3::Cell_handle d = c->neighbor(i);
-        nb[k] = d->info();
-        opp[k] = -1;
-        if (nb[k] >= 0) {
-          const int j = d->index(c);
-          opp[k] = d->vertex(j)->info();
-          mir |= static_cast<unsigned>(j) << (2 * i);
-        }
-      }
-      out.tets[t] = tet;
-      out.neighbors[t] = nb;
-      if (local) {
-        lm.simplices[t] = loc;
-        lm.opposite[t] = opp;
-        lm.mirror[t] = static_cast<unsigned char>(mir);
-        unsigned own = 0;
-        for (int i = 0; i < 4; ++i)
-          if (nb[static_cast<std::size_t>(i)] == -1 || static_cast<std::size_t>(nb[static_cast<std::size_t>(i)]) > t)
-            own |= 1u << i;
-        lm.owned[t] = static_cast<unsigned char>(own);
-      }
-    }
-  });
+  export_simplices<4>(ch, id, out.tets, out.neighbors, lm, local != nullptr);
   if (local) {
     // Hull facets and their adjacency, from the infinite cells (one per hull facet; two hull
     // facets share an edge iff their infinite cells are neighbours across a face through the
