@@ -20,7 +20,7 @@ namespace {
 
 struct ReconstructArgs {
   InputArgs in;
-  std::string out, report, body, fallback = "auto";
+  std::string out, report, body, fallback = "auto", refine = "auto";
   bool ascii = false;
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
@@ -62,6 +62,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   else if (a.fallback == "degree4") opt.fallback = Fallback::Degree4;
   else opt.fallback = Fallback::None;
   opt.stop_after = a.stop_after;
+  if (a.refine == "none") opt.refine = Refine2::None;
   progress.phase("delaunay + gamma-values");
   ProgressVisitor visitor(progress, pts.size());
   Polygon2Result r;
@@ -128,8 +129,13 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["fallback_edges"] = r.fallback_edges.size();
     j["area"] = r.area;
     j["perimeter"] = r.perimeter;
+    j["refine"] = {{"mode", opt.refine == Refine2::None ? "none" : "local-search"},
+                   {"moves", r.refine_moves},
+                   {"budget_hit", r.refine_budget_hit},
+                   {"perimeter_before", r.perimeter_before_refine}};
     j["timings_ms"] = {{"read", ms(t0, t1)},         {"delaunay", r.ms_delaunay},  {"gamma", 0.0},
-                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"validate", ms_validate},
+                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"refine", r.ms_refine},
+                       {"validate", ms_validate},
                        {"write", ms(t3, t4)},        {"total", ms(t0, Clock::now())}};
     j["warnings"] = rep.warnings;
     if (Status s = write_report(a.report, j); !s) return fail(s);
@@ -192,6 +198,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   Constrict3Options opt;
   opt.fallback = a.fallback == "none" ? Fallback3::None : Fallback3::Auto;
   opt.stop_after = a.stop_after;
+  if (a.refine == "none") opt.refine = Refine3::None;
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   progress.phase("delaunay + gamma-values");
   ProgressVisitor3 visitor(progress, pts.size());
@@ -301,6 +308,9 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--report", a->report, "write a JSON report (method, counts, area, timings)");
   cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 (2D) | none")
       ->check(CLI::IsMember({"auto", "gamma0", "degree4", "none"}));
+  cmd->add_option("--refine", a->refine,
+                  "post-pass on the complete result: auto (default: 2D local search, 3D flip pass) | none (the paper's algorithm)")
+      ->check(CLI::IsMember({"auto", "none"}));
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};

@@ -16,6 +16,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/detail/refine2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 
@@ -722,7 +723,17 @@ struct Constrictor2::Impl {
     r.boundary = boundary_list();
     r.ms_delaunay = ms_delaunay;
     r.ms_constrict = ms_constrict;
-    if (!fb_ready && r.method != "gamma") build_fallback();
+    if (r.complete && opt.refine == Refine2::LocalSearch) {
+      const auto tr = Clock::now();
+      Refine2Stats rs;
+      detail::refine_polygon2(*pts, dt, r.boundary, opt.refine_work_per_point * n, rs);
+      r.refine_moves = rs.moves_2opt + rs.moves_oropt;
+      r.refine_budget_hit = rs.budget_hit;
+      r.perimeter_before_refine = rs.length_before;
+      r.stages.push_back({"refine", 0});
+      r.ms_refine = ms_since(tr);
+    }
+    if (!fb_ready && (r.method != "gamma" || r.refine_moves > 0)) build_fallback();
     const std::size_t m = r.boundary.size();
     for (std::size_t i = 0; i < m; ++i) {
       const int a = r.boundary[i], b = r.boundary[(i + 1) % m];
@@ -732,6 +743,7 @@ struct Constrictor2::Impl {
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
       if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(a, b), std::max(a, b)}});
     }
+    if (r.perimeter_before_refine == 0) r.perimeter_before_refine = r.perimeter;
     if (opt.validate) {
       const auto tv = Clock::now();
       const Status vs = validate_polygon_in_triangulation(*pts, r.boundary, dt.triangles, &r.check);

@@ -86,6 +86,7 @@ TEST(Constrict2Property, RandomInputsValidate) {
   std::map<std::string, int> method_count;
   std::map<std::string, int> stage_points;
   int runs = 0, locks = 0;
+  std::size_t refine_moves = 0;
   const char* names[] = {"uniform", "clustered", "curve", "polyline", "grid"};
   for (std::uint64_t seed = 1; seed <= 4000; ++seed) {
     std::mt19937_64 rng(seed);
@@ -125,11 +126,15 @@ TEST(Constrict2Property, RandomInputsValidate) {
         ++method_count[(o == &d4 ? "[degree4 run] " : "[repair run] ") + r2.method];
       }
     }
+    // The refinement only shortens (it starts from the validated constriction result).
+    ASSERT_LE(r.perimeter, r.perimeter_before_refine * (1 + 1e-12)) << "seed " << seed;
+    refine_moves += r.refine_moves;
     if (seed % 8 == 0) {
       ASSERT_TRUE(validate_polygon_brute_force(p, r.boundary).is_ok()) << "seed " << seed;
     }
   }
-  std::printf("[ Constrict2Property ] runs=%d locked_at_gamma0=%d\n", runs, locks);
+  std::printf("[ Constrict2Property ] runs=%d locked_at_gamma0=%d refine_moves=%zu\n", runs, locks, refine_moves);
+  EXPECT_GT(refine_moves, 0u);
   for (const auto& m : method_count) std::printf("  method %-14s %d\n", m.first.c_str(), m.second);
   for (const auto& m : stage_points) std::printf("  points placed by %-14s %d\n", m.first.c_str(), m.second);
 }

@@ -53,6 +53,7 @@ TEST(Constrict2Unit, ExampleA) {
 TEST(Constrict2Unit, ExampleBLocksAtGamma0) {
   const PointSet p = make2(kExampleB);
   Constrict2Options o;
+  o.refine = Refine2::None;  // spec traces are the paper's algorithm
   o.fallback = Fallback::None;
   Polygon2Result r;
   Recorder rec;
@@ -70,6 +71,7 @@ TEST(Constrict2Unit, ExampleBLocksAtGamma0) {
 TEST(Constrict2Unit, ExampleBGamma0Rescue) {
   const PointSet p = make2(kExampleB);
   Constrict2Options o;
+  o.refine = Refine2::None;  // spec traces are the paper's algorithm
   o.fallback = Fallback::Gamma0;
   o.repair = false;
   Polygon2Result r;
@@ -85,6 +87,7 @@ TEST(Constrict2Unit, ExampleBGamma0Rescue) {
 TEST(Constrict2Unit, ExampleBDegree4Rescue) {
   const PointSet p = make2(kExampleB);
   Constrict2Options o;
+  o.refine = Refine2::None;  // spec traces are the paper's algorithm
   o.fallback = Fallback::Degree4;
   o.repair = false;
   Polygon2Result r;
@@ -100,6 +103,7 @@ TEST(Constrict2Unit, N9LocksThenRescued) {
   const PointSet p = make2(kN9);
   {
     Constrict2Options o;
+    o.refine = Refine2::None;  // spec traces are the paper's algorithm
     o.fallback = Fallback::None;
     Polygon2Result r;
     Recorder rec;
@@ -112,6 +116,7 @@ TEST(Constrict2Unit, N9LocksThenRescued) {
   }
   {
     Constrict2Options o;
+    o.refine = Refine2::None;  // spec traces are the paper's algorithm
     o.fallback = Fallback::Gamma0;
     o.repair = false;
     Polygon2Result r;
@@ -124,6 +129,7 @@ TEST(Constrict2Unit, N9LocksThenRescued) {
   }
   {
     Constrict2Options o;
+    o.refine = Refine2::None;  // spec traces are the paper's algorithm
     o.fallback = Fallback::Degree4;
     o.repair = false;
     Polygon2Result r;
