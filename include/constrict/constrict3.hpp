@@ -31,6 +31,8 @@ enum class Sculpt3 {
   None,     ///< stop as soon as all points are on the boundary (the paper's rule)
   TwoFace,  ///< keep removing removable two-face tetrahedra while their criterion (sum of
             ///< 1 - γ over the two boundary faces) is >= sculpt_threshold
+  Bridges,  ///< remove removable two-face tetrahedra whose larger surface face is a bridge:
+            ///< longest edge >= bridge_ratio x the local spacing (largest first)
 };
 
 /// Criterion of a removable tetrahedron with two boundary faces.
@@ -71,6 +73,12 @@ struct Constrict3Options {
   /// Minimum criterion for the TwoFace post-pass, in [0, 4] (the two_face_key scale). 2 = the average γ of the two faces
   /// is < 0 (the tetrahedron's circumcentre lies outside the current surface, spec §3.5).
   double sculpt_threshold = 2.0;
+  /// Sculpt3::Bridges: a surface face is a bridge when its longest edge is at least bridge_ratio
+  /// times the largest nearest-neighbour distance of its three vertices.
+  double bridge_ratio = 5.0;
+  /// Size bias of the constriction key: key += size_bias · ln(max(1, r)) with r the largest
+  /// bridge ratio (see bridge_ratio) of the tetrahedron's surface faces. 0 = the γ key alone.
+  double size_bias = 0.0;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is

@@ -77,6 +77,8 @@ struct Constrictor3::Impl {
   std::vector<Entry> heap;
 
   std::size_t removed = 0, removed1 = 0, removed2 = 0, removed_sculpt = 0;
+  bool bridge_keys = false;                  // heap keys are face_bridge() (Sculpt3::Bridges)
+  std::vector<double> spacing;               // nearest-neighbour distance per vertex
   bool locked_now = false, stopped = false, first_lock = false;
   std::vector<int> stuck;
   double ms_delaunay = 0, ms_constrict = 0;
@@ -160,11 +162,43 @@ struct Constrictor3::Impl {
     return true;
   }
 
+  // Sculpt3::Bridges: longest edge of the face opposite i over the largest spacing of its vertices.
+  double face_bridge(int t, int i) const {
+    const auto& v = tets[uz(t)];
+    const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
+    const auto d2 = [&](int x, int y) {
+      const double dx = P(x)[0] - P(y)[0], dy = P(x)[1] - P(y)[1], dz = P(x)[2] - P(y)[2];
+      return dx * dx + dy * dy + dz * dz;
+    };
+    const double longest = std::sqrt(std::max({d2(a, b), d2(b, c), d2(c, a)}));
+    const double h = std::max({spacing[uz(a)], spacing[uz(b)], spacing[uz(c)]});
+    return h > 0 ? longest / h : 0;
+  }
+  void compute_spacing() {
+    spacing.assign(n, HUGE_VAL);
+    for (std::size_t t = 0; t < T0; ++t) {
+      const auto& v = tets[t];
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const int a = v[uz(i)], b = v[uz(j)];
+          const double dx = P(a)[0] - P(b)[0], dy = P(a)[1] - P(b)[1], dz = P(a)[2] - P(b)[2];
+          const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+          spacing[uz(a)] = std::min(spacing[uz(a)], l);
+          spacing[uz(b)] = std::min(spacing[uz(b)], l);
+        }
+    }
+  }
+
   // Removability (spec §3.3): 1 / 2 boundary faces by the one-face / two-face rule, else 0.
   int removable(int t, double* key) const {
     int bi[4], nb = 0;
     for (int i = 0; i < 4; ++i)
       if (boundary_face(t, i)) bi[nb++] = i;
+    if (bridge_keys) {
+      if (nb != 2 || edge_on_boundary(t, bi[0], bi[1])) return 0;
+      if (key) *key = std::max(face_bridge(t, bi[0]), face_bridge(t, bi[1]));
+      return 2;
+    }
     int r = 0;
     if (nb == 1) r = onb[uz(tets[uz(t)][uz(bi[0])])] ? 0 : 1;
     else if (nb == 2) r = edge_on_boundary(t, bi[0], bi[1]) ? 0 : 2;
@@ -174,6 +208,11 @@ struct Constrictor3::Impl {
         // Paper §4.2: the sum of the two terms; TwoFaceKey::Max is the measured alternative.
         const double k2 = face_term(t, bi[1]);
         *key = opt.two_face_key == TwoFaceKey::Sum ? *key + k2 : std::max(*key, k2);
+      }
+      if (opt.size_bias > 0) {
+        double ratio = face_bridge(t, bi[0]);
+        if (nb == 2) ratio = std::max(ratio, face_bridge(t, bi[1]));
+        *key += opt.size_bias * std::log(std::max(1.0, ratio));
       }
     }
     return r;
@@ -656,6 +695,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.tets = std::move(s.dg.dt.tets);
   s.nbr = std::move(s.dg.dt.neighbors);
   s.T0 = s.tets.size();
+  if (s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges) s.compute_spacing();
   s.state.assign(s.T0, kAlive);
   s.ver.assign(s.T0, 0);
   s.mark.assign(s.T0, 0);
@@ -745,6 +785,22 @@ Status Constrictor3::finish(Mesh3Result& r) {
     while (s.pop_and_remove(s.opt.sculpt_threshold, "sculpt")) {
     }
     CONSTRICT_CHECK(s.removed - rem0 == s.removed2 - r2, "sculpting removed a one-face tetrahedron");
+    s.removed_sculpt = s.removed - rem0;
+    r.ms_sculpt = ms_since(t0);
+    r.stages.push_back({"sculpt", 0, s.removed_sculpt});
+  }
+  if (r.complete && s.opt.sculpt == Sculpt3::Bridges) {
+    stage_event("sculpt");
+    t0 = Clock::now();
+    const std::size_t rem0 = s.removed;
+    s.bridge_keys = true;
+    s.heap.clear();
+    for (std::size_t t = 0; t < s.tets.size(); ++t)
+      if (s.state[t] == kAlive) s.try_push(static_cast<int>(t));
+    while (s.pop_and_remove(s.opt.bridge_ratio, "sculpt")) {
+    }
+    s.bridge_keys = false;
+    s.heap.clear();
     s.removed_sculpt = s.removed - rem0;
     r.ms_sculpt = ms_since(t0);
     r.stages.push_back({"sculpt", 0, s.removed_sculpt});

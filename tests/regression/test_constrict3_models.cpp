@@ -4,6 +4,8 @@
 // of ground-truth triangles recovered (docs/reconstruction-3d.md). Skips when the data is absent.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <algorithm>
 #include <cmath>
 #include <array>
@@ -131,6 +133,9 @@ TEST(Constrict3Eval, DISABLED_Table) {
     const char* name;
     TwoFaceKey key;
     Refine3 refine;
+    Sculpt3 sculpt = Sculpt3::None;
+    double bridge_ratio = 0;
+    double size_bias = 0;
   };
   const Config configs[] = {{"sum", TwoFaceKey::Sum, Refine3::None},
                             {"max", TwoFaceKey::Max, Refine3::None},
@@ -139,14 +144,31 @@ TEST(Constrict3Eval, DISABLED_Table) {
                             {"sum+circ", TwoFaceKey::Sum, Refine3::Circumradius},
                             {"max+circ", TwoFaceKey::Max, Refine3::Circumradius},
                             {"sum+alt", TwoFaceKey::Sum, Refine3::Alternate},
-                            {"max+alt", TwoFaceKey::Max, Refine3::Alternate}};
+                            {"max+alt", TwoFaceKey::Max, Refine3::Alternate},
+                            {"max+br3+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::Bridges, 3},
+                            {"max+br4+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::Bridges, 4},
+                            {"max+br6+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::Bridges, 6},
+                            {"max+br10+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::Bridges, 10},
+                            {"max+sb0.25+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 0.25},
+                            {"max+sb0.5+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 0.5},
+                            {"max+sb1+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 1},
+                            {"max+sb2+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 2},
+                            {"max+sb0.5", TwoFaceKey::Max, Refine3::None, Sculpt3::None, 0, 0.5},
+                            {"max+sb1", TwoFaceKey::Max, Refine3::None, Sculpt3::None, 0, 1}};
+  // CONSTRICT_EVAL_CONFIGS=name,name,... restricts the table to those configurations.
+  const char* only = std::getenv("CONSTRICT_EVAL_CONFIGS");
+  const std::string filter = only ? "," + std::string(only) + "," : "";
   std::cout << "| model | config | N | locked | stuck | GT recovered | area/GT | volume/GT | refine added/removed"
                " | ms Delaunay+γ | ms constrict | ms fallback | ms refine | ms validate |\n";
   for (const char* name : {"knight_sparse", "spot", "bunny_closed", "elephant", "fandisk", "armadillo", "horse"})
     for (const auto& c : configs) {
+      if (!filter.empty() && filter.find("," + std::string(c.name) + ",") == std::string::npos) continue;
       Constrict3Options o;
       o.two_face_key = c.key;
       o.refine = c.refine;
+      o.sculpt = c.sculpt;
+      if (c.bridge_ratio > 0) o.bridge_ratio = c.bridge_ratio;
+      o.size_bias = c.size_bias;
       Row w;
       if (evaluate(name, o, w)) std::cout << format_row(name, c.name, w) << std::endl;
     }
