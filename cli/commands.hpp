@@ -16,5 +16,6 @@ struct Command {
 
 Command add_graph_command(CLI::App& app);
 Command add_reconstruct_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 }  // namespace constrict::cli
