@@ -38,62 +38,6 @@ std::string ext_of(const std::string& path) {
 
 bool is_mesh_ext(const std::string& e) { return e == "off" || e == "ply" || e == "obj" || e == "stl"; }
 
-// A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or
-// .csv (x,y rows, matched to --points by exact coordinates).
-Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly) {
-  const std::string e = ext_of(path);
-  poly.clear();
-  if (e == "gt") {
-    Reference2 r;
-    if (Status s = read_reference2(path, pts.size(), r); !s) return s;
-    if (!r.single_closed_curve())
-      return {StatusCode::InvalidArgument, path + ": the result must be one closed curve"};
-    poly = r.closed[0];
-    return Status::ok();
-  }
-  if (e != "idx" && e != "csv")
-    return {StatusCode::InvalidArgument, path + ": unknown 2D result format (use .idx, .csv or .gt)"};
-  if (e == "idx") {
-    std::ifstream f(path);
-    if (!f) return {StatusCode::FileNotFound, path + ": cannot open"};
-    std::string line;
-    std::size_t lineno = 0;
-    while (std::getline(f, line)) {
-      ++lineno;
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-      try {
-        std::size_t used = 0;
-        const long long v = std::stoll(line, &used);
-        if (line.find_first_not_of(" \t\r", used) != std::string::npos) throw std::invalid_argument("trailing");
-        if (v < 0 || static_cast<std::size_t>(v) >= pts.size())
-          return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": index " + std::to_string(v) +
-                                              " out of range (" + std::to_string(pts.size()) + " points)"};
-        poly.push_back(static_cast<int>(v));
-      } catch (const std::exception&) {
-        return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": malformed index"};
-      }
-    }
-    if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 indices"};
-    return Status::ok();
-  }
-  // .csv: the point reader parses it (header line, two columns).
-  PointSet col;
-  ReadOptions ro;
-  ro.check = false;
-  ro.dim = 2;
-  if (Status s = read_points(path, ro, col); !s) return s;
-  std::map<std::pair<double, double>, int> id;
-  for (std::size_t i = 0; i < pts.size(); ++i) id.emplace(std::make_pair(pts[i][0] + 0.0, pts[i][1] + 0.0), static_cast<int>(i));
-  for (std::size_t i = 0; i < col.size(); ++i) {
-    const auto it = id.find({col[i][0] + 0.0, col[i][1] + 0.0});
-    if (it == id.end())
-      return {StatusCode::InvalidArgument, path + ": vertex " + std::to_string(i) + " is not one of the input points"};
-    poly.push_back(it->second);
-  }
-  if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 vertices"};
-  return Status::ok();
-}
-
 void put_distance(nlohmann::json& j, double h, double hab, double hba, double mab, double mba, double mean, double diag,
                   double rh, double rm, double sa, double sb, std::size_t na, std::size_t nb) {
   j["hausdorff"] = h;
@@ -195,6 +139,62 @@ int run_compare(const CompareArgs& a) {
 }
 
 }  // namespace
+
+// A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or
+// .csv (x,y rows, matched to --points by exact coordinates).
+Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly) {
+  const std::string e = ext_of(path);
+  poly.clear();
+  if (e == "gt") {
+    Reference2 r;
+    if (Status s = read_reference2(path, pts.size(), r); !s) return s;
+    if (!r.single_closed_curve())
+      return {StatusCode::InvalidArgument, path + ": the result must be one closed curve"};
+    poly = r.closed[0];
+    return Status::ok();
+  }
+  if (e != "idx" && e != "csv")
+    return {StatusCode::InvalidArgument, path + ": unknown 2D result format (use .idx, .csv or .gt)"};
+  if (e == "idx") {
+    std::ifstream f(path);
+    if (!f) return {StatusCode::FileNotFound, path + ": cannot open"};
+    std::string line;
+    std::size_t lineno = 0;
+    while (std::getline(f, line)) {
+      ++lineno;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      try {
+        std::size_t used = 0;
+        const long long v = std::stoll(line, &used);
+        if (line.find_first_not_of(" \t\r", used) != std::string::npos) throw std::invalid_argument("trailing");
+        if (v < 0 || static_cast<std::size_t>(v) >= pts.size())
+          return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": index " + std::to_string(v) +
+                                              " out of range (" + std::to_string(pts.size()) + " points)"};
+        poly.push_back(static_cast<int>(v));
+      } catch (const std::exception&) {
+        return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": malformed index"};
+      }
+    }
+    if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 indices"};
+    return Status::ok();
+  }
+  // .csv: the point reader parses it (header line, two columns).
+  PointSet col;
+  ReadOptions ro;
+  ro.check = false;
+  ro.dim = 2;
+  if (Status s = read_points(path, ro, col); !s) return s;
+  std::map<std::pair<double, double>, int> id;
+  for (std::size_t i = 0; i < pts.size(); ++i) id.emplace(std::make_pair(pts[i][0] + 0.0, pts[i][1] + 0.0), static_cast<int>(i));
+  for (std::size_t i = 0; i < col.size(); ++i) {
+    const auto it = id.find({col[i][0] + 0.0, col[i][1] + 0.0});
+    if (it == id.end())
+      return {StatusCode::InvalidArgument, path + ": vertex " + std::to_string(i) + " is not one of the input points"};
+    poly.push_back(it->second);
+  }
+  if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 vertices"};
+  return Status::ok();
+}
 
 Command add_compare_command(CLI::App& app) {
   auto a = std::make_shared<CompareArgs>();
