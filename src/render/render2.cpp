@@ -148,7 +148,7 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
         cv.segment(X(a), Y(a), X(b), Y(b), 1.5 * lw, kFallback);
       }
     const double r = o.point_radius > 0 ? o.point_radius
-                                        : std::max(0.7, unit * std::clamp(400.0 / std::sqrt(static_cast<double>(n) + 1.0), 0.5, 4.0));
+                                        : std::max(1.5, unit * std::clamp(400.0 / std::sqrt(static_cast<double>(n) + 1.0), 0.5, 4.0));
     for (std::size_t i = 0; i < n; ++i) cv.disc(X(i), Y(i), r, kPoint);
     if (pan.layers)
       for (int i : pan.layers->highlight_points)
