@@ -26,7 +26,7 @@ namespace {
 
 struct RenderArgs {
   InputArgs in;
-  std::string out, points, size, view, stages, animate;
+  std::string out, points, size, view, stages, animate, up = "z";
   int views = 0, columns = 0;
   bool wireframe = false, no_graph = false, quiet = false;
   std::size_t stop_after = SIZE_MAX;
@@ -221,6 +221,7 @@ Status write_picture3(const RenderArgs& a, const PointSet& pts, const std::vecto
   o.height = l.height;
   o.columns = l.columns;
   o.wireframe = a.wireframe;
+  o.up_axis = a.up == "x" ? 0 : a.up == "y" ? 1 : 2;
   Image img;
   if (Status s = render_sheet3(pts, panels, o, img); !s) return s;
   return write_png(a.out, img);
@@ -359,6 +360,7 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");
   cmd->add_option("--columns", a->columns, "sheet columns (default: about square)");
   cmd->add_flag("--wireframe", a->wireframe, "3D: draw the triangle edges");
+  cmd->add_option("--up", a->up, "3D: model axis drawn upwards (default z)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_flag("--no-graph", a->no_graph, "2D: leave out the dashed Delaunay graph");
   cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction");
   cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...");

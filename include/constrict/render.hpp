@@ -37,7 +37,8 @@ Status write_png(const std::string& path, const Image& image);
 Status read_png(const std::string& path, Image& image);
 
 /// A viewing direction: the camera looks at the centre from azimuth (degrees, about +z, 0 = from
-/// +x) and elevation (degrees above the xy plane). Orthographic projection, z up on the screen.
+/// +x) and elevation (degrees above the xy plane). Orthographic projection, z up on the screen
+/// (RenderOptions3::up_axis picks another model axis as "z": the axes are permuted cyclically).
 struct View {
   double azimuth = 35;
   double elevation = 25;
@@ -55,6 +56,7 @@ struct RenderOptions3 {
   int columns = 0;                  ///< sheet columns; 0: ceil(sqrt(panels))
   bool wireframe = false;           ///< draw the triangle edges (hidden ones stay hidden)
   double edge_width = 1.0;          ///< wireframe line width in pixels
+  int up_axis = 2;                  ///< model axis drawn upwards: 0 x, 1 y, 2 z (views rotate about it)
   double ambient = 0.25;            ///< ambient share of the Lambert shading, in [0, 1]
   std::array<std::uint8_t, 3> front{{158, 184, 217}};   ///< outward side colour
   std::array<std::uint8_t, 3> back{{217, 120, 110}};    ///< inward side (shows orientation errors)

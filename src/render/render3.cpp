@@ -65,8 +65,14 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   if (panels.empty()) return {StatusCode::InvalidArgument, "render: nothing to draw (no panel)"};
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};
-  if (!(o.ambient >= 0 && o.ambient <= 1) || !(o.edge_width > 0) || o.columns < 0)
-    return {StatusCode::InvalidArgument, "render: ambient in [0, 1], edge width > 0, columns >= 0"};
+  if (!(o.ambient >= 0 && o.ambient <= 1) || !(o.edge_width > 0) || o.columns < 0 || o.up_axis < 0 || o.up_axis > 2)
+    return {StatusCode::InvalidArgument, "render: ambient in [0, 1], edge width > 0, columns >= 0, up axis 0..2"};
+  // Cyclic axis permutation that brings the up axis to z (orientation preserving).
+  const int ax = (o.up_axis + 1) % 3, ay = (o.up_axis + 2) % 3, az = o.up_axis;
+  const auto at = [&](std::size_t i) {
+    const double* q = points[i];
+    return Vec{q[ax], q[ay], q[az]};
+  };
   const std::size_t n = points.size();
   std::vector<char> used(n, 0);
   for (const auto& p : panels) {
@@ -84,11 +90,14 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   double lo[3] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   double hi[3] = {-lo[0], -lo[1], -lo[2]};
   for (std::size_t i = 0; i < n; ++i)
-    if (used[i])
+    if (used[i]) {
+      const Vec v = at(i);
+      const double c[3] = {v.x, v.y, v.z};
       for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], points[i][k]);
-        hi[k] = std::max(hi[k], points[i][k]);
+        lo[k] = std::min(lo[k], c[k]);
+        hi[k] = std::max(hi[k], c[k]);
       }
+    }
   if (lo[0] > hi[0]) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;  // only empty meshes
   const Vec centre{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
   double radius = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
@@ -121,8 +130,7 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
         Screen& sc = tris[base + t];
         Vec w[3];
         for (int k = 0; k < 3; ++k) {
-          const double* q = points[static_cast<std::size_t>(T[t][static_cast<std::size_t>(k)])];
-          w[k] = {q[0], q[1], q[2]};
+          w[k] = at(static_cast<std::size_t>(T[t][static_cast<std::size_t>(k)]));
           const Vec d = sub(w[k], centre);
           sc.x[k] = mx + s * dot(d, cam.right);
           sc.y[k] = my - s * dot(d, cam.up);
