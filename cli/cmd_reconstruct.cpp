@@ -21,6 +21,7 @@ namespace {
 struct ReconstructArgs {
   InputArgs in;
   std::string out, report, body, fallback = "auto", refine = "auto";
+  std::string render;  // --render PICTURE (cmd_render.cpp)
   bool ascii = false;
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
@@ -98,6 +99,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     layers.title = "constrict: " + a.in.path + " (" + r.method + ")";
   }
   if (Status s = write_polygon2(a.out, pts, r.boundary, fmt, &layers); !s) return fail(s);
+  if (int rc = a.render.empty() ? 0 : render_reconstruction2(a.render, pts, r)) return rc;
   const auto t4 = Clock::now();
 
   const std::size_t n = pts.size(), nb = r.boundary.size();
@@ -222,6 +224,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (Status s = write_mesh(a.out, pts, r.mesh, wopt); !s) return fail(s);
   if (!a.body.empty())
     if (Status s = write_body_vtk(a.body, pts, r.tets); !s) return fail(s);
+  if (int rc = a.render.empty() ? 0 : render_reconstruction3(a.render, pts, r.mesh)) return rc;
   const double ms_write = ms(tw, Clock::now());
 
   const std::size_t n = pts.size(), nb = n - r.unplaced_points.size();
@@ -311,6 +314,7 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--refine", a->refine,
                   "post-pass on the complete result: auto (default: 2D local search, 3D flip pass) | none (the paper's algorithm)")
       ->check(CLI::IsMember({"auto", "none"}));
+  cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};

@@ -6,6 +6,15 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <string>
+#include <vector>
+
+namespace constrict {
+struct PointSet;
+struct Polygon2Result;
+struct TriMesh3;
+class Status;
+}  // namespace constrict
 
 namespace constrict::cli {
 
@@ -16,5 +25,15 @@ struct Command {
 
 Command add_graph_command(CLI::App& app);
 Command add_reconstruct_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+Command add_render_command(CLI::App& app);
+
+/// A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or .csv
+/// (x,y rows matched to @p pts by exact coordinates). (cmd_compare.cpp)
+Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly);
+/// `reconstruct --render PIC`: the picture of a result (.svg/.png 2D, .png 3D); returns the exit
+/// code (0 or the failure's). (cmd_render.cpp)
+int render_reconstruction2(const std::string& path, const PointSet& pts, const Polygon2Result& r);
+int render_reconstruction3(const std::string& path, const PointSet& pts, const TriMesh3& mesh);
 
 }  // namespace constrict::cli

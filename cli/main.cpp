@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
                " - object reconstruction with the gamma-neighborhood graph (Veltkamp)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("constrict ") + CONSTRICT_VERSION_STRING);
-  const std::vector<cli::Command> commands = {cli::add_reconstruct_command(app), cli::add_graph_command(app)};
+  const std::vector<cli::Command> commands = {cli::add_reconstruct_command(app), cli::add_graph_command(app),
+                                             cli::add_compare_command(app), cli::add_render_command(app)};
 
   try {
     app.parse(argc, argv);

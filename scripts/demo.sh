@@ -37,5 +37,15 @@ run graph "$EX/3d/candlestick.xyz" --preset delaunay -o "$OUT/candlestick_delaun
 run graph "$EX/3d/candlestick.xyz" --preset gabriel -o "$OUT/candlestick_gabriel.off"
 run graph "$EX/3d/ellipsoid.xyz" --preset hull -o "$OUT/ellipsoid_hull.obj"
 
+# Pictures (docs/rendering.md): 2D PNG/SVG, 3D PNG (views sheet with wireframe), constriction stage
+# sheets (2D and 3D, paper Figure 7), a 2D animation as SVG frames, and a comparison report.
+run render "$EX/2d/nonhamiltonian9.xy" -o "$OUT/nonhamiltonian9.png"
+run render "$EX/2d/flower.xy" -o "$OUT/flower_stages.png" --stages auto --columns 5 --size 1600x320
+run render "$EX/2d/flower.xy" -o "$OUT/flower_final.svg" --animate "$OUT/flower_animation"
+run reconstruct "$EX/3d/candlestick.xyz" -o "$OUT/candlestick_surface.off" --render "$OUT/candlestick.png" --quiet
+run render "$OUT/candlestick_surface.off" -o "$OUT/candlestick_views.png" --views 4 --wireframe --columns 4 --size 1600x400
+run render "$EX/3d/candlestick.xyz" -o "$OUT/candlestick_stages.png" --stages auto --columns 5 --size 1600x320
+run compare "$OUT/candlestick_surface.ply" "$OUT/candlestick_surface.off" --report "$OUT/candlestick_compare.json"
+
 echo "demo: results in $OUT/"
 ls -1 "$OUT"

@@ -106,4 +106,24 @@ Status write_mesh(const std::string& path, const PointSet& points, const TriMesh
 Status write_body_vtk(const std::string& path, const PointSet& points,
                       const std::vector<std::array<int, 4>>& tets);
 
+/// What read_mesh() saw besides the mesh.
+struct MeshReadReport {
+  std::size_t polygons = 0;        ///< faces in the file
+  std::size_t split_polygons = 0;  ///< faces with more than 3 vertices, split into a fan
+};
+
+/// Reads a triangle mesh (e.g. a ground-truth surface). The format follows the extension: .off
+/// (OFF/COFF/NOFF..., extra vertex columns ignored), .ply (ascii, binary little/big endian;
+/// `vertex` x, y, z and a `face` list `vertex_indices`/`vertex_index`, other elements skipped),
+/// .obj (`v` and `f` records, `a/b/c` and negative indices accepted), .stl (binary or ASCII;
+/// identical corner coordinates become one vertex, first occurrence order). Polygons with more
+/// than three vertices are split into a fan from their first vertex. Vertices are kept in file
+/// order (OFF/PLY/OBJ), unused ones included; no geometric check is made.
+/// @param[out] points dim 3, the file's vertices; unchanged on error
+/// @param[out] mesh triangles over @p points; unchanged on error
+/// @return Ok, FileNotFound, ParseError ("file:LINE: ..." or "file: PLY face I: ..."),
+///         NonFinite, EmptyInput (no faces). One-line messages starting with @p path.
+/// @note O(file size) (STL: O(F log F) for the vertex identification).
+Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, MeshReadReport* report = nullptr);
+
 }  // namespace constrict

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `constrict compare RESULT REFERENCE`: measures a reconstruction against a ground truth.
+// 2D: a polygon (.idx .csv .gt) against a .gt reference over the same points (--points);
+// 3D: two meshes (.off .ply .obj .stl). The numbers come from the library (compare.hpp, metrics.hpp).
+#include <cctype>
+#include <cstdio>
+#include <stdexcept>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "constrict/compare.hpp"
+#include "constrict/mesh.hpp"
+#include "constrict/metrics.hpp"
+
+namespace constrict::cli {
+namespace {
+
+struct CompareArgs {
+  std::string result, reference, points, report;
+  double spacing = 2e-3;
+  std::size_t max_samples = 1000000;
+  bool quiet = false;
+};
+
+std::string ext_of(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+bool is_mesh_ext(const std::string& e) { return e == "off" || e == "ply" || e == "obj" || e == "stl"; }
+
+void put_distance(nlohmann::json& j, double h, double hab, double hba, double mab, double mba, double mean, double diag,
+                  double rh, double rm, double sa, double sb, std::size_t na, std::size_t nb) {
+  j["hausdorff"] = h;
+  j["hausdorff_result_to_reference"] = hab;
+  j["hausdorff_reference_to_result"] = hba;
+  j["mean_result_to_reference"] = mab;
+  j["mean_reference_to_result"] = mba;
+  j["mean"] = mean;
+  j["bbox_diagonal"] = diag;
+  j["relative_hausdorff"] = rh;
+  j["relative_mean"] = rm;
+  j["sampling"] = {{"spacing_result", sa}, {"spacing_reference", sb}, {"samples_result", na}, {"samples_reference", nb}};
+}
+
+int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions& o) {
+  if (a.points.empty())
+    return fail({StatusCode::InvalidArgument, "2D compare needs --points INPUT (the .gt indices refer to it)"});
+  PointSet pts;
+  ReadOptions ro;
+  ro.check = false;
+  ro.dim = 2;
+  if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
+  Reference2 ref;
+  if (Status s = read_reference2(a.reference, pts.size(), ref); !s) return fail(s);
+  std::vector<int> poly;
+  if (Status s = read_polygon_result(a.result, pts, poly); !s) return fail(s);
+  const PolygonComparison pc = compare_polygon2(poly, ref);
+  CurveDistance2 d;
+  if (Status s = compare_curves2({polygon_polyline2(pts, poly)}, reference_polylines2(pts, ref), d, o); !s) return fail(s);
+  j["dimension"] = 2;
+  j["points"] = pts.size();
+  j["exact_match"] = pc.exact_match;
+  j["reference_edges"] = pc.reference_edges;
+  j["result_edges"] = pc.polygon_edges;
+  j["recovered_edges"] = pc.recovered_edges;
+  j["edge_recall"] = pc.edge_recall;
+  j["edge_precision"] = pc.edge_precision;
+  put_distance(j, d.hausdorff, d.hausdorff_result_to_reference, d.hausdorff_reference_to_result,
+               d.mean_result_to_reference, d.mean_reference_to_result, d.mean, d.bbox_diagonal, d.relative_hausdorff,
+               d.relative_mean, d.spacing_result, d.spacing_reference, d.samples_result, d.samples_reference);
+  if (!a.quiet)
+    std::printf("%s: edges recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox diagonal), "
+                "mean %.6g (%.4f%%)\n",
+                pc.exact_match ? "exact match" : "differs", pc.recovered_edges, pc.reference_edges,
+                100 * pc.edge_recall, 100 * pc.edge_precision, d.hausdorff, 100 * d.relative_hausdorff, d.mean,
+                100 * d.relative_mean);
+  return 0;
+}
+
+int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions& o) {
+  PointSet rp, bp;
+  TriMesh3 rm, bm;
+  if (!is_mesh_ext(ext_of(a.result)))
+    return fail({StatusCode::InvalidArgument, a.result + ": unknown mesh format (use .off, .ply, .obj or .stl)"});
+  if (Status s = read_mesh(a.result, rp, rm); !s) return fail(s);
+  if (Status s = read_mesh(a.reference, bp, bm); !s) return fail(s);
+  MeshDistance d;
+  if (Status s = compare_meshes3(rp, rm, bp, bm, d, o); !s) return fail(s);
+  j["dimension"] = 3;
+  j["identical"] = d.identical;
+  j["reference_triangles"] = d.reference_triangles;
+  j["result_triangles"] = d.result_triangles;
+  j["recovered_triangles"] = d.recovered_triangles;
+  j["triangle_recovery"] = d.triangle_recovery;
+  j["triangle_precision"] = d.triangle_precision;
+  j["matched_vertices"] = d.matched_vertices;
+  put_distance(j, d.hausdorff, d.hausdorff_result_to_reference, d.hausdorff_reference_to_result,
+               d.mean_result_to_reference, d.mean_reference_to_result, d.mean, d.bbox_diagonal, d.relative_hausdorff,
+               d.relative_mean, d.spacing_result, d.spacing_reference, d.samples_result, d.samples_reference);
+  if (!a.quiet)
+    std::printf("%s: triangles recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox "
+                "diagonal; result->reference %.6g, reference->result %.6g), mean %.6g (%.4f%%)\n",
+                d.identical ? "identical" : "differs", d.recovered_triangles, d.reference_triangles,
+                100 * d.triangle_recovery, 100 * d.triangle_precision, d.hausdorff, 100 * d.relative_hausdorff,
+                d.hausdorff_result_to_reference, d.hausdorff_reference_to_result, d.mean, 100 * d.relative_mean);
+  return 0;
+}
+
+int run_compare(const CompareArgs& a) {
+  const auto t0 = Clock::now();
+  DistanceOptions o;
+  o.relative_spacing = a.spacing;
+  o.max_samples = a.max_samples;
+  nlohmann::json j;
+  j["command"] = "compare";
+  j["result"] = a.result;
+  j["reference"] = a.reference;
+  const std::string re = ext_of(a.reference);
+  int rc = 0;
+  if (re == "gt") rc = run_compare2(a, j, o);
+  else if (is_mesh_ext(re)) rc = run_compare3(a, j, o);
+  else
+    return fail({StatusCode::InvalidArgument, a.reference + ": unknown reference format (2D .gt; 3D .off .ply .obj .stl)"});
+  if (rc != 0) return rc;
+  j["timings_ms"] = {{"total", ms(t0, Clock::now())}};
+  if (!a.report.empty())
+    if (Status s = write_report(a.report, j); !s) return fail(s);
+  return 0;
+}
+
+}  // namespace
+
+// A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or
+// .csv (x,y rows, matched to --points by exact coordinates).
+Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly) {
+  const std::string e = ext_of(path);
+  poly.clear();
+  if (e == "gt") {
+    Reference2 r;
+    if (Status s = read_reference2(path, pts.size(), r); !s) return s;
+    if (!r.single_closed_curve())
+      return {StatusCode::InvalidArgument, path + ": the result must be one closed curve"};
+    poly = r.closed[0];
+    return Status::ok();
+  }
+  if (e != "idx" && e != "csv")
+    return {StatusCode::InvalidArgument, path + ": unknown 2D result format (use .idx, .csv or .gt)"};
+  if (e == "idx") {
+    std::ifstream f(path);
+    if (!f) return {StatusCode::FileNotFound, path + ": cannot open"};
+    std::string line;
+    std::size_t lineno = 0;
+    while (std::getline(f, line)) {
+      ++lineno;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      try {
+        std::size_t used = 0;
+        const long long v = std::stoll(line, &used);
+        if (line.find_first_not_of(" \t\r", used) != std::string::npos) throw std::invalid_argument("trailing");
+        if (v < 0 || static_cast<std::size_t>(v) >= pts.size())
+          return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": index " + std::to_string(v) +
+                                              " out of range (" + std::to_string(pts.size()) + " points)"};
+        poly.push_back(static_cast<int>(v));
+      } catch (const std::exception&) {
+        return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": malformed index"};
+      }
+    }
+    if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 indices"};
+    return Status::ok();
+  }
+  // .csv: the point reader parses it (header line, two columns).
+  PointSet col;
+  ReadOptions ro;
+  ro.check = false;
+  ro.dim = 2;
+  if (Status s = read_points(path, ro, col); !s) return s;
+  std::map<std::pair<double, double>, int> id;
+  for (std::size_t i = 0; i < pts.size(); ++i) id.emplace(std::make_pair(pts[i][0] + 0.0, pts[i][1] + 0.0), static_cast<int>(i));
+  for (std::size_t i = 0; i < col.size(); ++i) {
+    const auto it = id.find({col[i][0] + 0.0, col[i][1] + 0.0});
+    if (it == id.end())
+      return {StatusCode::InvalidArgument, path + ": vertex " + std::to_string(i) + " is not one of the input points"};
+    poly.push_back(it->second);
+  }
+  if (poly.size() < 3) return {StatusCode::ParseError, path + ": a polygon needs at least 3 vertices"};
+  return Status::ok();
+}
+
+Command add_compare_command(CLI::App& app) {
+  auto a = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "measure a result against a reference: 2D polygon vs .gt, 3D mesh vs mesh (Hausdorff, recovery)");
+  cmd->add_option("RESULT", a->result, "the result: 2D .idx .csv .gt; 3D .off .ply .obj .stl")->required();
+  cmd->add_option("REFERENCE", a->reference, "the reference: 2D .gt; 3D .off .ply .obj .stl")->required();
+  cmd->add_option("--points", a->points, "2D: the input points the indices refer to (required in 2D)");
+  cmd->add_option("--report", a->report, "write a JSON report");
+  cmd->add_option("--spacing", a->spacing, "sample spacing relative to the reference's bbox diagonal (default 0.002)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-samples", a->max_samples, "at most this many samples per side (default 1e6)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("-q,--quiet", a->quiet, "no summary line");
+  return {cmd, [a] { return run_compare(*a); }};
+}
+
+}  // namespace constrict::cli

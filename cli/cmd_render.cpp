@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `constrict render INPUT_OR_RESULT -o PICTURE.{svg,png}`: pictures of a point set's
+// reconstruction (with --stop-after, a stage sheet or a 2D animation), of a 2D polygon result
+// (--points) or of a 3D mesh; and the pictures of `reconstruct --render`. Drawing is done by the
+// library (render.hpp, write_polygon2).
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "constrict/constrict.hpp"
+#include "constrict/constrict3.hpp"
+#include "constrict/gamma_graph.hpp"
+#include "constrict/io.hpp"
+#include "constrict/mesh.hpp"
+#include "constrict/render.hpp"
+
+namespace constrict::cli {
+namespace {
+
+struct RenderArgs {
+  InputArgs in;
+  std::string out, points, size, view, stages, animate, up = "z";
+  int views = 0, columns = 0;
+  bool wireframe = false, no_graph = false, quiet = false;
+  std::size_t stop_after = SIZE_MAX;
+};
+
+std::string lower_ext(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// Picture geometry from the options: size (default: 1024² for one panel, 512² per sheet cell).
+struct Layout {
+  int width = 0, height = 0, columns = 0;
+};
+
+Status layout(const RenderArgs& a, std::size_t panels, Layout& l) {
+  l.columns = a.columns;
+  const int cols = a.columns > 0 ? std::min<int>(a.columns, static_cast<int>(panels))
+                                 : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(panels))));
+  const int rows = static_cast<int>((panels + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
+  if (a.size.empty()) {
+    l.width = panels == 1 ? 1024 : 512 * cols;
+    l.height = panels == 1 ? 1024 : 512 * rows;
+    return Status::ok();
+  }
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(a.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
+      w > 16384 || h > 16384)
+    return {StatusCode::InvalidArgument, "--size: expected WxH with 1 <= W, H <= 16384, e.g. 2048x2048"};
+  l.width = w;
+  l.height = h;
+  return Status::ok();
+}
+
+Status views_of(const RenderArgs& a, std::vector<View>& views) {
+  views.clear();
+  View base;
+  if (!a.view.empty()) {
+    std::vector<double> v;
+    if (!parse_list(a.view, 2, v) || !std::isfinite(v[0]) || !std::isfinite(v[1]))
+      return {StatusCode::InvalidArgument, "--view: expected two numbers AZIMUTH,ELEVATION in degrees"};
+    base.azimuth = v[0];
+    base.elevation = v[1];
+  }
+  const int n = std::max(1, a.views);
+  for (int i = 0; i < n; ++i) views.push_back({base.azimuth + 360.0 * i / n, base.elevation});
+  return Status::ok();
+}
+
+// Removal counts of a stage sheet: "auto" = 0, N/4, N/2, 3N/4 of the N removals of the full run.
+Status stage_targets(const std::string& spec, std::size_t total, std::vector<std::size_t>& out) {
+  out.clear();
+  if (spec == "auto") {
+    for (std::size_t k = 0; k < 4; ++k) out.push_back(total * k / 4);
+    return Status::ok();
+  }
+  std::size_t pos = 0;
+  while (pos <= spec.size()) {
+    const std::size_t comma = spec.find(',', pos);
+    const std::string item = spec.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    try {
+      std::size_t used = 0;
+      const long long v = std::stoll(item, &used);
+      if (used != item.size() || v < 0) throw std::invalid_argument(item);
+      out.push_back(static_cast<std::size_t>(v));
+    } catch (...) {
+      return {StatusCode::InvalidArgument, "--stages: expected 'auto' or removal counts K1,K2,... (>= 0)"};
+    }
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  std::sort(out.begin(), out.end());
+  return Status::ok();
+}
+
+Status delaunay_layer(const PointSet& pts, GammaFaces& g) {
+  GraphSpec spec;
+  (void)GraphSpec::from_preset("delaunay", spec);
+  return build_gamma_graph(pts, spec, g);
+}
+
+// ---- 2D ------------------------------------------------------------------------------------
+Status write_picture2(const RenderArgs& a, const PointSet& pts, const std::vector<Panel2>& panels, const std::string& path) {
+  if (lower_ext(path) == "svg") {
+    if (panels.size() != 1)
+      return {StatusCode::InvalidArgument, path + ": a sheet of several panels is written as PNG"};
+    return write_polygon2(path, pts, panels[0].boundary, PolygonFormat::Svg, panels[0].layers);
+  }
+  Layout l;
+  if (Status s = layout(a, panels.size(), l); !s) return s;
+  RenderOptions2 o;
+  o.width = l.width;
+  o.height = l.height;
+  o.columns = l.columns;
+  Image img;
+  if (Status s = render_sheet2(pts, panels, o, img); !s) return s;
+  return write_png(path, img);
+}
+
+int render_points2(const RenderArgs& a, const PointSet& pts) {
+  GammaFaces dt;
+  if (!a.no_graph)
+    if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
+  Constrict2Options opt;
+  const bool staged = !a.stages.empty() || !a.animate.empty();
+  if (!staged) {  // one picture: the result (or the state after --stop-after removals)
+    opt.stop_after = a.stop_after;
+    Polygon2Result r;
+    if (Status s = reconstruct2(pts, opt, r); !s) return fail(s);
+    PolygonSvgLayers layers;
+    layers.graph = a.no_graph ? nullptr : &dt;
+    layers.highlight_points = r.stuck_points;
+    layers.highlight_edges = r.fallback_edges;
+    layers.title = "constrict: " + a.in.path + " (" + r.method + ")";
+    if (Status s = write_picture2(a, pts, {Panel2{r.boundary, &layers}}, a.out); !s) return fail(s);
+    if (!a.quiet) std::printf("polygon through %zu/%zu points (%s) -> %s\n", r.boundary.size(), pts.size(), r.method.c_str(), a.out.c_str());
+    return 0;
+  }
+  // Count the removals of the whole Delaunay constriction, then replay it and take snapshots.
+  std::size_t total = 0;
+  {
+    Constrictor2 c;
+    if (Status s = c.init(pts, opt); !s) return fail(s);
+    while (c.step()) ++total;
+  }
+  std::vector<std::size_t> targets;
+  if (!a.stages.empty()) {
+    if (Status s = stage_targets(a.stages, total, targets); !s) return fail(s);
+  } else {  // animation: at most 60 frames plus the final one
+    const std::size_t stride = std::max<std::size_t>(1, (total + 59) / 60);
+    for (std::size_t k = 0; k < total; k += stride) targets.push_back(k);
+  }
+  Constrictor2 c;
+  if (Status s = c.init(pts, opt); !s) return fail(s);
+  std::vector<std::vector<int>> shots;
+  std::size_t done = 0;
+  bool more = true;
+  for (std::size_t t : targets) {
+    while (more && done < t) {
+      more = c.step();
+      if (more) ++done;
+    }
+    shots.push_back(c.boundary());
+  }
+  while (more && c.step()) ++done;
+  Polygon2Result r;
+  if (Status s = c.finish(r); !s) return fail(s);
+  shots.push_back(r.boundary);
+  PolygonSvgLayers plain, last;
+  plain.graph = last.graph = a.no_graph ? nullptr : &dt;
+  last.highlight_points = r.stuck_points;
+  last.highlight_edges = r.fallback_edges;
+  std::vector<Panel2> panels;
+  for (std::size_t i = 0; i < shots.size(); ++i) panels.push_back({shots[i], i + 1 == shots.size() ? &last : &plain});
+  if (!a.animate.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(a.animate, ec);
+    const std::string ext = lower_ext(a.out) == "svg" ? "svg" : "png";
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+      char name[32];
+      std::snprintf(name, sizeof name, "/frame_%04zu.", i);
+      if (Status s = write_picture2(a, pts, {panels[i]}, a.animate + name + ext); !s) return fail(s);
+    }
+    if (!a.quiet) std::printf("animation: %zu frames (every %zu removals, then the final polygon) -> %s/frame_*.%s\n",
+                              panels.size(), targets.size() > 1 ? targets[1] - targets[0] : total, a.animate.c_str(), ext.c_str());
+    if (a.stages.empty()) {  // -o gets the final picture
+      if (Status s = write_picture2(a, pts, {panels.back()}, a.out); !s) return fail(s);
+      return 0;
+    }
+  }
+  if (Status s = write_picture2(a, pts, panels, a.out); !s) return fail(s);
+  if (!a.quiet) {
+    std::printf("stages (removals of %zu):", total);
+    for (std::size_t t : targets) std::printf(" %zu", t);
+    std::printf(" final(%s) -> %s\n", r.method.c_str(), a.out.c_str());
+  }
+  return 0;
+}
+
+// ---- 3D ------------------------------------------------------------------------------------
+Status write_picture3(const RenderArgs& a, const PointSet& pts, const std::vector<Panel3>& panels) {
+  if (lower_ext(a.out) != "png") return {StatusCode::InvalidArgument, a.out + ": 3D pictures are PNG"};
+  Layout l;
+  if (Status s = layout(a, panels.size(), l); !s) return s;
+  RenderOptions3 o;
+  o.width = l.width;
+  o.height = l.height;
+  o.columns = l.columns;
+  o.wireframe = a.wireframe;
+  o.up_axis = a.up == "x" ? 0 : a.up == "y" ? 1 : 2;
+  Image img;
+  if (Status s = render_sheet3(pts, panels, o, img); !s) return s;
+  return write_png(a.out, img);
+}
+
+int render_mesh_file(const RenderArgs& a, const PointSet& pts, const TriMesh3& mesh) {
+  std::vector<View> views;
+  if (Status s = views_of(a, views); !s) return fail(s);
+  std::vector<Panel3> panels;
+  for (const View& v : views) panels.push_back({&mesh, v});
+  const auto t0 = Clock::now();
+  if (Status s = write_picture3(a, pts, panels); !s) return fail(s);
+  if (!a.quiet) std::printf("%zu triangles, %zu view(s) -> %s (%.0f ms)\n", mesh.n_faces(), views.size(), a.out.c_str(), ms(t0, Clock::now()));
+  return 0;
+}
+
+int render_points3(const RenderArgs& a, const PointSet& pts) {
+  if (!a.animate.empty()) return fail({StatusCode::InvalidArgument, "--animate is for 2D inputs"});
+  std::vector<View> views;
+  if (Status s = views_of(a, views); !s) return fail(s);
+  Constrict3Options opt;
+  if (a.stages.empty()) {
+    opt.stop_after = a.stop_after;
+    Mesh3Result r;
+    if (Status s = reconstruct3(pts, opt, r); !s) return fail(s);
+    return render_mesh_file(a, pts, r.mesh);
+  }
+  std::size_t total = 0;
+  {
+    Constrictor3 c;
+    if (Status s = c.init(pts, opt); !s) return fail(s);
+    while (c.step()) ++total;
+  }
+  std::vector<std::size_t> targets;
+  if (Status s = stage_targets(a.stages, total, targets); !s) return fail(s);
+  Constrictor3 c;
+  if (Status s = c.init(pts, opt); !s) return fail(s);
+  std::vector<TriMesh3> shots;
+  std::size_t done = 0;
+  bool more = true;
+  for (std::size_t t : targets) {
+    while (more && done < t) {
+      more = c.step();
+      if (more) ++done;
+    }
+    shots.push_back(c.surface());
+  }
+  while (more && c.step()) ++done;
+  Mesh3Result r;
+  if (Status s = c.finish(r); !s) return fail(s);
+  shots.push_back(r.mesh);
+  std::vector<Panel3> panels;
+  for (const auto& m : shots) panels.push_back({&m, views[0]});
+  if (Status s = write_picture3(a, pts, panels); !s) return fail(s);
+  if (!a.quiet) {
+    std::printf("stages (removals of %zu):", total);
+    for (std::size_t t : targets) std::printf(" %zu", t);
+    std::printf(" final(%s) -> %s\n", r.method.c_str(), a.out.c_str());
+  }
+  return 0;
+}
+
+int run_render(const RenderArgs& a) {
+  const std::string oe = lower_ext(a.out);
+  if (oe != "png" && oe != "svg") return fail({StatusCode::InvalidArgument, a.out + ": the picture is .png or .svg"});
+  if (a.views < 0 || a.columns < 0) return fail({StatusCode::InvalidArgument, "--views and --columns must be >= 0"});
+  if (!a.points.empty()) {  // a 2D polygon result over --points
+    PointSet pts;
+    ReadOptions ro;
+    ro.check = false;
+    ro.dim = 2;
+    if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
+    std::vector<int> poly;
+    if (Status s = read_polygon_result(a.in.path, pts, poly); !s) return fail(s);
+    GammaFaces dt;
+    if (!a.no_graph)
+      if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
+    PolygonSvgLayers layers;
+    layers.graph = a.no_graph ? nullptr : &dt;
+    layers.title = "constrict: " + a.in.path;
+    if (Status s = write_picture2(a, pts, {Panel2{poly, &layers}}, a.out); !s) return fail(s);
+    if (!a.quiet) std::printf("polygon of %zu vertices -> %s\n", poly.size(), a.out.c_str());
+    return 0;
+  }
+  const std::string ie = lower_ext(a.in.path);
+  if (ie == "off" || ie == "ply" || ie == "obj" || ie == "stl") {  // a mesh, unless it has no faces
+    PointSet pts;
+    TriMesh3 mesh;
+    const Status s = read_mesh(a.in.path, pts, mesh);
+    if (s) {
+      if (!a.stages.empty() || !a.animate.empty() || a.stop_after != SIZE_MAX)
+        return fail({StatusCode::InvalidArgument, "--stages, --animate and --stop-after need a point set, not a mesh"});
+      return render_mesh_file(a, pts, mesh);
+    }
+    if (s.code() != StatusCode::EmptyInput) return fail(s);
+  }
+  PointSet pts;
+  ReadReport rep;
+  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
+  return pts.dim == 2 ? render_points2(a, pts) : render_points3(a, pts);
+}
+
+}  // namespace
+
+int render_reconstruction2(const std::string& path, const PointSet& pts, const Polygon2Result& r) {
+  GammaFaces dt;
+  if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
+  PolygonSvgLayers layers;
+  layers.graph = &dt;
+  layers.highlight_points = r.stuck_points;
+  layers.highlight_edges = r.fallback_edges;
+  RenderArgs a;
+  a.out = path;
+  if (lower_ext(path) != "png" && lower_ext(path) != "svg")
+    return fail({StatusCode::InvalidArgument, path + ": the picture is .png or .svg"});
+  if (Status s = write_picture2(a, pts, {Panel2{r.boundary, &layers}}, path); !s) return fail(s);
+  return 0;
+}
+
+int render_reconstruction3(const std::string& path, const PointSet& pts, const TriMesh3& mesh) {
+  RenderArgs a;
+  a.out = path;
+  a.quiet = true;
+  return render_mesh_file(a, pts, mesh);
+}
+
+Command add_render_command(CLI::App& app) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "render", "draw a reconstruction (from points), a 2D polygon result (--points) or a 3D mesh as PNG/SVG");
+  add_input_options(cmd, a->in);
+  cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required();
+  cmd->add_option("--points", a->points, "INPUT is a 2D polygon result (.idx .csv .gt) over these points");
+  cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)");
+  cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)");
+  cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");
+  cmd->add_option("--columns", a->columns, "sheet columns (default: about square)");
+  cmd->add_flag("--wireframe", a->wireframe, "3D: draw the triangle edges");
+  cmd->add_option("--up", a->up, "3D: model axis drawn upwards (default z)")->check(CLI::IsMember({"x", "y", "z"}));
+  cmd->add_flag("--no-graph", a->no_graph, "2D: leave out the dashed Delaunay graph");
+  cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction");
+  cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...");
+  cmd->add_option("--animate", a->animate, "2D: write frames of the whole constriction to DIR (frame_NNNN.svg/png)");
+  cmd->add_flag("-q,--quiet", a->quiet, "no summary line");
+  return {cmd, [a] { return run_render(*a); }};
+}
+
+}  // namespace constrict::cli

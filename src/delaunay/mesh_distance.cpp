@@ -1,0 +1,451 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Distances between a reconstruction and a reference (compare.hpp): deterministic grid sampling of
+// one side, exact point-to-primitive distances to the other side through CGAL's AABB tree (Epick),
+// both directions; triangle recovery by exact vertex positions. The only translation unit of the
+// comparison that includes CGAL. Sampling and its accuracy: docs/evaluation.md.
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "constrict/compare.hpp"
+
+namespace constrict {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using P3 = K::Point_3;
+using Tri3 = K::Triangle_3;
+using Seg3 = K::Segment_3;
+using TriTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, std::vector<Tri3>::const_iterator>>>;
+using SegTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, std::vector<Seg3>::const_iterator>>>;
+
+// Fixed block size: the per-element results do not depend on the thread count, and they are
+// reduced serially, so the output is bit-identical on any machine with the same double arithmetic.
+constexpr std::size_t kGrain = 256;
+
+struct Side {
+  double hmax = 0;   // max over samples
+  double mean = 0;   // measure-weighted mean
+  std::size_t samples = 0;
+};
+
+bool ok_options(const DistanceOptions& o) {
+  return std::isfinite(o.relative_spacing) && o.relative_spacing > 0 && o.max_samples > 0;
+}
+
+double dist3(const double* a, const double* b) {
+  const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+// ---- 3D ------------------------------------------------------------------------------------
+struct Mesh {
+  const PointSet& pts;
+  const TriMesh3& m;
+  const double* p(int i) const { return pts[static_cast<std::size_t>(i)]; }
+  double longest(std::size_t t) const {
+    const auto& f = m.triangles[t];
+    return std::max({dist3(p(f[0]), p(f[1])), dist3(p(f[1]), p(f[2])), dist3(p(f[2]), p(f[0]))});
+  }
+};
+
+std::size_t grid_k(double longest, double h) {
+  if (!(longest > 0)) return 1;
+  const double k = std::ceil(longest / h);
+  return k < 1 ? 1 : static_cast<std::size_t>(std::min(k, 1e6));
+}
+
+// Spacing that honours both the wanted relative spacing and the sample budget.
+template <class CountAt>
+double choose_spacing(double h, std::size_t budget, CountAt&& count_at) {
+  for (int it = 0; it < 200 && count_at(h) > budget; ++it) h *= 1.25;
+  return h;
+}
+
+double area3(const double* a, const double* b, const double* c) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+}
+
+// Samples every triangle of `a` on a k×k grid and measures the distance to `tree`. The mean is the
+// exact integral of the piecewise-linear interpolant of the node distances (node weight =
+// incident sub-triangles / 3k² of the triangle's area), divided by the total area.
+// Triangles flagged in `exact` are also triangles of the other mesh: their samples are at distance
+// 0 (no query; exactly 0 for identical meshes instead of rounding noise).
+Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vector<char>& exact) {
+  const std::size_t F = a.m.triangles.size();
+  std::vector<double> tmax(F, 0.0), tint(F, 0.0), tarea(F, 0.0);
+  std::vector<std::size_t> tcount(F, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const auto& f = a.m.triangles[t];
+      const double *A = a.p(f[0]), *B = a.p(f[1]), *C = a.p(f[2]);
+      const double area = area3(A, B, C);
+      const std::size_t k = area > 0 ? grid_k(a.longest(t), h) : 1;
+      double mx = 0, integral = 0;
+      for (std::size_t i = 0; i <= k; ++i)
+        for (std::size_t j = 0; i + j <= k; ++j) {
+          const double s = static_cast<double>(i) / static_cast<double>(k);
+          const double u = static_cast<double>(j) / static_cast<double>(k);
+          const P3 q(A[0] + s * (B[0] - A[0]) + u * (C[0] - A[0]), A[1] + s * (B[1] - A[1]) + u * (C[1] - A[1]),
+                     A[2] + s * (B[2] - A[2]) + u * (C[2] - A[2]));
+          const double d = exact[t] ? 0.0 : std::sqrt(tree.squared_distance(q));
+          mx = std::max(mx, d);
+          // incident sub-triangles: corner 1, edge node 3, interior 6
+          const bool on_i = i == 0, on_j = j == 0, on_d = i + j == k;
+          const int edges = int(on_i) + int(on_j) + int(on_d);
+          const int incident = edges >= 2 ? 1 : (edges == 1 ? 3 : 6);
+          integral += incident * d;
+        }
+      tmax[t] = mx;
+      tint[t] = integral * area / (3.0 * static_cast<double>(k * k));
+      tarea[t] = area;
+      tcount[t] = (k + 1) * (k + 2) / 2;
+    }
+  });
+  Side s;
+  double total = 0, integral = 0;
+  for (std::size_t t = 0; t < F; ++t) {
+    s.hmax = std::max(s.hmax, tmax[t]);
+    integral += tint[t];
+    total += tarea[t];
+    s.samples += tcount[t];
+  }
+  s.mean = total > 0 ? integral / total : 0;
+  return s;
+}
+
+std::size_t count3(const Mesh& a, double h) {
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < a.m.triangles.size(); ++t) {
+    const std::size_t k = grid_k(a.longest(t), h);
+    n += (k + 1) * (k + 2) / 2;
+  }
+  return n;
+}
+
+Status check_mesh(const PointSet& pts, const TriMesh3& m, const char* what) {
+  if (pts.dim != 3) return {StatusCode::InvalidArgument, std::string(what) + ": mesh comparison needs 3D points"};
+  for (const auto& t : m.triangles)
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= pts.size())
+        return {StatusCode::InvalidArgument, std::string(what) + ": vertex index " + std::to_string(v) + " out of range"};
+  return Status::ok();
+}
+
+std::vector<Tri3> triangles_of(const Mesh& a) {
+  std::vector<Tri3> out;
+  out.reserve(a.m.triangles.size());
+  for (const auto& f : a.m.triangles) {
+    const double *A = a.p(f[0]), *B = a.p(f[1]), *C = a.p(f[2]);
+    if (area3(A, B, C) > 0) out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
+  }
+  return out;
+}
+
+// Exact position keys (-0 and +0 are the same point).
+struct PosKey {
+  std::array<double, 3> c;
+  bool operator==(const PosKey& o) const { return c == o.c; }
+};
+struct PosHash {
+  std::size_t operator()(const PosKey& k) const noexcept {
+    std::uint64_t h = 1469598103934665603ull;
+    for (double v : k.c) {
+      std::uint64_t b;
+      std::memcpy(&b, &v, 8);
+      h = (h ^ b) * 1099511628211ull;
+      h ^= h >> 29;
+    }
+    return static_cast<std::size_t>(h);
+  }
+};
+PosKey key_of(const double* p) { return {{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0}}; }
+
+std::array<int, 3> sorted(std::array<int, 3> t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+}  // namespace
+
+Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, const PointSet& reference_points,
+                       const TriMesh3& reference, MeshDistance& out, const DistanceOptions& options) {
+  if (!ok_options(options)) return {StatusCode::InvalidArgument, "distance options: spacing must be > 0 and finite, max_samples > 0"};
+  if (Status s = check_mesh(result_points, result, "result"); !s) return s;
+  if (Status s = check_mesh(reference_points, reference, "reference"); !s) return s;
+  const Mesh A{result_points, result}, B{reference_points, reference};
+  const std::vector<Tri3> ta = triangles_of(A), tb = triangles_of(B);
+  if (ta.empty()) return {StatusCode::InvalidArgument, "result: no triangle with a positive area"};
+  if (tb.empty()) return {StatusCode::InvalidArgument, "reference: no triangle with a positive area"};
+
+  MeshDistance d;
+  // Reference bounding box over the used vertices.
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<double>::max(), hi[k] = -lo[k];
+  for (const auto& f : reference.triangles)
+    for (int v : f)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], B.p(v)[k]);
+        hi[k] = std::max(hi[k], B.p(v)[k]);
+      }
+  d.bbox_diagonal = dist3(lo, hi);
+
+  // Matching by exact vertex positions.
+  std::unordered_map<PosKey, int, PosHash> ids;
+  ids.reserve(result_points.size());
+  for (std::size_t i = 0; i < result_points.size(); ++i) ids.emplace(key_of(result_points[i]), static_cast<int>(i));
+  std::vector<int> map(reference_points.size(), -1);
+  std::vector<char> used(reference_points.size(), 0);
+  for (const auto& f : reference.triangles)
+    for (int v : f) used[static_cast<std::size_t>(v)] = 1;
+  for (std::size_t i = 0; i < reference_points.size(); ++i) {
+    const auto it = ids.find(key_of(reference_points[i]));
+    if (it != ids.end()) map[i] = it->second;
+    if (used[i] && it != ids.end()) ++d.matched_vertices;
+  }
+  // Result triangles expressed in canonical result ids (the first vertex with a position).
+  std::vector<std::array<int, 3>> rt, bt;
+  std::vector<std::array<int, 3>> canon_a, canon_b;
+  canon_a.reserve(result.triangles.size());
+  for (const auto& f : result.triangles)
+    canon_a.push_back(sorted({{ids.at(key_of(A.p(f[0]))), ids.at(key_of(A.p(f[1]))), ids.at(key_of(A.p(f[2])))}}));
+  rt = canon_a;
+  std::sort(rt.begin(), rt.end());
+  rt.erase(std::unique(rt.begin(), rt.end()), rt.end());
+  std::size_t unmatched = 0;
+  for (const auto& f : reference.triangles) {
+    const std::array<int, 3> m{{map[static_cast<std::size_t>(f[0])], map[static_cast<std::size_t>(f[1])],
+                                map[static_cast<std::size_t>(f[2])]}};
+    if (m[0] < 0 || m[1] < 0 || m[2] < 0) {
+      ++unmatched;
+      canon_b.push_back({{-1, -1, -1}});
+      continue;
+    }
+    canon_b.push_back(sorted(m));
+    bt.push_back(canon_b.back());
+  }
+  std::sort(bt.begin(), bt.end());
+  bt.erase(std::unique(bt.begin(), bt.end()), bt.end());
+  std::size_t common = 0;
+  for (const auto& t : bt)
+    if (std::binary_search(rt.begin(), rt.end(), t)) ++common;
+  std::vector<char> exact_a(result.triangles.size(), 0), exact_b(reference.triangles.size(), 0);
+  for (std::size_t i = 0; i < result.triangles.size(); ++i)
+    exact_a[i] = std::binary_search(bt.begin(), bt.end(), canon_a[i]);
+  for (std::size_t i = 0; i < reference.triangles.size(); ++i)
+    exact_b[i] = canon_b[i][0] >= 0 && std::binary_search(rt.begin(), rt.end(), canon_b[i]);
+  d.reference_triangles = reference.triangles.size();
+  d.result_triangles = result.triangles.size();
+  d.recovered_triangles = common;
+  d.triangle_recovery = static_cast<double>(common) / static_cast<double>(d.reference_triangles);
+  d.triangle_precision = static_cast<double>(common) / static_cast<double>(d.result_triangles);
+  d.identical = unmatched == 0 && common == rt.size() && common == bt.size();
+
+  // Distances.
+  TriTree tree_a(ta.begin(), ta.end()), tree_b(tb.begin(), tb.end());
+  tree_a.build();
+  tree_b.build();
+  tree_a.accelerate_distance_queries();
+  tree_b.accelerate_distance_queries();
+  const double h0 = options.relative_spacing * d.bbox_diagonal;
+  d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count3(A, h); });
+  d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count3(B, h); });
+  const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
+  const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
+  d.hausdorff_result_to_reference = ab.hmax;
+  d.hausdorff_reference_to_result = ba.hmax;
+  d.hausdorff = std::max(ab.hmax, ba.hmax);
+  d.mean_result_to_reference = ab.mean;
+  d.mean_reference_to_result = ba.mean;
+  d.mean = 0.5 * (ab.mean + ba.mean);
+  d.samples_result = ab.samples;
+  d.samples_reference = ba.samples;
+  if (d.bbox_diagonal > 0) {
+    d.relative_hausdorff = d.hausdorff / d.bbox_diagonal;
+    d.relative_mean = d.mean / d.bbox_diagonal;
+  }
+  out = d;
+  return Status::ok();
+}
+
+// ---- 2D ------------------------------------------------------------------------------------
+namespace {
+
+struct Seg2 {
+  double a[2], b[2];
+  double length() const { return std::hypot(b[0] - a[0], b[1] - a[1]); }
+};
+
+Status segments_of(const std::vector<Polyline2>& lines, const char* what, std::vector<Seg2>& out) {
+  out.clear();
+  for (const auto& l : lines) {
+    if (l.xy.size() % 2 != 0) return {StatusCode::InvalidArgument, std::string(what) + ": odd coordinate count"};
+    for (double v : l.xy)
+      if (!std::isfinite(v)) return {StatusCode::InvalidArgument, std::string(what) + ": non-finite coordinate"};
+    const std::size_t n = l.xy.size() / 2;
+    const std::size_t m = l.closed && n > 2 ? n : (n > 0 ? n - 1 : 0);
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t j = (i + 1) % n;
+      out.push_back({{l.xy[2 * i], l.xy[2 * i + 1]}, {l.xy[2 * j], l.xy[2 * j + 1]}});
+    }
+  }
+  if (out.empty()) return {StatusCode::InvalidArgument, std::string(what) + ": no segment"};
+  return Status::ok();
+}
+
+std::size_t count2(const std::vector<Seg2>& s, double h) {
+  std::size_t n = 0;
+  for (const auto& g : s) n += grid_k(g.length(), h) + 1;
+  return n;
+}
+
+// Trapezoid rule on the k+1 nodes of each segment: the exact integral of the piecewise-linear
+// interpolant of the node distances.
+// Segments flagged in `exact` are also segments of the other side: distance 0 without a query.
+Side sample2(const std::vector<Seg2>& s, const SegTree& tree, double h, const std::vector<char>& exact) {
+  const std::size_t M = s.size();
+  std::vector<double> smax(M, 0.0), sint(M, 0.0), slen(M, 0.0);
+  std::vector<std::size_t> scount(M, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, M, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Seg2& g = s[i];
+      const double len = g.length();
+      const std::size_t k = grid_k(len, h);
+      double mx = 0, sum = 0;
+      for (std::size_t j = 0; j <= k; ++j) {
+        const double t = static_cast<double>(j) / static_cast<double>(k);
+        const P3 q(g.a[0] + t * (g.b[0] - g.a[0]), g.a[1] + t * (g.b[1] - g.a[1]), 0.0);
+        const double d = exact[i] ? 0.0 : std::sqrt(tree.squared_distance(q));
+        mx = std::max(mx, d);
+        sum += (j == 0 || j == k) ? 0.5 * d : d;
+      }
+      smax[i] = mx;
+      sint[i] = sum / static_cast<double>(k) * len;
+      slen[i] = len;
+      scount[i] = k + 1;
+    }
+  });
+  Side out;
+  double total = 0, integral = 0;
+  for (std::size_t i = 0; i < M; ++i) {
+    out.hmax = std::max(out.hmax, smax[i]);
+    integral += sint[i];
+    total += slen[i];
+    out.samples += scount[i];
+  }
+  out.mean = total > 0 ? integral / total : 0;
+  return out;
+}
+
+// Unordered endpoint coordinates, -0 folded into +0: equal keys are the same segment.
+std::array<double, 4> seg_key(const Seg2& g) {
+  std::array<double, 4> k{{g.a[0] + 0.0, g.a[1] + 0.0, g.b[0] + 0.0, g.b[1] + 0.0}};
+  if (std::make_pair(k[2], k[3]) < std::make_pair(k[0], k[1])) k = {{k[2], k[3], k[0], k[1]}};
+  return k;
+}
+
+std::vector<char> shared_segments(const std::vector<Seg2>& s, const std::vector<Seg2>& other) {
+  std::vector<std::array<double, 4>> keys;
+  keys.reserve(other.size());
+  for (const auto& g : other) keys.push_back(seg_key(g));
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> out(s.size(), 0);
+  for (std::size_t i = 0; i < s.size(); ++i) out[i] = std::binary_search(keys.begin(), keys.end(), seg_key(s[i]));
+  return out;
+}
+
+std::vector<Seg3> seg3_of(const std::vector<Seg2>& s) {
+  std::vector<Seg3> out;
+  out.reserve(s.size());
+  for (const auto& g : s)
+    if (g.length() > 0) out.emplace_back(P3(g.a[0], g.a[1], 0.0), P3(g.b[0], g.b[1], 0.0));
+  return out;
+}
+
+}  // namespace
+
+Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<Polyline2>& reference,
+                       CurveDistance2& out, const DistanceOptions& options) {
+  if (!ok_options(options)) return {StatusCode::InvalidArgument, "distance options: spacing must be > 0 and finite, max_samples > 0"};
+  std::vector<Seg2> sa, sb;
+  if (Status st = segments_of(result, "result", sa); !st) return st;
+  if (Status st = segments_of(reference, "reference", sb); !st) return st;
+  const std::vector<Seg3> ga = seg3_of(sa), gb = seg3_of(sb);
+  if (ga.empty() || gb.empty()) return {StatusCode::InvalidArgument, "a curve has only zero-length segments"};
+  CurveDistance2 d;
+  double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()}, hi[2] = {-lo[0], -lo[1]};
+  for (const auto& g : sb)
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = std::min({lo[k], g.a[k], g.b[k]});
+      hi[k] = std::max({hi[k], g.a[k], g.b[k]});
+    }
+  d.bbox_diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  SegTree ta(ga.begin(), ga.end()), tb(gb.begin(), gb.end());
+  ta.build();
+  tb.build();
+  ta.accelerate_distance_queries();
+  tb.accelerate_distance_queries();
+  const double h0 = options.relative_spacing * d.bbox_diagonal;
+  d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sa, h); });
+  d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sb, h); });
+  const Side ab = sample2(sa, tb, d.spacing_result, shared_segments(sa, sb));
+  const Side ba = sample2(sb, ta, d.spacing_reference, shared_segments(sb, sa));
+  d.hausdorff_result_to_reference = ab.hmax;
+  d.hausdorff_reference_to_result = ba.hmax;
+  d.hausdorff = std::max(ab.hmax, ba.hmax);
+  d.mean_result_to_reference = ab.mean;
+  d.mean_reference_to_result = ba.mean;
+  d.mean = 0.5 * (ab.mean + ba.mean);
+  d.samples_result = ab.samples;
+  d.samples_reference = ba.samples;
+  if (d.bbox_diagonal > 0) {
+    d.relative_hausdorff = d.hausdorff / d.bbox_diagonal;
+    d.relative_mean = d.mean / d.bbox_diagonal;
+  }
+  out = d;
+  return Status::ok();
+}
+
+std::vector<Polyline2> reference_polylines2(const PointSet& points, const Reference2& reference) {
+  std::vector<Polyline2> out;
+  const auto add = [&](const std::vector<int>& ids, bool closed) {
+    Polyline2 l;
+    l.closed = closed;
+    for (int i : ids) {
+      l.xy.push_back(points[static_cast<std::size_t>(i)][0]);
+      l.xy.push_back(points[static_cast<std::size_t>(i)][1]);
+    }
+    out.push_back(std::move(l));
+  };
+  for (const auto& c : reference.closed) add(c, true);
+  for (const auto& o : reference.open) add(o, false);
+  return out;
+}
+
+Polyline2 polygon_polyline2(const PointSet& points, const std::vector<int>& polygon) {
+  Polyline2 l;
+  for (int i : polygon) {
+    l.xy.push_back(points[static_cast<std::size_t>(i)][0]);
+    l.xy.push_back(points[static_cast<std::size_t>(i)][1]);
+  }
+  return l;
+}
+
+}  // namespace constrict
