@@ -64,6 +64,8 @@ struct Constrict3Options {
     Constrict3Options o;
     o.two_face_key = TwoFaceKey::Sum;
     o.refine = Refine3::None;
+    o.size_bias_candidates.clear();
+    o.size_bias = 0;
     return o;
   }
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
@@ -79,6 +81,11 @@ struct Constrict3Options {
   /// Size bias of the constriction key: key += size_bias · ln(max(1, r)) with r the largest
   /// bridge ratio (see bridge_ratio) of the tetrahedron's surface faces. 0 = the γ key alone.
   double size_bias = 0.0;
+  /// reconstruct3() with two or more candidates runs one constriction per size_bias value
+  /// (sharing the Delaunay tetrahedralization, in parallel) and keeps the complete surface with the
+  /// smallest area (docs/reconstruction-3d.md §4.5). Empty or one value: a single run with
+  /// size_bias (or the one value). The step-able Constrictor3 always does a single run.
+  std::vector<double> size_bias_candidates = {0.25, 1.0};
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
@@ -97,6 +104,14 @@ struct Constrict3Stage {
   std::string name;          ///< "hull", "gamma", "cavity", "sculpt", "refine"
   std::size_t placed = 0;    ///< points that joined the boundary in this stage
   std::size_t removed = 0;   ///< tetrahedra removed in this stage
+};
+
+/// One size-bias candidate of reconstruct3() (Constrict3Options::size_bias_candidates).
+struct Constrict3Candidate {
+  double size_bias = 0;
+  double surface_area = 0;
+  bool complete = false;
+  double ms = 0;  ///< constriction + fallback + post-passes of this candidate
 };
 
 /// Result of reconstruct3().
@@ -122,6 +137,8 @@ struct Mesh3Result {
   std::size_t non_delaunay_tets = 0;      ///< body tetrahedra made by the fallback
   std::size_t delaunay_tets = 0;          ///< tetrahedra of the Delaunay tetrahedralization
   double volume = 0, surface_area = 0;    ///< of the final surface (double arithmetic)
+  double size_bias = 0;                   ///< size bias of the run that produced this result
+  std::vector<Constrict3Candidate> candidates;  ///< every candidate run (empty: single run)
   double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_refine = 0, ms_validate = 0;
 };
 
@@ -174,6 +191,11 @@ class Constrictor3 {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  static Status finish_impl(Impl& s, Mesh3Result& r, bool validate);
+  static void validate_result(Impl& s, Mesh3Result& r);
+  Status run_candidates(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
+                        Constrict3Visitor* visitor);
+  friend Status reconstruct3(const PointSet&, const Constrict3Options&, Mesh3Result&, Constrict3Visitor*);
 };
 
 /// Reconstructs a closed genus-0 polyhedron through all points (3D).

@@ -3,6 +3,10 @@
 // star-cavity fallback after a lock (paper §4.3) and the optional two-face sculpting post-pass
 // (paper §4.2, candlestick). See docs/reconstruction-3d.md for the algorithm and guarantees.
 #include <algorithm>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -66,7 +70,10 @@ struct Constrictor3::Impl {
   Constrict3Visitor* visitor = nullptr;
   bool ready = false;
 
-  DelaunayGamma3 dg;                         // faces + simplex_face of the Delaunay tets
+  // Faces + simplex_face of the Delaunay tets: read-only after init, shared by the copies of
+  // this state that reconstruct3() runs for its size-bias candidates.
+  std::shared_ptr<const DelaunayGamma3> dgp;
+  const DelaunayGamma3& dg() const { return *dgp; }
   std::vector<std::array<int, 4>> tets;      // Delaunay tets, then fallback tets appended
   std::vector<std::array<int, 4>> nbr;       // neighbor across the face opposite vertex i
   std::size_t T0 = 0;                        // number of Delaunay tets
@@ -79,6 +86,7 @@ struct Constrictor3::Impl {
   std::size_t removed = 0, removed1 = 0, removed2 = 0, removed_sculpt = 0;
   bool bridge_keys = false;                  // heap keys are face_bridge() (Sculpt3::Bridges)
   std::vector<double> spacing;               // nearest-neighbour distance per vertex
+  std::shared_ptr<const std::vector<double>> face_log;  // ln bridge ratio per Delaunay face
   bool locked_now = false, stopped = false, first_lock = false;
   std::vector<int> stuck;
   double ms_delaunay = 0, ms_constrict = 0;
@@ -115,14 +123,14 @@ struct Constrictor3::Impl {
   double face_term(int t, int i) const {
     const auto& v = tets[uz(t)];
     if (uz(t) < T0) {
-      const int f = dg.simplex_face[uz(t)][uz(i)];
+      const int f = dg().simplex_face[uz(t)][uz(i)];
       std::array<std::pair<int, int>, 3> fv{};
       int k = 0;
       for (int l = 0; l < 4; ++l)
         if (l != i) fv[uz(k++)] = {v[uz(l)], l};
       std::sort(fv.begin(), fv.end());
       const int side = parity4(fv[0].second, fv[1].second, fv[2].second, i);
-      const double g = side > 0 ? dg.faces.gamma_a[uz(f)] : dg.faces.gamma_b[uz(f)];
+      const double g = side > 0 ? dg().faces.gamma_a[uz(f)] : dg().faces.gamma_b[uz(f)];
       return 1.0 - g;
     }
     const int* fo = kFaceOut[i];
@@ -174,6 +182,29 @@ struct Constrictor3::Impl {
     const double h = std::max({spacing[uz(a)], spacing[uz(b)], spacing[uz(c)]});
     return h > 0 ? longest / h : 0;
   }
+  // ln(max(1, face_bridge)) of the face opposite i: precomputed for the Delaunay faces (shared by
+  // the candidate runs), computed on the fly for fallback tetrahedra.
+  double face_log_ratio(int t, int i) const {
+    if (uz(t) < T0 && face_log) return (*face_log)[uz(dg().simplex_face[uz(t)][uz(i)])];
+    return std::log(std::max(1.0, face_bridge(t, i)));
+  }
+  void compute_face_log() {
+    const GammaFaces& f = dg().faces;
+    auto out = std::make_shared<std::vector<double>>(f.size(), 0.0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const int a = f.vertex(k, 0), b = f.vertex(k, 1), c = f.vertex(k, 2);
+        const auto d2 = [&](int x, int y) {
+          const double dx = P(x)[0] - P(y)[0], dy = P(x)[1] - P(y)[1], dz = P(x)[2] - P(y)[2];
+          return dx * dx + dy * dy + dz * dz;
+        };
+        const double longest = std::sqrt(std::max({d2(a, b), d2(b, c), d2(c, a)}));
+        const double h = std::max({spacing[uz(a)], spacing[uz(b)], spacing[uz(c)]});
+        (*out)[k] = h > 0 ? std::log(std::max(1.0, longest / h)) : 0.0;
+      }
+    });
+    face_log = std::move(out);
+  }
   void compute_spacing() {
     spacing.assign(n, HUGE_VAL);
     for (std::size_t t = 0; t < T0; ++t) {
@@ -186,6 +217,15 @@ struct Constrictor3::Impl {
           spacing[uz(a)] = std::min(spacing[uz(a)], l);
           spacing[uz(b)] = std::min(spacing[uz(b)], l);
         }
+    }
+  }
+
+  // The initial heap: the tetrahedra on the convex hull.
+  void start_heap() {
+    heap.clear();
+    for (std::size_t t = 0; t < T0; ++t) {
+      const auto& nb = nbr[t];
+      if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0 || nb[3] < 0) try_push(static_cast<int>(t));
     }
   }
 
@@ -210,9 +250,9 @@ struct Constrictor3::Impl {
         *key = opt.two_face_key == TwoFaceKey::Sum ? *key + k2 : std::max(*key, k2);
       }
       if (opt.size_bias > 0) {
-        double ratio = face_bridge(t, bi[0]);
-        if (nb == 2) ratio = std::max(ratio, face_bridge(t, bi[1]));
-        *key += opt.size_bias * std::log(std::max(1.0, ratio));
+        double lr = face_log_ratio(t, bi[0]);
+        if (nb == 2) lr = std::max(lr, face_log_ratio(t, bi[1]));
+        *key += opt.size_bias * lr;
       }
     }
     return r;
@@ -690,12 +730,17 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.visitor = visitor;
   s.n = points.size();
   const auto t0 = Clock::now();
-  if (Status st = delaunay_gamma3(points, s.dg); !st) return st;
+  auto dg = std::make_shared<DelaunayGamma3>();
+  if (Status st = delaunay_gamma3(points, *dg); !st) return st;
   s.ms_delaunay = ms_since(t0);
-  s.tets = std::move(s.dg.dt.tets);
-  s.nbr = std::move(s.dg.dt.neighbors);
+  s.tets = std::move(dg->dt.tets);
+  s.nbr = std::move(dg->dt.neighbors);
+  s.dgp = std::move(dg);
   s.T0 = s.tets.size();
-  if (s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges) s.compute_spacing();
+  if (s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges || !s.opt.size_bias_candidates.empty()) {
+    s.compute_spacing();
+    s.compute_face_log();
+  }
   s.state.assign(s.T0, kAlive);
   s.ver.assign(s.T0, 0);
   s.mark.assign(s.T0, 0);
@@ -709,10 +754,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
         }
   s.n_hull = s.n_onb;
   s.heap.reserve(s.T0 / 4 + 16);
-  for (std::size_t t = 0; t < s.T0; ++t) {
-    const auto& nb = s.nbr[t];
-    if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0 || nb[3] < 0) s.try_push(static_cast<int>(t));
-  }
+  s.start_heap();
   s.ready = true;
   return Status::ok();
 }
@@ -723,10 +765,12 @@ TriMesh3 Constrictor3::surface() const { return impl_->surface(); }
 
 std::vector<int> Constrictor3::inside_points() const { return impl_->inside(); }
 
-Status Constrictor3::finish(Mesh3Result& r) {
-  Impl& s = *impl_;
+Status Constrictor3::finish(Mesh3Result& r) { return finish_impl(*impl_, r, impl_->opt.validate); }
+
+Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   if (!s.ready) return {StatusCode::Internal, "Constrictor3::finish before a successful init"};
   r = Mesh3Result{};
+  r.size_bias = s.opt.size_bias;
   r.ms_delaunay = s.ms_delaunay;
   r.delaunay_tets = s.T0;
   auto stage_event = [&](const char* name) {
@@ -789,22 +833,6 @@ Status Constrictor3::finish(Mesh3Result& r) {
     r.ms_sculpt = ms_since(t0);
     r.stages.push_back({"sculpt", 0, s.removed_sculpt});
   }
-  if (r.complete && s.opt.sculpt == Sculpt3::Bridges) {
-    stage_event("sculpt");
-    t0 = Clock::now();
-    const std::size_t rem0 = s.removed;
-    s.bridge_keys = true;
-    s.heap.clear();
-    for (std::size_t t = 0; t < s.tets.size(); ++t)
-      if (s.state[t] == kAlive) s.try_push(static_cast<int>(t));
-    while (s.pop_and_remove(s.opt.bridge_ratio, "sculpt")) {
-    }
-    s.bridge_keys = false;
-    s.heap.clear();
-    s.removed_sculpt = s.removed - rem0;
-    r.ms_sculpt = ms_since(t0);
-    r.stages.push_back({"sculpt", 0, s.removed_sculpt});
-  }
   // (4) Refine3 flip post-pass (complete surfaces only).
   if (r.complete && s.opt.refine != Refine3::None) {
     stage_event("refine");
@@ -823,6 +851,23 @@ Status Constrictor3::finish(Mesh3Result& r) {
     r.ms_refine = ms_since(t0);
     r.stages.push_back({"refine", 0, s.refine_removed});
   }
+  // (5) Bridge sculpting after the flips (the area flips keep big bridging faces).
+  if (r.complete && s.opt.sculpt == Sculpt3::Bridges) {
+    stage_event("sculpt");
+    t0 = Clock::now();
+    const std::size_t rem0 = s.removed;
+    s.bridge_keys = true;
+    s.heap.clear();
+    for (std::size_t t = 0; t < s.tets.size(); ++t)
+      if (s.state[t] == kAlive) s.try_push(static_cast<int>(t));
+    while (s.pop_and_remove(s.opt.bridge_ratio, "sculpt")) {
+    }
+    s.bridge_keys = false;
+    s.heap.clear();
+    s.removed_sculpt = s.removed - rem0;
+    r.ms_sculpt = ms_since(t0);
+    r.stages.push_back({"sculpt", 0, s.removed_sculpt});
+  }
   r.refine_added = s.refine_added;
   r.refine_removed = s.refine_removed;
   r.removed_one_face = s.removed1;
@@ -839,25 +884,79 @@ Status Constrictor3::finish(Mesh3Result& r) {
     }
   r.volume = mesh_volume(*s.pts, r.mesh);
   r.surface_area = mesh_area(*s.pts, r.mesh);
-  if (s.opt.validate) {
-    t0 = Clock::now();
-    s.check_body();
-    MeshCheckOptions mo;
-    mo.require_all_points = r.complete;
-    mo.self_intersections = s.opt.validate_self_intersections;
-    MeshCheck mc;
-    const Status vs = validate_mesh3(*s.pts, r.mesh, &mc, mo);
-    CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
-    r.ms_validate = ms_since(t0);
-  }
+  if (validate) validate_result(s, r);
   return Status::ok();
+}
+
+void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
+  const auto t0 = Clock::now();
+  s.check_body();
+  MeshCheckOptions mo;
+  mo.require_all_points = r.complete;
+  mo.self_intersections = s.opt.validate_self_intersections;
+  MeshCheck mc;
+  const Status vs = validate_mesh3(*s.pts, r.mesh, &mc, mo);
+  CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
+  r.ms_validate = ms_since(t0);
 }
 
 Status reconstruct3(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
                     Constrict3Visitor* visitor) {
   Constrictor3 c;
-  if (Status s = c.init(points, options, visitor); !s) return s;
-  return c.finish(result);
+  const std::vector<double>& cand = options.size_bias_candidates;
+  if (cand.size() < 2 || options.stop_after != SIZE_MAX) {
+    Constrict3Options o = options;
+    if (!cand.empty()) o.size_bias = cand[0];
+    if (Status s = c.init(points, o, visitor); !s) return s;
+    return c.finish(result);
+  }
+  for (double b : cand)
+    if (!(b >= 0 && b <= 100)) return {StatusCode::InvalidArgument, "size_bias_candidates must be in [0, 100]"};
+  return c.run_candidates(points, options, result, visitor);
+}
+
+// One constriction per size-bias candidate from the same Delaunay tetrahedralization (shared,
+// read-only), in parallel; the complete result with the smallest surface area wins, ties -> the
+// earlier candidate (docs/reconstruction-3d.md §4.5). Each run is independent and sequential, so
+// the choice does not depend on the thread count.
+Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Options& options,
+                                    Mesh3Result& result, Constrict3Visitor* visitor) {
+  Constrict3Options o = options;
+  o.size_bias = options.size_bias_candidates[0];
+  if (Status s = init(points, o, nullptr); !s) return s;
+  if (visitor) {
+    Constrict3Event e;
+    e.kind = Constrict3Event::Kind::StageBegin;
+    e.stage = "candidates";
+    visitor->on_event(e);
+  }
+  const std::vector<double>& cand = options.size_bias_candidates;
+  const std::size_t k = cand.size();
+  std::vector<Mesh3Result> res(k);
+  std::vector<std::unique_ptr<Impl>> runs(k);
+  std::vector<Status> st(k);
+  tbb::parallel_for(std::size_t(0), k, [&](std::size_t i) {
+    runs[i] = std::make_unique<Impl>(*impl_);
+    runs[i]->opt.size_bias = cand[i];
+    runs[i]->start_heap();
+    st[i] = finish_impl(*runs[i], res[i], false);
+    // Keep only what the winner needs: the choice uses the result alone.
+  });
+  std::size_t best = k;
+  for (std::size_t i = 0; i < k; ++i) {
+    if (!st[i]) return st[i];
+    if (best == k || (res[i].complete && !res[best].complete) ||
+        (res[i].complete == res[best].complete && res[i].surface_area < res[best].surface_area))
+      best = i;
+  }
+  std::vector<Constrict3Candidate> summary;
+  for (std::size_t i = 0; i < k; ++i)
+    summary.push_back({cand[i], res[i].surface_area, res[i].complete, res[i].ms_constrict + res[i].ms_fallback +
+                                                                           res[i].ms_sculpt + res[i].ms_refine});
+  result = std::move(res[best]);
+  result.candidates = std::move(summary);
+  if (options.validate) validate_result(*runs[best], result);
+  return Status::ok();
 }
 
 }  // namespace constrict

@@ -154,7 +154,8 @@ TEST(Constrict3Eval, DISABLED_Table) {
                             {"max+sb1+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 1},
                             {"max+sb2+alt", TwoFaceKey::Max, Refine3::Alternate, Sculpt3::None, 0, 2},
                             {"max+sb0.5", TwoFaceKey::Max, Refine3::None, Sculpt3::None, 0, 0.5},
-                            {"max+sb1", TwoFaceKey::Max, Refine3::None, Sculpt3::None, 0, 1}};
+                            {"max+sb1", TwoFaceKey::Max, Refine3::None, Sculpt3::None, 0, 1},
+                            {"auto", TwoFaceKey::Max, Refine3::Alternate}};
   // CONSTRICT_EVAL_CONFIGS=name,name,... restricts the table to those configurations.
   const char* only = std::getenv("CONSTRICT_EVAL_CONFIGS");
   const std::string filter = only ? "," + std::string(only) + "," : "";
@@ -169,6 +170,8 @@ TEST(Constrict3Eval, DISABLED_Table) {
       o.sculpt = c.sculpt;
       if (c.bridge_ratio > 0) o.bridge_ratio = c.bridge_ratio;
       o.size_bias = c.size_bias;
+      o.size_bias_candidates.clear();
+      if (std::string(c.name) == "auto") o = Constrict3Options{};
       Row w;
       if (evaluate(name, o, w)) std::cout << format_row(name, c.name, w) << std::endl;
     }
