@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +57,7 @@ struct Row {
   double recall = -1;
   // 3D ground truth
   double tri_recovered = -1, area_ratio = -1, volume_ratio = -1;
+  double roughness = -1, gt_roughness = -1;  // mean angle between the normals of adjacent faces (deg)
   double ms_total = 0, ms_method = 0;  // wall time of the library call; method part (no Delaunay)
   std::string note;                    // seeds for the skeleton
 };
@@ -106,6 +108,39 @@ bool read_off_faces(const fs::path& path, std::vector<std::array<int, 3>>& faces
     faces.push_back(t);
   }
   return true;
+}
+
+// Roughness: mean angle (degrees) between the normals of the two faces of every edge.
+double mean_normal_angle(const PointSet& p, const TriMesh3& m) {
+  std::map<std::pair<int, int>, std::vector<std::size_t>> edges;
+  std::vector<std::array<double, 3>> nrm(m.triangles.size());
+  for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+    const auto& t = m.triangles[f];
+    const double* a = p[static_cast<std::size_t>(t[0])];
+    const double* b = p[static_cast<std::size_t>(t[1])];
+    const double* c = p[static_cast<std::size_t>(t[2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    std::array<double, 3> n{{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}};
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (l > 0)
+      for (double& x : n) x /= l;
+    nrm[f] = n;
+    for (int i = 0; i < 3; ++i) {
+      const int x = t[static_cast<std::size_t>(i)], y = t[static_cast<std::size_t>((i + 1) % 3)];
+      edges[{std::min(x, y), std::max(x, y)}].push_back(f);
+    }
+  }
+  double sum = 0;
+  std::size_t k = 0;
+  for (const auto& e : edges) {
+    if (e.second.size() != 2) continue;
+    const auto& a = nrm[e.second[0]];
+    const auto& b = nrm[e.second[1]];
+    const double d = std::max(-1.0, std::min(1.0, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]));
+    sum += std::acos(d) * 180.0 / 3.14159265358979323846;
+    ++k;
+  }
+  return k ? sum / static_cast<double>(k) : -1;
 }
 
 void run2(const Input& in, const PointSet& p, const std::string& method, std::size_t seed_limit, Row& row) {
@@ -204,9 +239,12 @@ void run3(const Input& in, const PointSet& p, const std::string& method, std::si
     hit += ours.count(t);
   }
   row.tri_recovered = gt.triangles.empty() ? 0 : static_cast<double>(hit) / static_cast<double>(gt.triangles.size());
-  const double ga = mesh_area(p, gt), gv = mesh_volume(p, gt);
+  // |volume|: some GT meshes are oriented inward.
+  const double ga = mesh_area(p, gt), gv = std::abs(mesh_volume(p, gt));
   row.area_ratio = ga > 0 ? mesh_area(p, mesh) / ga : -1;
-  row.volume_ratio = gv != 0 ? mesh_volume(p, mesh) / gv : -1;
+  row.volume_ratio = gv > 0 ? std::abs(mesh_volume(p, mesh)) / gv : -1;
+  row.roughness = mean_normal_angle(p, mesh);
+  row.gt_roughness = mean_normal_angle(p, gt);
 }
 
 std::string fmt(double v, const char* f = "%.3f") {
@@ -218,12 +256,12 @@ std::string fmt(double v, const char* f = "%.3f") {
 
 void write_csv(std::ostream& o, const std::vector<Row>& rows) {
   o << "dir,name,dim,n,method,ok,complete,valid,on_boundary,gt,gt_single,exact,edge_recall,tri_recovered,"
-       "area_ratio,volume_ratio,hausdorff,ms_total,ms_method,note,error\n";
+       "area_ratio,volume_ratio,roughness_deg,gt_roughness_deg,hausdorff,ms_total,ms_method,note,error\n";
   for (const Row& r : rows)
     o << r.dir << ',' << r.name << ',' << r.dim << ',' << r.n << ',' << r.method << ',' << r.ok << ',' << r.complete
       << ',' << r.valid << ',' << r.on_boundary << ',' << r.gt << ',' << r.gt_single << ',' << r.exact << ','
       << fmt(r.recall, "%.4f") << ',' << fmt(r.tri_recovered, "%.4f") << ',' << fmt(r.area_ratio, "%.4f") << ','
-      << fmt(r.volume_ratio, "%.4f") << ",n/a," << fmt(r.ms_total, "%.1f") << ',' << fmt(r.ms_method, "%.1f") << ",\""
+      << fmt(r.volume_ratio, "%.4f") << ',' << fmt(r.roughness, "%.2f") << ',' << fmt(r.gt_roughness, "%.2f") << ",n/a," << fmt(r.ms_total, "%.1f") << ',' << fmt(r.ms_method, "%.1f") << ",\""
       << r.note << "\",\"" << r.error << "\"\n";
 }
 
@@ -237,12 +275,12 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
       o << "| method | sets | valid & complete | incomplete | failed | exact GT match (single-curve GT) | mean GT edge recall | total ms | method ms (no Delaunay) |\n"
            "|---|---|---|---|---|---|---|---|---|\n";
     } else {
-      o << "| method | models | valid & complete | incomplete | failed | mean GT triangles recovered | mean area / GT | mean volume / GT | Hausdorff | total ms | method ms (no Delaunay) |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|\n";
+      o << "| method | models | valid & complete | incomplete | failed | mean GT triangles recovered | mean area / GT | mean volume / GT | mean normal angle° (GT) | Hausdorff | total ms | method ms (no Delaunay) |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     }
     for (const std::string& m : methods) {
       std::size_t sets = 0, valid = 0, incomplete = 0, failed = 0, single = 0, exact = 0, gt = 0;
-      double recall = 0, tri = 0, area = 0, vol = 0, ms = 0, msm = 0;
+      double recall = 0, tri = 0, area = 0, vol = 0, rough = 0, grough = 0, ms = 0, msm = 0;
       for (const Row* r : rs) {
         if (r->method != m) continue;
         ++sets;
@@ -256,7 +294,9 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
           recall += std::max(0.0, r->recall);
           tri += std::max(0.0, r->tri_recovered);
           area += std::max(0.0, r->area_ratio);
-          vol += r->volume_ratio;
+          vol += std::max(0.0, r->volume_ratio);
+          rough += std::max(0.0, r->roughness);
+          grough += std::max(0.0, r->gt_roughness);
         }
         if (r->gt_single) {
           ++single;
@@ -269,7 +309,8 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
       if (!three)
         o << exact << " / " << single << " | " << fmt(recall / g) << " | ";
       else
-        o << fmt(tri / g) << " | " << fmt(area / g) << " | " << fmt(vol / g) << " | n/a | ";
+        o << fmt(tri / g) << " | " << fmt(area / g) << " | " << fmt(vol / g) << " | " << fmt(rough / g, "%.1f") << " ("
+          << fmt(grough / g, "%.1f") << ") | n/a | ";
       o << fmt(ms, "%.0f") << " | " << fmt(msm, "%.0f") << " |\n";
     }
     o << "\n### " << dir << " — per input" << (three ? "" : " (sets with ground truth)") << "\n\n";
@@ -281,7 +322,7 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
       o << '\n';
     } else {
       o << "| model | n |";
-      for (const auto& m : methods) o << ' ' << m << " (complete / GT tri / area / vol / ms) |";
+      for (const auto& m : methods) o << ' ' << m << " (complete / GT tri / area / vol / angle° / ms) |";
       o << "\n|---|---|";
       for (std::size_t i = 0; i < methods.size(); ++i) o << "---|";
       o << '\n';
@@ -304,7 +345,7 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
         else
           o << ' ' << (r->complete ? (r->valid ? "yes" : "INVALID") : std::to_string(r->on_boundary) + "/" + std::to_string(r->n))
             << " / " << fmt(r->tri_recovered, "%.3f") << " / " << fmt(r->area_ratio, "%.2f") << " / "
-            << fmt(r->volume_ratio, "%.2f") << " / " << fmt(r->ms_total, "%.0f") << " |";
+            << fmt(r->volume_ratio, "%.2f") << " / " << fmt(r->roughness, "%.1f") << " / " << fmt(r->ms_total, "%.0f") << " |";
       }
       o << '\n';
     }
