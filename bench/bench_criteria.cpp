@@ -7,6 +7,8 @@
 // skeleton growth (all seeds, 2D) at small sizes for the "orders of magnitude slower" check.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "bench_data.hpp"
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
@@ -26,6 +28,8 @@ void BM_Constrict2Criterion(benchmark::State& state) {
     Polygon2Result r;
     if (!reconstruct2(pts, o, r) || !r.complete) state.SkipWithError("reconstruct2 failed");
     state.SetIterationTime((r.ms_constrict + r.ms_fallback) / 1000.0);
+    state.counters["removals"] = static_cast<double>(r.removed_simplices);
+    state.counters["ns_per_removal"] = 1e6 * r.ms_constrict / static_cast<double>(std::max<std::size_t>(1, r.removed_simplices));
   }
   state.SetLabel(criterion_name(o.criterion));
 }
@@ -39,6 +43,9 @@ void BM_Constrict3Criterion(benchmark::State& state) {
     Mesh3Result r;
     if (!reconstruct3(pts, o, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
     state.SetIterationTime((r.ms_constrict + r.ms_fallback) / 1000.0);
+    const std::size_t removals = r.removed_one_face + r.removed_two_face;
+    state.counters["removals"] = static_cast<double>(removals);
+    state.counters["ns_per_removal"] = 1e6 * r.ms_constrict / static_cast<double>(std::max<std::size_t>(1, removals));
   }
   state.SetLabel(criterion_name(o.criterion));
 }
