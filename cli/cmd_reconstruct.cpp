@@ -14,6 +14,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/validate.hpp"
+#include "constrict/voronoi_skeleton.hpp"
 
 namespace constrict::cli {
 namespace {
@@ -22,6 +23,8 @@ struct ReconstructArgs {
   InputArgs in;
   std::string out, report, body, fallback = "auto", refine = "auto";
   std::string render;  // --render PICTURE (cmd_render.cpp)
+  std::string method = "gamma";  // a Criterion name or "voronoi-skeleton"
+  std::size_t seed_limit = 0;    // voronoi-skeleton: 0 = every seed
   bool ascii = false;
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
@@ -52,6 +55,26 @@ class ProgressVisitor final : public Constrict2Visitor {
   std::string stage_;
 };
 
+// --method: the criterion of the constriction, or the Voronoi skeleton (its result in the
+// constriction's result type, so that writing and reporting stay one path).
+bool is_skeleton(const ReconstructArgs& a) { return a.method == "voronoi-skeleton"; }
+nlohmann::json skeleton_json(const VoronoiSkeletonStats& s) {
+  return {{"seed_limit", nullptr},          {"simplices", s.simplices},      {"seeds_tried", s.seeds_tried},
+          {"seeds_pruned", s.seeds_pruned}, {"seeds_complete", s.seeds_complete}, {"best_seed", s.best_seed},
+          {"tree_length", s.tree_length}};
+}
+void add_method_json(const ReconstructArgs& a, const VoronoiSkeletonStats& s, nlohmann::json& j) {
+  j["method_requested"] = a.method;
+  j["criterion"] = is_skeleton(a) ? nlohmann::json(nullptr) : nlohmann::json(a.method);
+  if (!is_skeleton(a)) return;
+  j["voronoi_skeleton"] = skeleton_json(s);
+  j["voronoi_skeleton"]["seed_limit"] = a.seed_limit;
+}
+const char* incomplete_why(const ReconstructArgs& a, const std::string& method) {
+  if (is_skeleton(a)) return "voronoi skeleton: no tried seed grew through every point";
+  return method == "stopped" ? "stopped early (--stop-after)" : "constriction locked (--fallback none)";
+}
+
 int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
                      Clock::time_point t0, Clock::time_point t1) {
   const PolygonFormat fmt = polygon_format_from_path(a.out);
@@ -64,10 +87,31 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   else opt.fallback = Fallback::None;
   opt.stop_after = a.stop_after;
   if (a.refine == "none") opt.refine = Refine2::None;
-  progress.phase("delaunay + gamma-values");
+  (void)criterion_from_name(a.method, opt.criterion);
+  progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
   ProgressVisitor visitor(progress, pts.size());
   Polygon2Result r;
-  if (Status s = reconstruct2(pts, opt, r, &visitor); !s) return fail(s);
+  VoronoiSkeletonStats skel;
+  if (is_skeleton(a)) {
+    VoronoiSkeletonOptions vo;
+    vo.seed_limit = a.seed_limit;
+    VoronoiSkeleton2Result v;
+    if (Status s = voronoi_skeleton2(pts, vo, v); !s) return fail(s);
+    r.boundary = v.boundary;
+    r.complete = v.complete;
+    r.stuck_points = v.unplaced_points;
+    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
+    r.validated = v.validated && v.complete;
+    r.check = v.check;
+    r.area = v.area;
+    r.perimeter = v.perimeter;
+    r.ms_delaunay = v.stats.ms_delaunay;
+    r.ms_constrict = v.stats.ms_grow;
+    r.ms_validate = v.stats.ms_validate;
+    skel = v.stats;
+  } else if (Status s = reconstruct2(pts, opt, r, &visitor); !s) {
+    return fail(s);
+  }
 
   // reconstruct2 validated the polygon exactly (options.validate); an incomplete polygon is
   // checked again by the general sweep so that the report says whether it is at least simple.
@@ -103,7 +147,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   const auto t4 = Clock::now();
 
   const std::size_t n = pts.size(), nb = r.boundary.size();
-  const bool used_fallback = r.method != "gamma" && r.method != "locked" && r.method != "stopped";
+  const bool used_fallback = r.method != "gamma" && r.method != "locked" && r.method != "stopped" && !is_skeleton(a);
   if (!a.report.empty()) {
     nlohmann::json j;
     j["command"] = "reconstruct";
@@ -119,6 +163,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["validation"] = {{"simple", chk.simple}, {"counter_clockwise", chk.ccw}, {"all_points_once", chk.all_points},
                        {"reason", chk.reason}};
     j["method"] = r.method;
+    add_method_json(a, skel, j);
     j["fallback_mode"] = a.fallback;
     j["fallback"] = used_fallback ? nlohmann::json(r.method) : nlohmann::json(nullptr);
     j["locked"] = r.locked_at_gamma0;
@@ -143,7 +188,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
-    const char* why = r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked (--fallback none)";
+    const char* why = incomplete_why(a, r.method);
     return fail({StatusCode::Incomplete, std::string(why) + ": " + std::to_string(n - nb) + " of " + std::to_string(n) +
                                              " points left inside; the polygon in " + a.out +
                                              " passes through " + std::to_string(nb) + " points"});
@@ -151,6 +196,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (!a.quiet) {
     std::printf("polygon through %zu/%zu points: valid (simple, counter-clockwise, every point once); method %s",
                 nb, n, r.method.c_str());
+    if (a.method != "gamma" && !is_skeleton(a)) std::printf(" (criterion %s)", a.method.c_str());
     if (r.locked_at_gamma0) std::printf(" (gamma locked with %zu inside)", r.stuck_points.size());
     std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));
   }
@@ -202,17 +248,44 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   opt.stop_after = a.stop_after;
   if (a.refine == "none") opt.refine = Refine3::None;
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
-  progress.phase("delaunay + gamma-values");
+  (void)criterion_from_name(a.method, opt.criterion);
+  progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
   ProgressVisitor3 visitor(progress, pts.size());
   Mesh3Result r;
-  if (Status s = reconstruct3(pts, opt, r, &visitor); !s) return fail(s);
+  VoronoiSkeletonStats skel;
+  if (is_skeleton(a)) {
+    VoronoiSkeletonOptions vo;
+    vo.seed_limit = a.seed_limit;
+    vo.validate = false;
+    VoronoiSkeleton3Result v;
+    if (Status s = voronoi_skeleton3(pts, vo, v); !s) return fail(s);
+    r.mesh = std::move(v.mesh);
+    r.tets = std::move(v.tets);
+    r.complete = v.complete;
+    r.unplaced_points = v.unplaced_points;
+    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
+    r.volume = v.volume;
+    r.surface_area = v.surface_area;
+    r.ms_delaunay = v.stats.ms_delaunay;
+    r.ms_constrict = v.stats.ms_grow;
+    skel = v.stats;
+  } else if (Status s = reconstruct3(pts, opt, r, &visitor); !s) {
+    return fail(s);
+  }
 
   progress.phase("validating");
   const auto tv = Clock::now();
   MeshCheck chk;
   MeshCheckOptions copt;
   copt.require_all_points = true;
-  const bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
+  bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
+  // An incomplete skeleton must still be a closed genus-0 surface over the points it reaches.
+  if (is_skeleton(a) && !r.complete) {
+    MeshCheck part;
+    copt.require_all_points = false;
+    if (!validate_mesh3(pts, r.mesh, &part, copt).is_ok())
+      return fail({StatusCode::Internal, "the voronoi skeleton surface failed validation (please report): " + part.reason});
+  }
   const double ms_validate = ms(tv, Clock::now());
   if (r.complete && !valid)
     return fail({StatusCode::Internal, "the reconstructed surface failed validation (please report): " + chk.reason});
@@ -249,6 +322,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["faces"] = r.mesh.triangles.size();
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
     j["method"] = r.method;
+    add_method_json(a, skel, j);
     j["fallback_mode"] = a.fallback;
     j["fallback"] = r.cavities > 0 ? nlohmann::json("cavity") : nlohmann::json(nullptr);
     j["locked"] = r.locked;
@@ -271,7 +345,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
-    const char* why = r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked";
+    const char* why = is_skeleton(a) ? incomplete_why(a, r.method)
+                      : r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked";
     return fail({StatusCode::Incomplete, std::string(why) + ": " + std::to_string(n - nb) + " of " + std::to_string(n) +
                                              " points left inside; the surface in " + a.out + " passes through " +
                                              std::to_string(nb) + " points"});
@@ -279,6 +354,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (!a.quiet) {
     std::printf("surface through %zu/%zu points: valid (closed, manifold, outward, genus %d, %zu triangles); method %s",
                 nb, n, chk.genus, r.mesh.triangles.size(), r.method.c_str());
+    if (a.method != "gamma" && !is_skeleton(a)) std::printf(" (criterion %s)", a.method.c_str());
     if (r.locked) std::printf(" (gamma locked with %zu inside)", r.stuck_points.size());
     std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));
   }
@@ -316,6 +392,9 @@ Command add_reconstruct_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "none"}));
   cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
+  cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")
+      ->check(CLI::IsMember({"gamma", "min-area-change", "boissonnat", "voronoi-skeleton"}));
+  cmd->add_option("--seed-limit", a->seed_limit, "voronoi-skeleton: try at most N seeds (0 = all)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "constrict/criterion.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
 #include "constrict/validate.hpp"
@@ -37,6 +38,8 @@ enum class Refine2 {
 /// Options of reconstruct2(). Defaults reproduce the paper's algorithm plus the fallbacks.
 struct Constrict2Options {
   Fallback fallback = Fallback::Auto;  ///< behaviour on lock
+  /// Which removable triangle goes next (criterion.hpp); the fallbacks rank with the same key.
+  Criterion criterion = Criterion::Gamma;
   /// γ0 values tried in order (each < 0, decreasing); the graph γ([-1,1],[γ0,1]) grows with each.
   std::vector<double> gamma0_schedule = {-0.05, -0.1, -0.2, -0.3, -0.5, -0.75, -1};
   /// Run the final repair after Gamma0/Degree4 (Auto always does). The repair guarantees a
@@ -92,7 +95,7 @@ struct Constrict2Event {
   enum class Kind { RemoveTriangle, InsertPoint, Lock, StageBegin };
   Kind kind = Kind::RemoveTriangle;
   std::array<int, 3> triangle{{-1, -1, -1}};  ///< (a, b, y): boundary edge a->b, apex y
-  double criterion = 0;                       ///< 1 - γ(ab; y)
+  double criterion = 0;                       ///< the key: 1 - γ(ab; y) for Criterion::Gamma
   std::string stage;                          ///< stage name
 };
 

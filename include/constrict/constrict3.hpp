@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "constrict/criterion.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
@@ -71,6 +72,9 @@ struct Constrict3Options {
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
   Sculpt3 sculpt = Sculpt3::None;        ///< post-pass (measured in docs/reconstruction-3d.md)
   TwoFaceKey two_face_key = TwoFaceKey::Max;  ///< criterion of two-face tetrahedra
+  /// Which removable tetrahedron goes next (criterion.hpp); two_face_key applies to Gamma only.
+  /// The lock fallback ranks its target faces with the same criterion.
+  Criterion criterion = Criterion::Gamma;
   Refine3 refine = Refine3::Alternate;        ///< flip post-pass on complete surfaces
   /// Minimum criterion for the TwoFace post-pass, in [0, 4] (the two_face_key scale). 2 = the average γ of the two faces
   /// is < 0 (the tetrahedron's circumcentre lies outside the current surface, spec §3.5).
@@ -148,7 +152,7 @@ struct Constrict3Event {
   Kind kind = Kind::RemoveTet;
   std::array<int, 4> tet{{-1, -1, -1, -1}};  ///< removed tetrahedron (RemoveTet)
   int boundary_faces = 0;                    ///< 1 or 2 (RemoveTet)
-  double criterion = 0;                      ///< sum of 1 - γ over its boundary faces
+  double criterion = 0;                      ///< the key (Gamma: 1 - γ per two_face_key)
   int point = -1;                            ///< Cavity: the stuck point it is built around
   std::size_t cavity_size = 0;               ///< Cavity: tetrahedra replaced
   std::string stage;                         ///< stage name

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/criterion.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
@@ -156,6 +157,13 @@ struct Constrictor2::Impl {
     visitor->on_event(ev);
   }
 
+  // Key of removing triangle (a, b, y) through boundary edge a->b: 1 - γ(ab; y) (§3.4) or the
+  // chosen comparison criterion (criterion.hpp); the fallbacks use the same key.
+  double criterion_key(int a, int b, int y) const {
+    if (opt.criterion == Criterion::Gamma) return 1.0 - apex_gamma2(P(a), P(b), P(y));
+    return criterion_key2(opt.criterion, P(a), P(b), P(y));
+  }
+
   // ---------------------------------------------------------------- Delaunay stage (spec §3.5)
   bool is_boundary_edge(int t, int i) const {
     const int nb = dt.neighbors[U(t)][U(i)];
@@ -177,7 +185,7 @@ struct Constrictor2::Impl {
     const auto& tr = dt.triangles[U(t)];
     const int y = tr[U(i)], a = tr[U((i + 1) % 3)], b = tr[U((i + 2) % 3)];
     // The boundary runs a->b with the body on its left; γ(ab; y) is the inner side value (§3.2).
-    const double key = 1.0 - apex_gamma2(P(a), P(b), P(y));
+    const double key = criterion_key(a, b, y);
     heap.push(Entry{key, sorted3(a, b, y), a, b, y, t, ++ver[U(t)]});
   }
 
@@ -515,7 +523,7 @@ struct Constrictor2::Impl {
     // The geometric test is cheaper than the side-value searches of in_graph().
     if (!valid_insert(a, b, z)) return;
     if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
-    h.push(Entry{1.0 - apex_gamma2(P(a), P(b), P(z)), sorted3(a, b, z), a, b, z, -1, 0});
+    h.push(Entry{criterion_key(a, b, z), sorted3(a, b, z), a, b, z, -1, 0});
   }
 
   // Candidate boundary edges for apex z: those with an endpoint within k hops of z.

@@ -17,6 +17,7 @@
 
 #include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
+#include "constrict/criterion.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
@@ -242,20 +243,38 @@ struct Constrictor3::Impl {
     int r = 0;
     if (nb == 1) r = onb[uz(tets[uz(t)][uz(bi[0])])] ? 0 : 1;
     else if (nb == 2) r = edge_on_boundary(t, bi[0], bi[1]) ? 0 : 2;
-    if (r && key) {
-      *key = face_term(t, bi[0]);
-      if (nb == 2) {
-        // Paper §4.2: the sum of the two terms; TwoFaceKey::Max is the measured alternative.
-        const double k2 = face_term(t, bi[1]);
-        *key = opt.two_face_key == TwoFaceKey::Sum ? *key + k2 : std::max(*key, k2);
-      }
-      if (opt.size_bias > 0) {
-        double lr = face_log_ratio(t, bi[0]);
-        if (nb == 2) lr = std::max(lr, face_log_ratio(t, bi[1]));
-        *key += opt.size_bias * lr;
-      }
-    }
+    if (r && key) *key = criterion_key(t, bi, nb);
     return r;
+  }
+
+  // Key of removing tet t with boundary faces bi[0..nb) (criterion.hpp, spec §3.4).
+  double criterion_key(int t, const int* bi, int nb) const {
+    if (opt.criterion == Criterion::MinAreaChange) {
+      // Boissonnat 84b (seed paper §2.6): smallest (Σ interior - Σ boundary) / Σ all face areas.
+      const auto& v = tets[uz(t)];
+      double areas[4];
+      bool bd[4] = {false, false, false, false};
+      for (int i = 0; i < 4; ++i)
+        areas[i] = triangle_area3(P(v[uz(kFaceOut[i][0])]), P(v[uz(kFaceOut[i][1])]), P(v[uz(kFaceOut[i][2])]));
+      for (int k = 0; k < nb; ++k) bd[bi[k]] = true;
+      return -area_change_ratio3(areas, bd);
+    }
+    double key = face_term(t, bi[0]);
+    if (nb == 2) {
+      // Paper §4.2: the sum of the two terms; TwoFaceKey::Max is the measured alternative and
+      // Boissonnat 84a's rule (one face decides, seed paper §6).
+      const double k2 = face_term(t, bi[1]);
+      const bool sum = opt.criterion == Criterion::Gamma && opt.two_face_key == TwoFaceKey::Sum;
+      key = sum ? key + k2 : std::max(key, k2);
+    }
+    if (opt.size_bias > 0) {
+      // Size bias (docs/reconstruction-3d.md §4.5): large surface faces relative to the local
+      // spacing first, so that bridges across gaps are carved before their far side is reached.
+      double lr = face_log_ratio(t, bi[0]);
+      if (nb == 2) lr = std::max(lr, face_log_ratio(t, bi[1]));
+      key += opt.size_bias * lr;
+    }
+    return key;
   }
 
   void try_push(int t) {
@@ -391,6 +410,15 @@ struct Constrictor3::Impl {
     std::array<int, 3> ids;
   };
 
+  // Rank of inserting p through surface face abc (the tet (a,b,c,p) removed by its one face).
+  double target_key(int a, int b, int c, int p) const {
+    if (opt.criterion != Criterion::MinAreaChange) return 1.0 - apex_gamma3(P(a), P(b), P(c), P(p));
+    const double areas[4] = {triangle_area3(P(a), P(b), P(c)), triangle_area3(P(a), P(b), P(p)),
+                             triangle_area3(P(b), P(c), P(p)), triangle_area3(P(c), P(a), P(p))};
+    const bool bd[4] = {true, false, false, false};
+    return -area_change_ratio3(areas, bd);
+  }
+
   // Surface faces within `depth` face-hops of p's star that p sees from inside, best key first.
   void targets_of(int p, const std::vector<int>& star, int depth, std::vector<Target>& out) {
     out.clear();
@@ -408,7 +436,7 @@ struct Constrictor3::Impl {
             if (orient3(P(a), P(b), P(c), P(p)) < 0) {
               std::array<int, 3> ids{{a, b, c}};
               std::sort(ids.begin(), ids.end());
-              out.push_back({1.0 - apex_gamma3(P(a), P(b), P(c), P(p)), t, i, ids});
+              out.push_back({target_key(a, b, c, p), t, i, ids});
             }
           } else if (mark[uz(m)] != epoch) {
             mark[uz(m)] = epoch;
@@ -904,7 +932,8 @@ Status reconstruct3(const PointSet& points, const Constrict3Options& options, Me
                     Constrict3Visitor* visitor) {
   Constrictor3 c;
   const std::vector<double>& cand = options.size_bias_candidates;
-  if (cand.size() < 2 || options.stop_after != SIZE_MAX) {
+  // The size bias only enters the γ-type keys: min-area-change runs once.
+  if (cand.size() < 2 || options.stop_after != SIZE_MAX || options.criterion == Criterion::MinAreaChange) {
     Constrict3Options o = options;
     if (!cand.empty()) o.size_bias = cand[0];
     if (Status s = c.init(points, o, visitor); !s) return s;

@@ -15,6 +15,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
 #include "constrict/validate.hpp"
+#include "constrict/voronoi_skeleton.hpp"
 
 namespace constrict {
 namespace {
@@ -137,6 +138,46 @@ TEST(Constrict2Property, RandomInputsValidate) {
   EXPECT_GT(refine_moves, 0u);
   for (const auto& m : method_count) std::printf("  method %-14s %d\n", m.first.c_str(), m.second);
   for (const auto& m : stage_points) std::printf("  points placed by %-14s %d\n", m.first.c_str(), m.second);
+}
+
+// The comparison methods on the same inputs (docs/comparison-methods.md): the other criteria keep
+// every guarantee of the engine (complete, valid); the Voronoi skeleton either reaches every point
+// with a valid polygon or says it did not (incomplete, still simple over the points it reached).
+// Fewer cases for the slow skeleton.
+TEST(Constrict2Property, OtherMethodsOnTheSameInputs) {
+  std::map<std::string, int> counts;
+  for (std::uint64_t seed = 1; seed <= 4000; ++seed) {
+    if (seed % 4 != 0) continue;
+    std::mt19937_64 rng(seed);
+    const int family = static_cast<int>(seed % 5);
+    const std::size_t n = 3 + rng() % 198;
+    const PointSet p = make_points(family, n, rng);
+    if (!check_points(p).is_ok()) continue;
+    SCOPED_TRACE("seed " + std::to_string(seed) + " n " + std::to_string(p.size()));
+    for (Criterion c : {Criterion::MinAreaChange, Criterion::Boissonnat}) {
+      Constrict2Options o;
+      o.criterion = c;
+      Polygon2Result r;
+      ASSERT_TRUE(reconstruct2(p, o, r).is_ok());
+      ASSERT_TRUE(r.complete);
+      ASSERT_TRUE(validate_polygon(p, r.boundary).is_ok());
+      ++counts[std::string(criterion_name(c)) + " locked " + (r.locked_at_gamma0 ? "yes" : "no")];
+    }
+    if (seed % 40 != 0) continue;
+    VoronoiSkeletonOptions vo;
+    vo.seed_limit = 64;
+    VoronoiSkeleton2Result v;
+    ASSERT_TRUE(voronoi_skeleton2(p, vo, v).is_ok());
+    ASSERT_TRUE(v.validated);
+    ASSERT_TRUE(v.check.reason.empty()) << v.check.reason;
+    ASSERT_EQ(v.boundary.size() + v.unplaced_points.size(), p.size());
+    ASSERT_EQ(v.complete, v.unplaced_points.empty());
+    if (v.complete) {
+      ASSERT_TRUE(validate_polygon(p, v.boundary).is_ok());
+    }
+    ++counts[std::string("voronoi-skeleton ") + (v.complete ? "complete" : "incomplete")];
+  }
+  for (const auto& m : counts) std::printf("  [ methods ] %-28s %d\n", m.first.c_str(), m.second);
 }
 
 // The sweep validator agrees with the brute-force check on random (mostly invalid) polygons.

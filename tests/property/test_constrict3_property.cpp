@@ -16,6 +16,7 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/voronoi_skeleton.hpp"
 
 namespace constrict {
 namespace {
@@ -235,6 +236,47 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
 }
 
 // Same combinatorics under a permutation of the input order.
+// The comparison methods on the same inputs (fewer cases; docs/comparison-methods.md): other
+// criteria stay complete and valid (fallback included); the Voronoi skeleton gives a closed
+// genus-0 surface and reports whether it reached every point.
+TEST(Constrict3Property, OtherMethodsOnTheSameInputs) {
+  int runs = 0, skeleton_complete = 0, skeleton_runs = 0;
+  for (int fi = 0; fi < static_cast<int>(Family::Count); ++fi) {
+    const Family fam = static_cast<Family>(fi);
+    for (int s = 0; s < kSeedsPerFamily; s += 6) {
+      const std::uint64_t seed = 1000003ULL * static_cast<std::uint64_t>(fi + 1) + static_cast<std::uint64_t>(s);
+      Gen gs(seed ^ 0x9e3779b97f4a7c15ULL);
+      const int n = static_cast<int>(std::exp(gs.u(std::log(4.0), std::log(static_cast<double>(kMaxN)))));
+      const PointSet p = generate(fam, n, seed);
+      SCOPED_TRACE(std::string(name(fam)) + " seed " + std::to_string(seed) + " n " + std::to_string(p.size()));
+      if (p.size() < 4 || coplanar(p)) continue;
+      for (Criterion c : {Criterion::MinAreaChange, Criterion::Boissonnat}) {
+        Constrict3Options o;
+        o.criterion = c;
+        Mesh3Result r;
+        ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
+        EXPECT_TRUE(r.complete) << criterion_name(c) << ": " << r.unplaced_points.size() << " points unplaced";
+        MeshCheck mc;
+        EXPECT_TRUE(validate_mesh3(p, r.mesh, &mc).is_ok()) << criterion_name(c) << ": " << mc.reason;
+        ++runs;
+      }
+      if (s % 12 != 0 || p.size() > 600) continue;
+      VoronoiSkeletonOptions vo;
+      vo.seed_limit = 32;
+      VoronoiSkeleton3Result v;
+      ASSERT_TRUE(voronoi_skeleton3(p, vo, v).is_ok());
+      ASSERT_TRUE(v.validated);
+      EXPECT_TRUE(v.check.reason.empty()) << v.check.reason;
+      EXPECT_EQ(v.check.genus, 0);
+      EXPECT_EQ(v.complete, v.unplaced_points.empty());
+      ++skeleton_runs;
+      skeleton_complete += v.complete;
+    }
+  }
+  std::cout << "[ methods ] criteria runs " << runs << "; voronoi-skeleton complete " << skeleton_complete << "/"
+            << skeleton_runs << "\n";
+}
+
 TEST(Constrict3Property, PermutationInvariance) {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE(seed);

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Shortest Voronoi skeleton polygon (seed paper §2.7, §6; O'Rourke, Booth & Washington 1987).
+// The growth is in detail/skeleton_growth.hpp; this file computes the dual edge lengths, extracts
+// the polygon of the best body and validates it. Open choices: docs/comparison-methods.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "constrict/delaunay.hpp"
+#include "constrict/voronoi_skeleton.hpp"
+#include "constrict/detail/skeleton_growth.hpp"
+
+namespace constrict {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+std::size_t U(int i) { return static_cast<std::size_t>(i); }
+
+// Circumcentre of a triangle (double arithmetic; only ranks dual edge lengths).
+std::array<double, 2> circumcentre2(const double* a, const double* b, const double* c) {
+  const double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  const double d = 2.0 * (bx * cy - by * cx);
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  return {{a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d}};
+}
+
+}  // namespace
+
+Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& options,
+                         VoronoiSkeleton2Result& result) {
+  result = VoronoiSkeleton2Result{};
+  if (points.dim != 2) return {StatusCode::InvalidArgument, "voronoi_skeleton2: points must be 2D"};
+  if (Status st = check_points(points); !st) return st;
+  const auto t0 = Clock::now();
+  Delaunay2 dt;
+  if (Status st = build_delaunay2(points, dt); !st) return st;
+  result.stats.ms_delaunay = ms_since(t0);
+
+  const auto t1 = Clock::now();
+  const std::size_t n = points.size(), T = dt.triangles.size();
+  std::vector<std::array<double, 2>> cc(T);
+  for (std::size_t t = 0; t < T; ++t) {
+    const auto& v = dt.triangles[t];
+    cc[t] = circumcentre2(points[U(v[0])], points[U(v[1])], points[U(v[2])]);
+  }
+  std::vector<std::array<double, 3>> len(T);
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int m = dt.neighbors[t][U(i)];
+      len[t][U(i)] = m < 0 ? HUGE_VAL : std::hypot(cc[U(m)][0] - cc[t][0], cc[U(m)][1] - cc[t][1]);
+    }
+  detail::SkeletonGrowth<3> growth(dt.triangles, dt.neighbors, len, n);
+  const std::vector<int> seeds = detail::skeleton_seeds<3>(dt.triangles, options.seed_limit);
+  detail::SkeletonGrowth<3>::Outcome best;
+  auto& st = result.stats;
+  st.simplices = T;
+  detail::skeleton_search<3>(growth, seeds, n, options.prune, best, st.seeds_tried, st.seeds_pruned,
+                             st.seeds_complete, st.best_seed);
+  st.tree_length = best.length;
+
+  // The polygon: free edges of the body, each CCW triangle's edge a->b has the body on its left.
+  std::vector<char> in_body(T, 0), reached(n, 0);
+  for (int t : best.added) {
+    in_body[U(t)] = 1;
+    result.triangles.push_back(dt.triangles[U(t)]);
+    for (int v : dt.triangles[U(t)]) reached[U(v)] = 1;
+  }
+  std::vector<int> nxt(n, -1);
+  for (int t : best.added)
+    for (int i = 0; i < 3; ++i) {
+      const int m = dt.neighbors[U(t)][U(i)];
+      if (m >= 0 && in_body[U(m)]) continue;
+      const auto& v = dt.triangles[U(t)];
+      nxt[U(v[U((i + 1) % 3)])] = v[U((i + 2) % 3)];
+    }
+  int start = -1;
+  for (std::size_t v = 0; v < n && start < 0; ++v)
+    if (reached[v]) start = static_cast<int>(v);
+  for (int v = start; v >= 0;) {
+    result.boundary.push_back(v);
+    v = nxt[U(v)];
+    if (v == start || result.boundary.size() > n) break;
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    if (!reached[v]) result.unplaced_points.push_back(static_cast<int>(v));
+  result.complete = result.unplaced_points.empty();
+  const std::size_t m = result.boundary.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* a = points[U(result.boundary[i])];
+    const double* b = points[U(result.boundary[(i + 1) % m])];
+    result.area += 0.5 * (a[0] * b[1] - a[1] * b[0]);
+    result.perimeter += std::hypot(b[0] - a[0], b[1] - a[1]);
+  }
+  st.ms_grow = ms_since(t1);
+
+  if (options.validate) {
+    const auto tv = Clock::now();
+    Status vs;
+    if (result.complete) {
+      vs = validate_polygon_in_triangulation(points, result.boundary, dt.triangles, &result.check);
+    } else {
+      // Over the points reached: the polygon must still be simple and counter-clockwise.
+      PointSet sub;
+      sub.dim = 2;
+      std::vector<int> id(n, -1), poly;
+      for (std::size_t v = 0; v < n; ++v)
+        if (reached[v]) {
+          id[v] = static_cast<int>(sub.size());
+          sub.coords.push_back(points[v][0]);
+          sub.coords.push_back(points[v][1]);
+        }
+      for (int v : result.boundary) poly.push_back(id[U(v)]);
+      vs = validate_polygon(sub, poly, &result.check);
+    }
+    result.validated = true;
+    st.ms_validate = ms_since(tv);
+    CONSTRICT_CHECK(vs.is_ok(), "voronoi_skeleton2 produced an invalid polygon: " + vs.message());
+  }
+  return Status::ok();
+}
+
+}  // namespace constrict

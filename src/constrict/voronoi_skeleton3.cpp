@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Shortest Voronoi skeleton polyhedron (seed paper §2.7, §6, Fig. 11; O'Rourke, Booth &
+// Washington 1987). The growth is in detail/skeleton_growth.hpp; this file computes the dual
+// edge lengths, extracts the surface of the best body and validates it.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "constrict/delaunay.hpp"
+#include "constrict/voronoi_skeleton.hpp"
+#include "constrict/detail/skeleton_growth.hpp"
+
+namespace constrict {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+std::size_t U(int i) { return static_cast<std::size_t>(i); }
+
+// Face opposite vertex i of a positively oriented tetrahedron, oriented outward.
+constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+// Circumcentre of a tetrahedron (double arithmetic; only ranks dual edge lengths).
+std::array<double, 3> circumcentre3(const double* a, const double* b, const double* c, const double* d) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const double u2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  const double vw[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
+  const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
+  const double uv[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double det = 2.0 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
+  std::array<double, 3> c3{};
+  for (int k = 0; k < 3; ++k) c3[U(k)] = a[k] + (u2 * vw[k] + v2 * wu[k] + w2 * uv[k]) / det;
+  return c3;
+}
+
+}  // namespace
+
+Status voronoi_skeleton3(const PointSet& points, const VoronoiSkeletonOptions& options,
+                         VoronoiSkeleton3Result& result) {
+  result = VoronoiSkeleton3Result{};
+  if (points.dim != 3) return {StatusCode::InvalidArgument, "voronoi_skeleton3: points must be 3D"};
+  if (Status st = check_points(points); !st) return st;
+  const auto t0 = Clock::now();
+  Delaunay3 dt;
+  if (Status st = build_delaunay3(points, dt); !st) return st;
+  result.stats.ms_delaunay = ms_since(t0);
+
+  const auto t1 = Clock::now();
+  const std::size_t n = points.size(), T = dt.tets.size();
+  std::vector<std::array<double, 3>> cc(T);
+  for (std::size_t t = 0; t < T; ++t) {
+    const auto& v = dt.tets[t];
+    cc[t] = circumcentre3(points[U(v[0])], points[U(v[1])], points[U(v[2])], points[U(v[3])]);
+  }
+  std::vector<std::array<double, 4>> len(T);
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const int m = dt.neighbors[t][U(i)];
+      if (m < 0) {
+        len[t][U(i)] = HUGE_VAL;
+        continue;
+      }
+      const double dx = cc[U(m)][0] - cc[t][0], dy = cc[U(m)][1] - cc[t][1], dz = cc[U(m)][2] - cc[t][2];
+      len[t][U(i)] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+  detail::SkeletonGrowth<4> growth(dt.tets, dt.neighbors, len, n);
+  const std::vector<int> seeds = detail::skeleton_seeds<4>(dt.tets, options.seed_limit);
+  detail::SkeletonGrowth<4>::Outcome best;
+  auto& st = result.stats;
+  st.simplices = T;
+  detail::skeleton_search<4>(growth, seeds, n, options.prune, best, st.seeds_tried, st.seeds_pruned,
+                             st.seeds_complete, st.best_seed);
+  st.tree_length = best.length;
+
+  std::vector<char> in_body(T, 0), reached(n, 0);
+  for (int t : best.added) {
+    in_body[U(t)] = 1;
+    result.tets.push_back(dt.tets[U(t)]);
+    for (int v : dt.tets[U(t)]) reached[U(v)] = 1;
+  }
+  for (int t : best.added)
+    for (int i = 0; i < 4; ++i) {
+      const int m = dt.neighbors[U(t)][U(i)];
+      if (m >= 0 && in_body[U(m)]) continue;
+      const auto& v = dt.tets[U(t)];
+      result.mesh.triangles.push_back({{v[U(kFaceOut[i][0])], v[U(kFaceOut[i][1])], v[U(kFaceOut[i][2])]}});
+    }
+  for (std::size_t v = 0; v < n; ++v)
+    if (!reached[v]) result.unplaced_points.push_back(static_cast<int>(v));
+  result.complete = result.unplaced_points.empty();
+  result.volume = mesh_volume(points, result.mesh);
+  result.surface_area = mesh_area(points, result.mesh);
+  st.ms_grow = ms_since(t1);
+
+  if (options.validate) {
+    const auto tv = Clock::now();
+    MeshCheckOptions mo;
+    mo.require_all_points = result.complete;
+    const Status vs = validate_mesh3(points, result.mesh, &result.check, mo);
+    result.validated = true;
+    st.ms_validate = ms_since(tv);
+    CONSTRICT_CHECK(vs.is_ok(), "voronoi_skeleton3 produced an invalid surface: " + vs.message());
+  }
+  return Status::ok();
+}
+
+}  // namespace constrict
