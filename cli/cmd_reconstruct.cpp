@@ -338,8 +338,19 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["non_delaunay_tetrahedra"] = r.non_delaunay_tets;
     j["volume"] = r.volume;
     j["surface_area"] = r.surface_area;
+    j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"},
+                   {"added", r.refine_added},
+                   {"removed", r.refine_removed}};
+    j["size_bias"] = r.size_bias;
+    j["label_weight"] = r.label_weight;
+    nlohmann::json variants = nlohmann::json::array();
+    for (const auto& c : r.candidates)
+      variants.push_back({{"size_bias", c.size_bias}, {"label_weight", c.label_weight},
+                          {"surface_area", c.surface_area}, {"complete", c.complete}, {"ms", c.ms}});
+    j["variants"] = variants;
     j["timings_ms"] = {{"read", ms(t0, t1)},          {"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict},
-                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"validate", ms_validate},
+                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"refine", r.ms_refine},
+                       {"variants_setup", r.ms_setup}, {"variants_total", r.ms_variants}, {"validate", ms_validate},
                        {"write", ms_write},           {"total", ms(t0, Clock::now())}};
     j["warnings"] = rep.warnings;
     if (Status s = write_report(a.report, j); !s) return fail(s);

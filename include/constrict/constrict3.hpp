@@ -56,6 +56,12 @@ enum class Refine3 {
                  ///< local minimum (default, best measured)
 };
 
+/// One run of reconstruct3()'s variant selection (Constrict3Options::variants).
+struct Constrict3Variant {
+  double size_bias = 0;     ///< Constrict3Options::size_bias of this run
+  double label_weight = 0;  ///< Constrict3Options::label_weight of this run
+};
+
 /// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, the lock
 /// fallback and the Refine3::Alternate post-pass (best GT recovery measured, docs/reconstruction-3d.md
 /// §4). paper() selects the paper's plain behaviour (spec §5.3 golden tests).
@@ -65,7 +71,7 @@ struct Constrict3Options {
     Constrict3Options o;
     o.two_face_key = TwoFaceKey::Sum;
     o.refine = Refine3::None;
-    o.size_bias_candidates.clear();
+    o.variants.clear();
     o.size_bias = 0;
     return o;
   }
@@ -85,11 +91,16 @@ struct Constrict3Options {
   /// Size bias of the constriction key: key += size_bias · ln(max(1, r)) with r the largest
   /// bridge ratio (see bridge_ratio) of the tetrahedron's surface faces. 0 = the γ key alone.
   double size_bias = 0.0;
-  /// reconstruct3() with two or more candidates runs one constriction per size_bias value
-  /// (sharing the Delaunay tetrahedralization, in parallel) and keeps the complete surface with the
-  /// smallest area (docs/reconstruction-3d.md §4.5). Empty or one value: a single run with
-  /// size_bias (or the one value). The step-able Constrictor3 always does a single run.
-  std::vector<double> size_bias_candidates = {0.25, 1.0};
+  /// reconstruct3() with two or more variants runs one constriction per variant (size_bias,
+  /// label_weight), sharing the Delaunay tetrahedralization, in parallel, and keeps the complete
+  /// surface with the smallest area (docs/reconstruction-3d.md §4.5). Empty or one variant: a
+  /// single run with size_bias / label_weight (or the one variant's values). The step-able
+  /// Constrictor3 always does a single run. Default chosen by measurement on the shared models.
+  std::vector<Constrict3Variant> variants = {{1.0, 0.0}, {1.0, 1.0}};
+  /// Weight of the inside/outside labelling of the Delaunay tetrahedra (circumball propagation
+  /// from the convex hull, as in the power crust; docs/reconstruction-3d.md §4.6): key += w for a
+  /// tetrahedron labelled outside, -w for inside, scaled by the label's confidence. 0 = off.
+  double label_weight = 0.0;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
@@ -110,9 +121,10 @@ struct Constrict3Stage {
   std::size_t removed = 0;   ///< tetrahedra removed in this stage
 };
 
-/// One size-bias candidate of reconstruct3() (Constrict3Options::size_bias_candidates).
+/// One variant run of reconstruct3() (Constrict3Options::variants) and its outcome.
 struct Constrict3Candidate {
   double size_bias = 0;
+  double label_weight = 0;
   double surface_area = 0;
   bool complete = false;
   double ms = 0;  ///< constriction + fallback + post-passes of this candidate
@@ -142,8 +154,12 @@ struct Mesh3Result {
   std::size_t delaunay_tets = 0;          ///< tetrahedra of the Delaunay tetrahedralization
   double volume = 0, surface_area = 0;    ///< of the final surface (double arithmetic)
   double size_bias = 0;                   ///< size bias of the run that produced this result
+  double label_weight = 0;                ///< label weight of the run that produced this result
   std::vector<Constrict3Candidate> candidates;  ///< every candidate run (empty: single run)
   double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_refine = 0, ms_validate = 0;
+  /// Variant selection: time of the labels / spacing set-up plus the parallel runs (wall clock);
+  /// 0 for a single run. ms_constrict ... ms_refine are those of the winning run.
+  double ms_setup = 0, ms_variants = 0;
 };
 
 /// Event passed to a visitor.

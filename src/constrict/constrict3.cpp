@@ -4,6 +4,7 @@
 // (paper §4.2, candlestick). See docs/reconstruction-3d.md for the algorithm and guarantees.
 #include <algorithm>
 #include <memory>
+#include <queue>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -88,9 +89,11 @@ struct Constrictor3::Impl {
   bool bridge_keys = false;                  // heap keys are face_bridge() (Sculpt3::Bridges)
   std::vector<double> spacing;               // nearest-neighbour distance per vertex
   std::shared_ptr<const std::vector<double>> face_log;  // ln bridge ratio per Delaunay face
+  std::shared_ptr<const std::vector<float>> label;      // +conf outside / -conf inside per Delaunay tet
+  std::shared_ptr<const std::vector<std::array<double, 4>>> terms;  // face_term of the Delaunay tets
   bool locked_now = false, stopped = false, first_lock = false;
   std::vector<int> stuck;
-  double ms_delaunay = 0, ms_constrict = 0;
+  double ms_delaunay = 0, ms_constrict = 0, ms_setup = 0;
 
   // Fallback state.
   std::vector<int> vert_tet;                 // an alive tet incident to each vertex (built on lock)
@@ -122,6 +125,20 @@ struct Constrictor3::Impl {
   // stored side value of the face on the side of the apex (spec §2.3); fallback tets use the apex
   // value directly.
   double face_term(int t, int i) const {
+    if (uz(t) < T0 && terms) return (*terms)[uz(t)][uz(i)];
+    return face_term_compute(t, i);
+  }
+  // Precomputes face_term of every Delaunay tetrahedron (shared by the variant runs): the key is
+  // evaluated at every push, and this removes the sort and the parity from the hot loop.
+  void compute_terms() {
+    auto out = std::make_shared<std::vector<std::array<double, 4>>>(T0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t)
+        for (int i = 0; i < 4; ++i) (*out)[t][uz(i)] = face_term_compute(static_cast<int>(t), i);
+    });
+    terms = std::move(out);
+  }
+  double face_term_compute(int t, int i) const {
     const auto& v = tets[uz(t)];
     if (uz(t) < T0) {
       const int f = dg().simplex_face[uz(t)][uz(i)];
@@ -206,6 +223,107 @@ struct Constrictor3::Impl {
     });
     face_log = std::move(out);
   }
+  // Inside/outside labels of the Delaunay tetrahedra by circumball propagation (power-crust
+  // style): the outer half-space of a hull face and the circumball of its tetrahedron meet at an
+  // angle whose cosine is the signed distance of the circumcentre beyond the face over the radius;
+  // two adjacent circumballs meet at cos = (r1² + r2² - d²) / (2 r1 r2). A deep intersection
+  // (cos > 0) passes the label on, a shallow one (cos < 0) the opposite label, with confidence
+  // |cos|; the most confident assignments are made first (a max-heap), each tetrahedron once.
+  void compute_labels() {
+    std::vector<std::array<double, 4>> ball(T0);  // centre xyz, radius (radius < 0: flat)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        const auto& v = tets[t];
+        const double* a = P(v[0]);
+        double b[3], c[3], d[3];
+        for (int k = 0; k < 3; ++k) {
+          b[k] = P(v[1])[k] - a[k];
+          c[k] = P(v[2])[k] - a[k];
+          d[k] = P(v[3])[k] - a[k];
+        }
+        const double cd[3] = {c[1] * d[2] - c[2] * d[1], c[2] * d[0] - c[0] * d[2], c[0] * d[1] - c[1] * d[0]};
+        const double db[3] = {d[1] * b[2] - d[2] * b[1], d[2] * b[0] - d[0] * b[2], d[0] * b[1] - d[1] * b[0]};
+        const double bc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+        const double den = 2 * (b[0] * cd[0] + b[1] * cd[1] + b[2] * cd[2]);
+        const double nb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2], nc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2],
+                     nd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        std::array<double, 4> o{{0, 0, 0, -1}};
+        if (den != 0 && std::isfinite(den)) {
+          double x[3];
+          for (int k = 0; k < 3; ++k) x[k] = (nb * cd[k] + nc * db[k] + nd * bc[k]) / den;
+          const double rr = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+          if (std::isfinite(rr)) o = {{a[0] + x[0], a[1] + x[1], a[2] + x[2], rr}};
+        }
+        ball[t] = o;
+      }
+    });
+    // Bucket queue over the confidence quantised to 1/kBuckets (a binary heap of the ~4 pushes
+    // per tetrahedron costs more than the rest); LIFO inside a bucket, all sequential, so the
+    // labels are deterministic.
+    constexpr int kBuckets = 1024;
+    struct Item {
+      int tet;
+      signed char lab;
+      float conf;
+    };
+    std::vector<std::vector<Item>> bucket(kBuckets + 1);
+    int top = -1;
+    const auto qpush = [&](const Item& it) {
+      const int b = static_cast<int>(it.conf * kBuckets);
+      bucket[uz(b)].push_back(it);
+      top = std::max(top, b);
+    };
+    auto out = std::make_shared<std::vector<float>>(T0, 0.0f);
+    std::vector<char> done(T0, 0);
+    const auto push = [&](int t, double cosv, int lab_from) {
+      if (!(cosv == cosv)) return;
+      const double c = std::max(-1.0, std::min(1.0, cosv));
+      qpush({t, static_cast<signed char>(c >= 0 ? lab_from : -lab_from), static_cast<float>(std::abs(c))});
+    };
+    for (std::size_t t = 0; t < T0; ++t)
+      for (int i = 0; i < 4; ++i) {
+        if (nbr[t][uz(i)] >= 0 || ball[t][3] <= 0) continue;
+        // Outward normal of the hull face opposite i (the apex tets[t][i] is on the inner side).
+        const auto& v = tets[t];
+        const double* p0 = P(v[uz(kFaceOut[i][0])]);
+        const double* p1 = P(v[uz(kFaceOut[i][1])]);
+        const double* p2 = P(v[uz(kFaceOut[i][2])]);
+        const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        const double w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (!(ln > 0)) continue;
+        const double* ap = P(v[uz(i)]);
+        const double side = nrm[0] * (ap[0] - p0[0]) + nrm[1] * (ap[1] - p0[1]) + nrm[2] * (ap[2] - p0[2]);
+        const double sgn = side > 0 ? -1.0 : 1.0;  // flip so that nrm points away from the apex
+        const double dist = sgn * (nrm[0] * (ball[t][0] - p0[0]) + nrm[1] * (ball[t][1] - p0[1]) +
+                                   nrm[2] * (ball[t][2] - p0[2])) / ln;
+        push(static_cast<int>(t), dist / ball[t][3], +1);
+      }
+    while (top >= 0) {
+      if (bucket[uz(top)].empty()) {
+        --top;
+        continue;
+      }
+      const Item it = bucket[uz(top)].back();
+      bucket[uz(top)].pop_back();
+      if (done[uz(it.tet)]) continue;
+      done[uz(it.tet)] = 1;
+      (*out)[uz(it.tet)] = it.lab * it.conf;
+      const auto& bt = ball[uz(it.tet)];
+      for (int i = 0; i < 4; ++i) {
+        const int m = nbr[uz(it.tet)][uz(i)];
+        if (m < 0 || uz(m) >= T0 || done[uz(m)]) continue;
+        const auto& bm = ball[uz(m)];
+        if (bt[3] <= 0 || bm[3] <= 0) continue;
+        const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        push(m, (bt[3] * bt[3] + bm[3] * bm[3] - d2) / (2 * bt[3] * bm[3]), it.lab);
+      }
+    }
+    label = std::move(out);
+  }
+
   void compute_spacing() {
     spacing.assign(n, HUGE_VAL);
     for (std::size_t t = 0; t < T0; ++t) {
@@ -267,6 +385,7 @@ struct Constrictor3::Impl {
       const bool sum = opt.criterion == Criterion::Gamma && opt.two_face_key == TwoFaceKey::Sum;
       key = sum ? key + k2 : std::max(key, k2);
     }
+    if (opt.label_weight > 0 && label && uz(t) < T0) key += opt.label_weight * (*label)[uz(t)];
     if (opt.size_bias > 0) {
       // Size bias (docs/reconstruction-3d.md §4.5): large surface faces relative to the local
       // spacing first, so that bridges across gaps are carved before their far side is reached.
@@ -752,6 +871,8 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct3 needs 3D points"};
   if (!(options.sculpt_threshold >= 0 && options.sculpt_threshold <= 4))
     return {StatusCode::InvalidArgument, "sculpt_threshold must be in [0, 4]"};
+  if (!(options.size_bias >= 0 && options.size_bias <= 100 && options.label_weight >= 0 && options.label_weight <= 100))
+    return {StatusCode::InvalidArgument, "size_bias and label_weight must be in [0, 100]"};
   if (Status st = check_points(points); !st) return st;
   s.pts = &points;
   s.opt = options;
@@ -765,10 +886,19 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.nbr = std::move(dg->dt.neighbors);
   s.dgp = std::move(dg);
   s.T0 = s.tets.size();
-  if (s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges || !s.opt.size_bias_candidates.empty()) {
+  const auto t_setup = Clock::now();
+  s.compute_terms();
+  bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges, need_label = s.opt.label_weight > 0;
+  for (const Constrict3Variant& v : s.opt.variants) {
+    need_size = need_size || v.size_bias > 0;
+    need_label = need_label || v.label_weight > 0;
+  }
+  if (need_size) {
     s.compute_spacing();
     s.compute_face_log();
   }
+  if (need_label) s.compute_labels();
+  s.ms_setup = ms_since(t_setup);
   s.state.assign(s.T0, kAlive);
   s.ver.assign(s.T0, 0);
   s.mark.assign(s.T0, 0);
@@ -799,7 +929,9 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   if (!s.ready) return {StatusCode::Internal, "Constrictor3::finish before a successful init"};
   r = Mesh3Result{};
   r.size_bias = s.opt.size_bias;
+  r.label_weight = s.opt.label_weight;
   r.ms_delaunay = s.ms_delaunay;
+  r.ms_setup = s.ms_setup;
   r.delaunay_tets = s.T0;
   auto stage_event = [&](const char* name) {
     if (!s.visitor) return;
@@ -931,16 +1063,23 @@ void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
 Status reconstruct3(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
                     Constrict3Visitor* visitor) {
   Constrictor3 c;
-  const std::vector<double>& cand = options.size_bias_candidates;
-  // The size bias only enters the γ-type keys: min-area-change runs once.
+  const std::vector<Constrict3Variant>& cand = options.variants;
+  for (const Constrict3Variant& v : cand)
+    if (!(v.size_bias >= 0 && v.size_bias <= 100 && v.label_weight >= 0 && v.label_weight <= 100))
+      return {StatusCode::InvalidArgument, "variants: size_bias and label_weight must be in [0, 100]"};
+  if (!(options.size_bias >= 0 && options.size_bias <= 100 && options.label_weight >= 0 && options.label_weight <= 100))
+    return {StatusCode::InvalidArgument, "size_bias and label_weight must be in [0, 100]"};
+  // The size bias and the labels only enter the γ-type keys: min-area-change runs once.
   if (cand.size() < 2 || options.stop_after != SIZE_MAX || options.criterion == Criterion::MinAreaChange) {
     Constrict3Options o = options;
-    if (!cand.empty()) o.size_bias = cand[0];
+    if (!cand.empty()) {
+      o.size_bias = cand[0].size_bias;
+      o.label_weight = cand[0].label_weight;
+    }
+    o.variants.clear();
     if (Status s = c.init(points, o, visitor); !s) return s;
     return c.finish(result);
   }
-  for (double b : cand)
-    if (!(b >= 0 && b <= 100)) return {StatusCode::InvalidArgument, "size_bias_candidates must be in [0, 100]"};
   return c.run_candidates(points, options, result, visitor);
 }
 
@@ -951,7 +1090,8 @@ Status reconstruct3(const PointSet& points, const Constrict3Options& options, Me
 Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Options& options,
                                     Mesh3Result& result, Constrict3Visitor* visitor) {
   Constrict3Options o = options;
-  o.size_bias = options.size_bias_candidates[0];
+  o.size_bias = options.variants[0].size_bias;
+  o.label_weight = options.variants[0].label_weight;
   if (Status s = init(points, o, nullptr); !s) return s;
   if (visitor) {
     Constrict3Event e;
@@ -959,14 +1099,16 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     e.stage = "candidates";
     visitor->on_event(e);
   }
-  const std::vector<double>& cand = options.size_bias_candidates;
+  const std::vector<Constrict3Variant>& cand = options.variants;
   const std::size_t k = cand.size();
   std::vector<Mesh3Result> res(k);
   std::vector<std::unique_ptr<Impl>> runs(k);
   std::vector<Status> st(k);
+  const auto tv = Clock::now();
   tbb::parallel_for(std::size_t(0), k, [&](std::size_t i) {
     runs[i] = std::make_unique<Impl>(*impl_);
-    runs[i]->opt.size_bias = cand[i];
+    runs[i]->opt.size_bias = cand[i].size_bias;
+    runs[i]->opt.label_weight = cand[i].label_weight;
     runs[i]->start_heap();
     st[i] = finish_impl(*runs[i], res[i], false);
     // Keep only what the winner needs: the choice uses the result alone.
@@ -980,10 +1122,13 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   }
   std::vector<Constrict3Candidate> summary;
   for (std::size_t i = 0; i < k; ++i)
-    summary.push_back({cand[i], res[i].surface_area, res[i].complete, res[i].ms_constrict + res[i].ms_fallback +
+    summary.push_back({cand[i].size_bias, cand[i].label_weight, res[i].surface_area, res[i].complete, res[i].ms_constrict + res[i].ms_fallback +
                                                                            res[i].ms_sculpt + res[i].ms_refine});
+  const double ms_runs = ms_since(tv);
   result = std::move(res[best]);
   result.candidates = std::move(summary);
+  result.ms_variants = ms_runs;
+  result.ms_setup = impl_->ms_setup;
   if (options.validate) validate_result(*runs[best], result);
   return Status::ok();
 }

@@ -261,6 +261,50 @@ TEST(Constrict3Unit, Deterministic) {
   EXPECT_EQ(a.tets, b.tets);
 }
 
+// Variant selection (Constrict3Options::variants): the result is the complete run with the
+// smallest surface area, identical to that variant run alone, and deterministic.
+TEST(Constrict3Unit, VariantSelectionKeepsTheSmallestArea) {
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < 400; ++i) {  // a dumbbell: two spheres joined by a thin neck
+    const double t = 0.05 + 3.04 * i / 400.0, ph = 2.399963 * i;
+    const double z = 2.2 * std::cos(t), r = std::sin(t) * (0.35 + 0.65 * std::abs(std::cos(t)));
+    pts.push_back({{r * std::cos(ph), r * std::sin(ph), z}});
+  }
+  const PointSet p = make3(pts);
+  Constrict3Options o;
+  o.variants = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.25, 2.0}};
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
+  expect_valid(p, r);
+  ASSERT_EQ(r.candidates.size(), 4u);
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < r.candidates.size(); ++i) {
+    EXPECT_TRUE(r.candidates[i].complete);
+    if (r.candidates[i].surface_area < r.candidates[best].surface_area) best = i;
+  }
+  EXPECT_EQ(r.surface_area, r.candidates[best].surface_area);
+  EXPECT_EQ(r.size_bias, o.variants[best].size_bias);
+  EXPECT_EQ(r.label_weight, o.variants[best].label_weight);
+  // The same variant as a single run gives the same surface.
+  Constrict3Options single = o;
+  single.variants = {o.variants[best]};
+  Mesh3Result s;
+  ASSERT_TRUE(reconstruct3(p, single, s).is_ok());
+  EXPECT_TRUE(s.candidates.empty());
+  EXPECT_EQ(s.mesh.triangles, r.mesh.triangles);
+  Mesh3Result again;
+  ASSERT_TRUE(reconstruct3(p, o, again).is_ok());
+  EXPECT_EQ(again.mesh.triangles, r.mesh.triangles);
+  // Out-of-range weights are rejected.
+  Constrict3Options bad;
+  bad.variants = {{-1.0, 0.0}, {1.0, 0.0}};
+  EXPECT_EQ(reconstruct3(p, bad, r).code(), StatusCode::InvalidArgument);
+  bad = Constrict3Options{};
+  bad.label_weight = std::nan("");
+  bad.variants.clear();
+  EXPECT_EQ(reconstruct3(p, bad, r).code(), StatusCode::InvalidArgument);
+}
+
 TEST(Constrict3Unit, StepperAndStopAfter) {
   const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
   Constrictor3 c;
