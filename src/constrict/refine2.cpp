@@ -467,10 +467,131 @@ class Refiner {
 
 }  // namespace
 
+namespace {
+
+// Could any vertex have a shortening candidate move? A superset test of the Refiner's first sweep
+// that needs no candidate lists: one pass over the triangle edges (like the O(N) validation).
+// 2-opt moves through a Delaunay edge are tested exactly as the search does; for Or-opt, a
+// candidate c of a segment end e is a Delaunay neighbour closer than the largest length the
+// removal of a segment ending at e saves. When
+// this returns false the search would make no move, so the expensive set-up is skipped: on a
+// good reconstruction of a dense curve the pass costs about as much as the validation.
+bool may_improve(const PointSet& pts, const Delaunay2& dt, const std::vector<int>& poly, double& perimeter) {
+  const std::size_t n = poly.size();
+  // Coordinates in polygon order (one pass of random reads), then sequential passes.
+  std::vector<double> xy(2 * n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      xy[2 * i] = pts[U(poly[i])][0];
+      xy[2 * i + 1] = pts[U(poly[i])][1];
+    }
+  });
+  const auto dpos = [&](std::size_t i, std::size_t j) {
+    const double dx = xy[2 * i] - xy[2 * j], dy = xy[2 * i + 1] - xy[2 * j + 1];
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  std::vector<double> el(n);  // el[i] = |poly[i] poly[i+1]|
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) el[i] = dpos(i, (i + 1) % n);
+  });
+  perimeter = 0;
+  for (double l : el) perimeter += l;
+  // Or-opt: the largest saving el(p,s0) + el(sL,q) - d(p,q) over the segments of 1..kMaxSegment
+  // points that start (g_start) or end (g_end) at a position; 2-opt: the longer polygon edge.
+  // Per vertex id, packed so that the triangle pass below loads one cache line per vertex.
+  struct VInfo {
+    double x, y, two, gain;  // coordinates, longer polygon edge, largest Or-opt saving
+    int succ, pred;
+  };
+  std::vector<VInfo> vi(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t ip = (i + n - 1) % n;
+      double gs = 0, ge = 0;
+      for (int len = 1; len <= kMaxSegment && n >= static_cast<std::size_t>(len) + 3; ++len) {
+        const std::size_t L = U(len);
+        // segment i .. i+L-1 (starts here)
+        const std::size_t last = (i + L - 1) % n, q = (i + L) % n;
+        gs = std::max(gs, el[ip] + el[last] - dpos(ip, q));
+        // segment i-L+1 .. i (ends here)
+        const std::size_t st = (i + n - L + 1) % n, pp = (st + n - 1) % n;
+        ge = std::max(ge, el[pp] + el[i] - dpos(pp, (i + 1) % n));
+      }
+      vi[U(poly[i])] = {xy[2 * i], xy[2 * i + 1], std::max(el[ip], el[i]), std::max(gs, ge),
+                        poly[(i + 1) % n], poly[ip]};
+    }
+  });
+  std::atomic<bool> any{false};
+  const auto dv = [&](const VInfo& p, const VInfo& q) {
+    const double dx = p.x - q.x, dy = p.y - q.y;
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, dt.triangles.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    if (any.load(std::memory_order_relaxed)) return;
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const auto& tr = dt.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        // Each undirected edge once: from the triangle with the smaller index (or the hull).
+        const int across = dt.neighbors[t][U((k + 2) % 3)];
+        if (across >= 0 && U(across) < t) continue;
+        const int a = tr[U(k)], b = tr[U((k + 1) % 3)];
+        const VInfo& A = vi[U(a)];
+        const VInfo& B = vi[U(b)];
+        const double d = dv(A, B);
+        for (int side = 0; side < 2; ++side) {
+          const int u = side ? b : a, v = side ? a : b;
+          const VInfo& Uu = side ? B : A;
+          const VInfo& Vv = side ? A : B;
+          bool hit = d < Uu.gain;
+          if (!hit && d < Uu.two) {
+            // The exact 2-opt test of Refiner::try_two_opt for c = v, both directions.
+            for (const bool fwd : {true, false}) {
+              const int nb = fwd ? Uu.succ : Uu.pred, dd = fwd ? Vv.succ : Vv.pred;
+              if (v == nb || dd == u) continue;
+              const VInfo& Nb = vi[U(nb)];
+              const VInfo& Dd = vi[U(dd)];
+              const double dab = dv(Uu, Nb), dcd = dv(Vv, Dd);
+              const double g = dab - d + dcd - dv(Nb, Dd);
+              if (g > 1e-9 * (dab + dcd)) hit = true;
+            }
+          }
+          if (hit) {
+            any.store(true, std::memory_order_relaxed);
+            return;
+          }
+        }
+      }
+    }
+  });
+  return any.load();
+}
+
+// CCW (exact turn at the lexicographically smallest vertex), starting at the smallest index.
+void normalise_polygon(const PointSet& pts, std::vector<int>& poly) {
+  const std::size_t n = poly.size();
+  std::size_t lo = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double* a = pts[U(poly[i])];
+    const double* b = pts[U(poly[lo])];
+    if (a[0] < b[0] || (a[0] == b[0] && a[1] < b[1])) lo = i;
+  }
+  if (orient2(pts[U(poly[(lo + n - 1) % n])], pts[U(poly[lo])], pts[U(poly[(lo + 1) % n])]) < 0)
+    std::reverse(poly.begin(), poly.end());
+  std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end()), poly.end());
+}
+
+}  // namespace
+
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats) {
   stats = Refine2Stats{};
   if (polygon.size() < 4 || polygon.size() != points.size()) return;
+  double len = 0;
+  if (!may_improve(points, dt, polygon, len)) {
+    normalise_polygon(points, polygon);
+    stats.length_before = stats.length_after = len;
+    return;
+  }
   Refiner r(points, dt, polygon, work_budget, stats);
   r.run();
 }

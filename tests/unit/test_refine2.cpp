@@ -47,6 +47,24 @@ TEST(Refine2, HandOrOptMove) {
   EXPECT_TRUE(validate_polygon_brute_force(p, poly).is_ok());
 }
 
+// A convex polygon has no shortening move: the early exit (no candidate set-up) must still return
+// the polygon counter-clockwise from its smallest index, with its length.
+TEST(Refine2, OptimalPolygonIsOnlyNormalised) {
+  std::vector<std::array<double, 2>> xy;
+  for (int i = 0; i < 12; ++i) xy.push_back({{std::cos(0.5236 * i), std::sin(0.5236 * i)}});
+  const PointSet p = make2(xy);
+  std::vector<int> cw;
+  for (int i = 0; i < 12; ++i) cw.push_back((15 - i) % 12);  // 3 2 1 0 11 10 ... (clockwise)
+  Refine2Stats st;
+  ASSERT_TRUE(refine_polygon2(p, cw, &st).is_ok());
+  std::vector<int> ccw;
+  for (int i = 0; i < 12; ++i) ccw.push_back(i);
+  EXPECT_EQ(cw, ccw);
+  EXPECT_EQ(st.moves_2opt + st.moves_oropt, 0u);
+  EXPECT_NEAR(st.length_before, perimeter(p, ccw), 1e-12);
+  EXPECT_EQ(st.length_before, st.length_after);
+}
+
 TEST(Refine2, RejectsInvalidPolygon) {
   const PointSet p = make2({{0, 0}, {4, 0}, {4, 4}, {0, 4}});
   std::vector<int> bowtie{0, 2, 1, 3};
