@@ -166,7 +166,7 @@ struct Refine2Stats {
 /// is valid after every move. Deterministic; the result is counter-clockwise and starts at its
 /// smallest index.
 /// @param[in] points 2D, at least 3 points, not all collinear
-/// @param[in,out] polygon a valid polygon (validate_polygon()) through every point
+/// @param[in,out] polygon a simple polygon through every point, either orientation
 /// @param[out] stats optional move counts and perimeters
 /// @param[in] work_per_point bound on the reversal work: work_per_point · N array elements
 /// @return Ok; InvalidArgument if @p polygon is not valid (it is then unchanged); the

@@ -604,8 +604,13 @@ Status refine_polygon2(const PointSet& points, std::vector<int>& polygon, Refine
                        std::size_t work_per_point) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "refine_polygon2: points must be 2D"};
   if (Status st = check_points(points); !st) return st;
-  if (Status st = validate_polygon(points, polygon); !st)
-    return {StatusCode::InvalidArgument, "refine_polygon2: the polygon is not valid: " + st.message()};
+  PolygonCheck chk;
+  if (Status st = validate_polygon(points, polygon, &chk); !st) {
+    // Either orientation is accepted (the result is counter-clockwise).
+    const bool only_clockwise = chk.indices_ok && chk.all_points && chk.simple && !chk.ccw;
+    if (!only_clockwise)
+      return {StatusCode::InvalidArgument, "refine_polygon2: the polygon is not valid: " + st.message()};
+  }
   Delaunay2 dt;
   if (Status st = build_delaunay2(points, dt); !st) return st;
   Refine2Stats local;
