@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // constrict_compare: runs every reconstruction method on folders of point sets and writes one
-// table (Markdown or CSV): validity, points on the boundary, ground truth recovered, time.
+// table (Markdown or CSV): validity, points on the boundary, ground truth recovered, Hausdorff and
+// mean distance to the ground truth (compare.hpp, relative to the GT bounding-box diagonal), time.
 // Layouts understood (docs/comparison-methods.md, "Comparison table"):
 //   DIR/points/NAME.xy with optional DIR/gt/NAME.gt   (../shared/data/2d)
 //   DIR/NAME.xyz with optional DIR/NAME_gt.off          (../shared/data/3d; GT vertex i = point i)
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "constrict/compare.hpp"
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
@@ -58,6 +60,11 @@ struct Row {
   // 3D ground truth
   double tri_recovered = -1, area_ratio = -1, volume_ratio = -1;
   double roughness = -1, gt_roughness = -1;  // mean angle between the normals of adjacent faces (deg)
+  // Distances to the ground truth (compare_meshes3 / compare_curves2, default sampling), relative
+  // to the GT bounding-box diagonal: symmetric Hausdorff, both one-sided values, mean of the two
+  // mean distances; -1 without ground truth or when the comparison was refused.
+  double hausdorff = -1, hausdorff_to_gt = -1, hausdorff_from_gt = -1, mean_dist = -1;
+  double ms_compare = 0;               // time of the distance computation (not in ms_total)
   double ms_total = 0, ms_method = 0;  // wall time of the library call; method part (no Delaunay)
   std::string note;                    // seeds for the skeleton
 };
@@ -83,31 +90,6 @@ std::vector<Input> scan(const std::string& dir) {
   }
   std::sort(out.begin(), out.end(), [](const Input& a, const Input& b) { return a.name < b.name; });
   return out;
-}
-
-// Faces of a ground-truth OFF whose vertex i is input point i (../shared/data/3d/README.md).
-bool read_off_faces(const fs::path& path, std::vector<std::array<int, 3>>& faces) {
-  std::ifstream f(path);
-  std::string head;
-  long long nv = 0, nf = 0, ne = 0;
-  if (!(f >> head >> nv >> nf >> ne) || head != "OFF") return false;
-  for (long long i = 0; i < nv; ++i) {
-    double x, y, z;
-    if (!(f >> x >> y >> z)) return false;
-  }
-  for (long long i = 0; i < nf; ++i) {
-    int k = 0;
-    std::array<int, 3> t{};
-    if (!(f >> k)) return false;
-    if (k != 3) {
-      std::string rest;
-      std::getline(f, rest);
-      continue;
-    }
-    f >> t[0] >> t[1] >> t[2];
-    faces.push_back(t);
-  }
-  return true;
 }
 
 // Roughness: mean angle (degrees) between the normals of the two faces of every edge.
@@ -185,6 +167,16 @@ void run2(const Input& in, const PointSet& p, const std::string& method, std::si
   const PolygonComparison c = compare_polygon2(boundary, ref);
   row.exact = row.gt_single && c.exact_match;
   row.recall = c.edge_recall;
+  if (boundary.size() < 3) return;
+  CurveDistance2 d;
+  const auto tc = Clock::now();
+  if (compare_curves2({polygon_polyline2(p, boundary)}, reference_polylines2(p, ref), d)) {
+    row.hausdorff = d.relative_hausdorff;
+    row.hausdorff_to_gt = d.hausdorff_result_to_reference / d.bbox_diagonal;
+    row.hausdorff_from_gt = d.hausdorff_reference_to_result / d.bbox_diagonal;
+    row.mean_dist = d.relative_mean;
+  }
+  row.ms_compare = ms_since(tc);
 }
 
 void run3(const Input& in, const PointSet& p, const std::string& method, std::size_t seed_limit, Row& row) {
@@ -225,26 +217,28 @@ void run3(const Input& in, const PointSet& p, const std::string& method, std::si
     row.note = r.method + (r.cavities ? ", " + std::to_string(r.cavities) + " cavities" : "");
   }
   if (in.gt.empty()) return;
+  // The GT mesh with its own vertex list (GT vertex i = point i in the shared data, but neither the
+  // triangle matching nor the distances rely on it).
+  PointSet gp;
   TriMesh3 gt;
-  if (!read_off_faces(in.gt, gt.triangles)) return;
+  if (!read_mesh(in.gt.string(), gp, gt)) return;
   row.gt = true;
-  std::set<std::array<int, 3>> ours;
-  for (auto t : mesh.triangles) {
-    std::sort(t.begin(), t.end());
-    ours.insert(t);
+  MeshDistance d;
+  const auto tc = Clock::now();
+  if (compare_meshes3(p, mesh, gp, gt, d)) {
+    row.tri_recovered = d.triangle_recovery;
+    row.hausdorff = d.relative_hausdorff;
+    row.hausdorff_to_gt = d.hausdorff_result_to_reference / d.bbox_diagonal;
+    row.hausdorff_from_gt = d.hausdorff_reference_to_result / d.bbox_diagonal;
+    row.mean_dist = d.relative_mean;
   }
-  std::size_t hit = 0;
-  for (auto t : gt.triangles) {
-    std::sort(t.begin(), t.end());
-    hit += ours.count(t);
-  }
-  row.tri_recovered = gt.triangles.empty() ? 0 : static_cast<double>(hit) / static_cast<double>(gt.triangles.size());
+  row.ms_compare = ms_since(tc);
   // |volume|: some GT meshes are oriented inward.
-  const double ga = mesh_area(p, gt), gv = std::abs(mesh_volume(p, gt));
+  const double ga = mesh_area(gp, gt), gv = std::abs(mesh_volume(gp, gt));
   row.area_ratio = ga > 0 ? mesh_area(p, mesh) / ga : -1;
   row.volume_ratio = gv > 0 ? std::abs(mesh_volume(p, mesh)) / gv : -1;
   row.roughness = mean_normal_angle(p, mesh);
-  row.gt_roughness = mean_normal_angle(p, gt);
+  row.gt_roughness = mean_normal_angle(gp, gt);
 }
 
 std::string fmt(double v, const char* f = "%.3f") {
@@ -254,16 +248,25 @@ std::string fmt(double v, const char* f = "%.3f") {
   return b;
 }
 
+// Relative distance for the CSV: n/a without ground truth, "-" when the comparison failed.
+std::string na(const Row& r, double v) { return r.gt ? fmt(v, "%.6f") : "n/a"; }
+
 void write_csv(std::ostream& o, const std::vector<Row>& rows) {
   o << "dir,name,dim,n,method,ok,complete,valid,on_boundary,gt,gt_single,exact,edge_recall,tri_recovered,"
-       "area_ratio,volume_ratio,roughness_deg,gt_roughness_deg,hausdorff,ms_total,ms_method,note,error\n";
+       "area_ratio,volume_ratio,roughness_deg,gt_roughness_deg,hausdorff,hausdorff_result_to_gt,hausdorff_gt_to_result,"
+       "mean_distance,ms_total,ms_method,ms_compare,note,error\n";
   for (const Row& r : rows)
     o << r.dir << ',' << r.name << ',' << r.dim << ',' << r.n << ',' << r.method << ',' << r.ok << ',' << r.complete
       << ',' << r.valid << ',' << r.on_boundary << ',' << r.gt << ',' << r.gt_single << ',' << r.exact << ','
       << fmt(r.recall, "%.4f") << ',' << fmt(r.tri_recovered, "%.4f") << ',' << fmt(r.area_ratio, "%.4f") << ','
-      << fmt(r.volume_ratio, "%.4f") << ',' << fmt(r.roughness, "%.2f") << ',' << fmt(r.gt_roughness, "%.2f") << ",n/a," << fmt(r.ms_total, "%.1f") << ',' << fmt(r.ms_method, "%.1f") << ",\""
+      << fmt(r.volume_ratio, "%.4f") << ',' << fmt(r.roughness, "%.2f") << ',' << fmt(r.gt_roughness, "%.2f") << ','
+      << na(r, r.hausdorff) << ',' << na(r, r.hausdorff_to_gt) << ',' << na(r, r.hausdorff_from_gt) << ','
+      << na(r, r.mean_dist) << ',' << fmt(r.ms_total, "%.1f") << ',' << fmt(r.ms_method, "%.1f") << ','
+      << fmt(r.ms_compare, "%.1f") << ",\""
       << r.note << "\",\"" << r.error << "\"\n";
 }
+
+std::string pct(double v) { return v < 0 ? "n/a" : fmt(100.0 * v, "%.2f"); }
 
 void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<std::string>& methods) {
   std::map<std::string, std::vector<const Row*>> by_dir;
@@ -272,15 +275,17 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
     const bool three = !rs.empty() && rs.front()->dim == 3;
     o << "### " << dir << " — summary per method\n\n";
     if (!three) {
-      o << "| method | sets | valid & complete | incomplete | failed | exact GT match (single-curve GT) | mean GT edge recall | total ms | method ms (no Delaunay) |\n"
-           "|---|---|---|---|---|---|---|---|---|\n";
+      o << "| method | sets | valid & complete | incomplete | failed | exact GT match (single-curve GT) | mean GT edge recall | mean Hausdorff % (GT→result) | mean distance % | total ms | method ms (no Delaunay) |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|\n";
     } else {
-      o << "| method | models | valid & complete | incomplete | failed | mean GT triangles recovered | mean area / GT | mean volume / GT | mean normal angle° (GT) | Hausdorff | total ms | method ms (no Delaunay) |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      o << "| method | models | valid & complete | incomplete | failed | mean GT triangles recovered | mean area / GT | mean volume / GT | mean normal angle° (GT) | mean Hausdorff % (GT→result) | mean distance % | total ms | method ms (no Delaunay) |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     }
     for (const std::string& m : methods) {
       std::size_t sets = 0, valid = 0, incomplete = 0, failed = 0, single = 0, exact = 0, gt = 0;
       double recall = 0, tri = 0, area = 0, vol = 0, rough = 0, grough = 0, ms = 0, msm = 0;
+      double haus = 0, haus_from = 0, mdist = 0;
+      std::size_t dist = 0;  // rows with distances
       for (const Row* r : rs) {
         if (r->method != m) continue;
         ++sets;
@@ -297,6 +302,12 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
           vol += std::max(0.0, r->volume_ratio);
           rough += std::max(0.0, r->roughness);
           grough += std::max(0.0, r->gt_roughness);
+          if (r->hausdorff >= 0) {
+            ++dist;
+            haus += r->hausdorff;
+            haus_from += r->hausdorff_from_gt;
+            mdist += r->mean_dist;
+          }
         }
         if (r->gt_single) {
           ++single;
@@ -305,24 +316,30 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
       }
       if (sets == 0) continue;
       const double g = gt ? static_cast<double>(gt) : 1.0;
+      // Distances in % of the GT bounding-box diagonal, averaged over the inputs that have them.
+      std::string dcols = "n/a | n/a | ";
+      if (dist) {
+        const double k = 100.0 / static_cast<double>(dist);
+        dcols = fmt(haus * k, "%.2f") + " (" + fmt(haus_from * k, "%.2f") + ") | " + fmt(mdist * k, "%.3f") + " | ";
+      }
       o << "| " << m << " | " << sets << " | " << valid << " | " << incomplete << " | " << failed << " | ";
       if (!three)
-        o << exact << " / " << single << " | " << fmt(recall / g) << " | ";
+        o << exact << " / " << single << " | " << fmt(recall / g) << " | " << dcols;
       else
         o << fmt(tri / g) << " | " << fmt(area / g) << " | " << fmt(vol / g) << " | " << fmt(rough / g, "%.1f") << " ("
-          << fmt(grough / g, "%.1f") << ") | n/a | ";
+          << fmt(grough / g, "%.1f") << ") | " << dcols;
       o << fmt(ms, "%.0f") << " | " << fmt(msm, "%.0f") << " |\n";
     }
     o << "\n### " << dir << " — per input" << (three ? "" : " (sets with ground truth)") << "\n\n";
     if (!three) {
       o << "| set | n | single GT |";
-      for (const auto& m : methods) o << ' ' << m << " (exact / recall / ms) |";
+      for (const auto& m : methods) o << ' ' << m << " (exact / recall / Hausdorff % / ms) |";
       o << "\n|---|---|---|";
       for (std::size_t i = 0; i < methods.size(); ++i) o << "---|";
       o << '\n';
     } else {
       o << "| model | n |";
-      for (const auto& m : methods) o << ' ' << m << " (complete / GT tri / area / vol / angle° / ms) |";
+      for (const auto& m : methods) o << ' ' << m << " (complete / GT tri / area / vol / angle° / Hausdorff % / ms) |";
       o << "\n|---|---|";
       for (std::size_t i = 0; i < methods.size(); ++i) o << "---|";
       o << '\n';
@@ -341,11 +358,12 @@ void write_md(std::ostream& o, const std::vector<Row>& rows, const std::vector<s
         if (!r->ok) { o << " error |"; continue; }
         if (!three)
           o << ' ' << (r->valid ? "" : "INVALID/INCOMPLETE ") << (r->exact ? "**exact**" : "-") << " / "
-            << fmt(r->recall, "%.2f") << " / " << fmt(r->ms_total, "%.0f") << " |";
+            << fmt(r->recall, "%.2f") << " / " << pct(r->hausdorff) << " / " << fmt(r->ms_total, "%.0f") << " |";
         else
           o << ' ' << (r->complete ? (r->valid ? "yes" : "INVALID") : std::to_string(r->on_boundary) + "/" + std::to_string(r->n))
             << " / " << fmt(r->tri_recovered, "%.3f") << " / " << fmt(r->area_ratio, "%.2f") << " / "
-            << fmt(r->volume_ratio, "%.2f") << " / " << fmt(r->roughness, "%.1f") << " / " << fmt(r->ms_total, "%.0f") << " |";
+            << fmt(r->volume_ratio, "%.2f") << " / " << fmt(r->roughness, "%.1f") << " / " << pct(r->hausdorff) << " / "
+            << fmt(r->ms_total, "%.0f") << " |";
       }
       o << '\n';
     }
