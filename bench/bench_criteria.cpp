@@ -8,8 +8,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <cmath>
-#include <random>
 
 #include "bench_data.hpp"
 #include "constrict/constrict.hpp"
@@ -21,33 +19,22 @@ using namespace constrict;
 
 const Criterion kCriteria[] = {Criterion::Gamma, Criterion::MinAreaChange, Criterion::Boissonnat};
 
-// n points exactly on the closed curve r(t) = 1 + 0.3 cos(5t) (no noise band: no lock, so the
-// time is the constriction's alone).
-PointSet curve_points(std::size_t n) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 2 * M_PI);
-  PointSet p;
-  p.dim = 2;
-  p.coords.resize(2 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = u(rng), r = 1 + 0.3 * std::cos(5 * t);
-    p.coords[2 * i] = r * std::cos(t);
-    p.coords[2 * i + 1] = r * std::sin(t);
-  }
-  return p;
+// Manual time = the constriction stage only; removals and the time per removal as counters.
+void record_constriction(benchmark::State& state, double ms_constrict, std::size_t removals) {
+  state.SetIterationTime(ms_constrict / 1000.0);
+  state.counters["removals"] = static_cast<double>(removals);
+  state.counters["ns_per_removal"] = 1e6 * ms_constrict / static_cast<double>(std::max<std::size_t>(1, removals));
 }
 
 void BM_Constrict2Criterion(benchmark::State& state) {
-  const auto pts = curve_points(static_cast<std::size_t>(state.range(0)));
+  const auto pts = bench::curve_points2(static_cast<std::size_t>(state.range(0)));
   Constrict2Options o;
   o.criterion = kCriteria[state.range(1)];
   o.validate = false;
   for (auto _ : state) {
     Polygon2Result r;
     if (!reconstruct2(pts, o, r) || !r.complete) state.SkipWithError("reconstruct2 failed");
-    state.SetIterationTime(r.ms_constrict / 1000.0);
-    state.counters["removals"] = static_cast<double>(r.removed_simplices);
-    state.counters["ns_per_removal"] = 1e6 * r.ms_constrict / static_cast<double>(std::max<std::size_t>(1, r.removed_simplices));
+    record_constriction(state, r.ms_constrict, r.removed_simplices);
   }
   state.SetLabel(criterion_name(o.criterion));
 }
@@ -60,10 +47,7 @@ void BM_Constrict3Criterion(benchmark::State& state) {
   for (auto _ : state) {
     Mesh3Result r;
     if (!reconstruct3(pts, o, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
-    state.SetIterationTime(r.ms_constrict / 1000.0);
-    const std::size_t removals = r.removed_one_face + r.removed_two_face;
-    state.counters["removals"] = static_cast<double>(removals);
-    state.counters["ns_per_removal"] = 1e6 * r.ms_constrict / static_cast<double>(std::max<std::size_t>(1, removals));
+    record_constriction(state, r.ms_constrict, r.removed_one_face + r.removed_two_face);
   }
   state.SetLabel(criterion_name(o.criterion));
 }

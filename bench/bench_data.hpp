@@ -33,6 +33,22 @@ inline PointSet points2(std::size_t n, Dist d, std::uint64_t seed = 42) {
   return p;
 }
 
+/// 2D: n points exactly on the closed five-petal curve r(t) = 1 + 0.3 cos(5t), t uniform at
+/// random: "sampled on a closed curve" up to double rounding, no noise band (so no lock).
+inline PointSet curve_points2(std::size_t n, std::uint64_t seed = 7) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 2 * M_PI);
+  PointSet p;
+  p.dim = 2;
+  p.coords.resize(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = u(rng), r = 1 + 0.3 * std::cos(5 * t);
+    p.coords[2 * i] = r * std::cos(t);
+    p.coords[2 * i + 1] = r * std::sin(t);
+  }
+  return p;
+}
+
 /// 3D: uniform in the unit cube, or on an ellipsoid surface with tiny noise.
 inline PointSet points3(std::size_t n, Dist d, std::uint64_t seed = 42) {
   std::mt19937_64 rng(seed);

@@ -7,8 +7,6 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
-#include <cmath>
-#include <random>
 #include <vector>
 
 #include "bench_data.hpp"
@@ -18,24 +16,8 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using namespace constrict;
 
-// n points on the closed curve r(t) = 1 + 0.3 cos(5t) (five petals), t uniform at random:
-// exactly "sampled on a closed curve" up to double rounding (no noise band).
-PointSet curve_points(std::size_t n, std::uint64_t seed = 7) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 2 * M_PI);
-  PointSet p;
-  p.dim = 2;
-  p.coords.resize(2 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = u(rng), r = 1 + 0.3 * std::cos(5 * t);
-    p.coords[2 * i] = r * std::cos(t);
-    p.coords[2 * i + 1] = r * std::sin(t);
-  }
-  return p;
-}
-
 PointSet make(std::size_t n, int kind) {
-  return kind == 0 ? curve_points(n) : bench::points2(n, bench::Dist::Uniform);
+  return kind == 0 ? bench::curve_points2(n) : bench::points2(n, bench::Dist::Uniform);
 }
 const char* kind_name(int kind) { return kind == 0 ? "curve" : "uniform"; }
 

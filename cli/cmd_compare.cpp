@@ -2,7 +2,6 @@
 // `constrict compare RESULT REFERENCE`: measures a reconstruction against a ground truth.
 // 2D: a polygon (.idx .csv .gt) against a .gt reference over the same points (--points);
 // 3D: two meshes (.off .ply .obj .stl). The numbers come from the library (compare.hpp, metrics.hpp).
-#include <cctype>
 #include <cstdio>
 #include <stdexcept>
 #include <fstream>
@@ -27,29 +26,22 @@ struct CompareArgs {
   bool quiet = false;
 };
 
-std::string ext_of(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of("/\\");
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
-bool is_mesh_ext(const std::string& e) { return e == "off" || e == "ply" || e == "obj" || e == "stl"; }
-
-void put_distance(nlohmann::json& j, double h, double hab, double hba, double mab, double mba, double mean, double diag,
-                  double rh, double rm, double sa, double sb, std::size_t na, std::size_t nb) {
-  j["hausdorff"] = h;
-  j["hausdorff_result_to_reference"] = hab;
-  j["hausdorff_reference_to_result"] = hba;
-  j["mean_result_to_reference"] = mab;
-  j["mean_reference_to_result"] = mba;
-  j["mean"] = mean;
-  j["bbox_diagonal"] = diag;
-  j["relative_hausdorff"] = rh;
-  j["relative_mean"] = rm;
-  j["sampling"] = {{"spacing_result", sa}, {"spacing_reference", sb}, {"samples_result", na}, {"samples_reference", nb}};
+// MeshDistance and CurveDistance2 share these fields: one writer keeps the 2D and 3D reports alike.
+template <class Distance>
+void put_distance(nlohmann::json& j, const Distance& d) {
+  j["hausdorff"] = d.hausdorff;
+  j["hausdorff_result_to_reference"] = d.hausdorff_result_to_reference;
+  j["hausdorff_reference_to_result"] = d.hausdorff_reference_to_result;
+  j["mean_result_to_reference"] = d.mean_result_to_reference;
+  j["mean_reference_to_result"] = d.mean_reference_to_result;
+  j["mean"] = d.mean;
+  j["bbox_diagonal"] = d.bbox_diagonal;
+  j["relative_hausdorff"] = d.relative_hausdorff;
+  j["relative_mean"] = d.relative_mean;
+  j["sampling"] = {{"spacing_result", d.spacing_result},
+                   {"spacing_reference", d.spacing_reference},
+                   {"samples_result", d.samples_result},
+                   {"samples_reference", d.samples_reference}};
 }
 
 int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions& o) {
@@ -75,9 +67,7 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   j["recovered_edges"] = pc.recovered_edges;
   j["edge_recall"] = pc.edge_recall;
   j["edge_precision"] = pc.edge_precision;
-  put_distance(j, d.hausdorff, d.hausdorff_result_to_reference, d.hausdorff_reference_to_result,
-               d.mean_result_to_reference, d.mean_reference_to_result, d.mean, d.bbox_diagonal, d.relative_hausdorff,
-               d.relative_mean, d.spacing_result, d.spacing_reference, d.samples_result, d.samples_reference);
+  put_distance(j, d);
   if (!a.quiet)
     std::printf("%s: edges recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox diagonal), "
                 "mean %.6g (%.4f%%)\n",
@@ -90,7 +80,7 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
 int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions& o) {
   PointSet rp, bp;
   TriMesh3 rm, bm;
-  if (!is_mesh_ext(ext_of(a.result)))
+  if (!is_mesh_ext(lower_ext(a.result)))
     return fail({StatusCode::InvalidArgument, a.result + ": unknown mesh format (use .off, .ply, .obj or .stl)"});
   if (Status s = read_mesh(a.result, rp, rm); !s) return fail(s);
   if (Status s = read_mesh(a.reference, bp, bm); !s) return fail(s);
@@ -104,9 +94,7 @@ int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   j["triangle_recovery"] = d.triangle_recovery;
   j["triangle_precision"] = d.triangle_precision;
   j["matched_vertices"] = d.matched_vertices;
-  put_distance(j, d.hausdorff, d.hausdorff_result_to_reference, d.hausdorff_reference_to_result,
-               d.mean_result_to_reference, d.mean_reference_to_result, d.mean, d.bbox_diagonal, d.relative_hausdorff,
-               d.relative_mean, d.spacing_result, d.spacing_reference, d.samples_result, d.samples_reference);
+  put_distance(j, d);
   if (!a.quiet)
     std::printf("%s: triangles recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox "
                 "diagonal; result->reference %.6g, reference->result %.6g), mean %.6g (%.4f%%)\n",
@@ -125,7 +113,7 @@ int run_compare(const CompareArgs& a) {
   j["command"] = "compare";
   j["result"] = a.result;
   j["reference"] = a.reference;
-  const std::string re = ext_of(a.reference);
+  const std::string re = lower_ext(a.reference);
   int rc = 0;
   if (re == "gt") rc = run_compare2(a, j, o);
   else if (is_mesh_ext(re)) rc = run_compare3(a, j, o);
@@ -143,7 +131,7 @@ int run_compare(const CompareArgs& a) {
 // A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or
 // .csv (x,y rows, matched to --points by exact coordinates).
 Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly) {
-  const std::string e = ext_of(path);
+  const std::string e = lower_ext(path);
   poly.clear();
   if (e == "gt") {
     Reference2 r;

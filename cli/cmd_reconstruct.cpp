@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `constrict reconstruct`: a simple polygon (2D) through all points. Validates every result.
-#include <cctype>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -225,21 +224,12 @@ class ProgressVisitor3 final : public Constrict3Visitor {
   bool started_ = false;
 };
 
-std::string extension_of(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of("/\\");
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
                      Clock::time_point t0, Clock::time_point t1) {
-  const std::string ext = extension_of(a.out);
-  if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
+  const std::string ext = lower_ext(a.out);
+  if (!is_mesh_ext(ext))
     return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 3D surface (use .off, .ply, .obj or .stl)"});
-  if (!a.body.empty() && extension_of(a.body) != "vtk")
+  if (!a.body.empty() && lower_ext(a.body) != "vtk")
     return fail({StatusCode::InvalidArgument, a.body + ": the body is written as VTK legacy (.vtk)"});
   if (a.fallback == "gamma0" || a.fallback == "degree4")
     return fail({StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback; 3D has auto (star cavities) or none"});

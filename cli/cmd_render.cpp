@@ -4,7 +4,6 @@
 // (--points) or of a 3D mesh; and the pictures of `reconstruct --render`. Drawing is done by the
 // library (render.hpp, write_polygon2).
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,28 +31,17 @@ struct RenderArgs {
   std::size_t stop_after = SIZE_MAX;
 };
 
-std::string lower_ext(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  const auto slash = path.find_last_of("/\\");
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 // Picture geometry from the options: size (default: 1024² for one panel, 512² per sheet cell).
-struct Layout {
-  int width = 0, height = 0, columns = 0;
-};
-
-Status layout(const RenderArgs& a, std::size_t panels, Layout& l) {
-  l.columns = a.columns;
+// RenderOptions2 and RenderOptions3 share these fields.
+template <class RenderOptions>
+Status layout(const RenderArgs& a, std::size_t panels, RenderOptions& o) {
+  o.columns = a.columns;
   const int cols = a.columns > 0 ? std::min<int>(a.columns, static_cast<int>(panels))
                                  : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(panels))));
   const int rows = static_cast<int>((panels + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
   if (a.size.empty()) {
-    l.width = panels == 1 ? 1024 : 512 * cols;
-    l.height = panels == 1 ? 1024 : 512 * rows;
+    o.width = panels == 1 ? 1024 : 512 * cols;
+    o.height = panels == 1 ? 1024 : 512 * rows;
     return Status::ok();
   }
   int w = 0, h = 0;
@@ -61,8 +49,8 @@ Status layout(const RenderArgs& a, std::size_t panels, Layout& l) {
   if (std::sscanf(a.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
       w > 16384 || h > 16384)
     return {StatusCode::InvalidArgument, "--size: expected WxH with 1 <= W, H <= 16384, e.g. 2048x2048"};
-  l.width = w;
-  l.height = h;
+  o.width = w;
+  o.height = h;
   return Status::ok();
 }
 
@@ -113,6 +101,43 @@ Status delaunay_layer(const PointSet& pts, GammaFaces& g) {
   return build_gamma_graph(pts, spec, g);
 }
 
+// Stage pictures need the number of removals of the whole run before the snapshots are placed.
+template <class Constrictor, class Options>
+Status count_removals(const PointSet& pts, const Options& opt, std::size_t& total) {
+  total = 0;
+  Constrictor c;
+  if (Status s = c.init(pts, opt); !s) return s;
+  while (c.step()) ++total;
+  return Status::ok();
+}
+
+// Replays the run, appends snap(c) after each target count of removals (ascending; the run's own
+// state when it ends earlier), then finishes it into r.
+template <class Constrictor, class Options, class Snap, class Shot, class Result>
+Status replay(const PointSet& pts, const Options& opt, const std::vector<std::size_t>& targets, Snap snap,
+              std::vector<Shot>& shots, Result& r) {
+  Constrictor c;
+  if (Status s = c.init(pts, opt); !s) return s;
+  std::size_t done = 0;
+  bool more = true;
+  for (std::size_t t : targets) {
+    while (more && done < t) {
+      more = c.step();
+      if (more) ++done;
+    }
+    shots.push_back(snap(c));
+  }
+  while (more && c.step()) ++done;
+  return c.finish(r);
+}
+
+void print_stages(std::size_t total, const std::vector<std::size_t>& targets, const std::string& method,
+                  const std::string& out) {
+  std::printf("stages (removals of %zu):", total);
+  for (std::size_t t : targets) std::printf(" %zu", t);
+  std::printf(" final(%s) -> %s\n", method.c_str(), out.c_str());
+}
+
 // ---- 2D ------------------------------------------------------------------------------------
 Status write_picture2(const RenderArgs& a, const PointSet& pts, const std::vector<Panel2>& panels, const std::string& path) {
   if (lower_ext(path) == "svg") {
@@ -120,12 +145,8 @@ Status write_picture2(const RenderArgs& a, const PointSet& pts, const std::vecto
       return {StatusCode::InvalidArgument, path + ": a sheet of several panels is written as PNG"};
     return write_polygon2(path, pts, panels[0].boundary, PolygonFormat::Svg, panels[0].layers);
   }
-  Layout l;
-  if (Status s = layout(a, panels.size(), l); !s) return s;
   RenderOptions2 o;
-  o.width = l.width;
-  o.height = l.height;
-  o.columns = l.columns;
+  if (Status s = layout(a, panels.size(), o); !s) return s;
   Image img;
   if (Status s = render_sheet2(pts, panels, o, img); !s) return s;
   return write_png(path, img);
@@ -152,11 +173,7 @@ int render_points2(const RenderArgs& a, const PointSet& pts) {
   }
   // Count the removals of the whole Delaunay constriction, then replay it and take snapshots.
   std::size_t total = 0;
-  {
-    Constrictor2 c;
-    if (Status s = c.init(pts, opt); !s) return fail(s);
-    while (c.step()) ++total;
-  }
+  if (Status s = count_removals<Constrictor2>(pts, opt, total); !s) return fail(s);
   std::vector<std::size_t> targets;
   if (!a.stages.empty()) {
     if (Status s = stage_targets(a.stages, total, targets); !s) return fail(s);
@@ -164,21 +181,10 @@ int render_points2(const RenderArgs& a, const PointSet& pts) {
     const std::size_t stride = std::max<std::size_t>(1, (total + 59) / 60);
     for (std::size_t k = 0; k < total; k += stride) targets.push_back(k);
   }
-  Constrictor2 c;
-  if (Status s = c.init(pts, opt); !s) return fail(s);
   std::vector<std::vector<int>> shots;
-  std::size_t done = 0;
-  bool more = true;
-  for (std::size_t t : targets) {
-    while (more && done < t) {
-      more = c.step();
-      if (more) ++done;
-    }
-    shots.push_back(c.boundary());
-  }
-  while (more && c.step()) ++done;
   Polygon2Result r;
-  if (Status s = c.finish(r); !s) return fail(s);
+  if (Status s = replay<Constrictor2>(pts, opt, targets, [](const Constrictor2& c) { return c.boundary(); }, shots, r); !s)
+    return fail(s);
   shots.push_back(r.boundary);
   PolygonSvgLayers plain, last;
   plain.graph = last.graph = a.no_graph ? nullptr : &dt;
@@ -203,23 +209,15 @@ int render_points2(const RenderArgs& a, const PointSet& pts) {
     }
   }
   if (Status s = write_picture2(a, pts, panels, a.out); !s) return fail(s);
-  if (!a.quiet) {
-    std::printf("stages (removals of %zu):", total);
-    for (std::size_t t : targets) std::printf(" %zu", t);
-    std::printf(" final(%s) -> %s\n", r.method.c_str(), a.out.c_str());
-  }
+  if (!a.quiet) print_stages(total, targets, r.method, a.out);
   return 0;
 }
 
 // ---- 3D ------------------------------------------------------------------------------------
 Status write_picture3(const RenderArgs& a, const PointSet& pts, const std::vector<Panel3>& panels) {
   if (lower_ext(a.out) != "png") return {StatusCode::InvalidArgument, a.out + ": 3D pictures are PNG"};
-  Layout l;
-  if (Status s = layout(a, panels.size(), l); !s) return s;
   RenderOptions3 o;
-  o.width = l.width;
-  o.height = l.height;
-  o.columns = l.columns;
+  if (Status s = layout(a, panels.size(), o); !s) return s;
   o.wireframe = a.wireframe;
   o.up_axis = a.up == "x" ? 0 : a.up == "y" ? 1 : 2;
   Image img;
@@ -250,37 +248,18 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
     return render_mesh_file(a, pts, r.mesh);
   }
   std::size_t total = 0;
-  {
-    Constrictor3 c;
-    if (Status s = c.init(pts, opt); !s) return fail(s);
-    while (c.step()) ++total;
-  }
+  if (Status s = count_removals<Constrictor3>(pts, opt, total); !s) return fail(s);
   std::vector<std::size_t> targets;
   if (Status s = stage_targets(a.stages, total, targets); !s) return fail(s);
-  Constrictor3 c;
-  if (Status s = c.init(pts, opt); !s) return fail(s);
   std::vector<TriMesh3> shots;
-  std::size_t done = 0;
-  bool more = true;
-  for (std::size_t t : targets) {
-    while (more && done < t) {
-      more = c.step();
-      if (more) ++done;
-    }
-    shots.push_back(c.surface());
-  }
-  while (more && c.step()) ++done;
   Mesh3Result r;
-  if (Status s = c.finish(r); !s) return fail(s);
+  if (Status s = replay<Constrictor3>(pts, opt, targets, [](const Constrictor3& c) { return c.surface(); }, shots, r); !s)
+    return fail(s);
   shots.push_back(r.mesh);
   std::vector<Panel3> panels;
   for (const auto& m : shots) panels.push_back({&m, views[0]});
   if (Status s = write_picture3(a, pts, panels); !s) return fail(s);
-  if (!a.quiet) {
-    std::printf("stages (removals of %zu):", total);
-    for (std::size_t t : targets) std::printf(" %zu", t);
-    std::printf(" final(%s) -> %s\n", r.method.c_str(), a.out.c_str());
-  }
+  if (!a.quiet) print_stages(total, targets, r.method, a.out);
   return 0;
 }
 
@@ -307,7 +286,7 @@ int run_render(const RenderArgs& a) {
     return 0;
   }
   const std::string ie = lower_ext(a.in.path);
-  if (ie == "off" || ie == "ply" || ie == "obj" || ie == "stl") {  // a mesh, unless it has no faces
+  if (is_mesh_ext(ie)) {  // a mesh, unless it has no faces
     PointSet pts;
     TriMesh3 mesh;
     const Status s = read_mesh(a.in.path, pts, mesh);

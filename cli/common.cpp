@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "common.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 
@@ -28,6 +29,17 @@ Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep) {
     for (const auto& w : rep.warnings) std::fprintf(stderr, "constrict: warning: %s\n", w.c_str());
   return s;
 }
+
+std::string lower_ext(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string e = path.substr(dot + 1);
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+bool is_mesh_ext(const std::string& ext) { return ext == "off" || ext == "ply" || ext == "obj" || ext == "stl"; }
 
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out) {
   out.clear();

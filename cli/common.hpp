@@ -40,6 +40,11 @@ Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep);
 /// Splits "a,b,c" into exactly @p count doubles; false on a malformed list or another count.
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out);
 
+/// The extension of @p path in lower case, without the dot ("" when the last component has none).
+std::string lower_ext(const std::string& path);
+/// True for the mesh extensions the library reads and writes: off, ply, obj, stl (lower case).
+bool is_mesh_ext(const std::string& ext);
+
 Status write_report(const std::string& path, const nlohmann::json& j);
 
 /// Progress lines on stderr for long runs: silent during the first second, then one line per

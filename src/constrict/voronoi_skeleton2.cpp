@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Shortest Voronoi skeleton polygon (seed paper §2.7, §6; O'Rourke, Booth & Washington 1987).
-// The growth is in detail/skeleton_growth.hpp; this file computes the dual edge lengths, extracts
-// the polygon of the best body and validates it. Open choices: docs/comparison-methods.md.
+// The growth and the search are in detail/skeleton_growth.hpp; this file computes the circumcentres,
+// extracts the polygon of the best body and validates it. Open choices: docs/comparison-methods.md.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -47,33 +47,17 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
     const auto& v = dt.triangles[t];
     cc[t] = circumcentre2(points[U(v[0])], points[U(v[1])], points[U(v[2])]);
   }
-  std::vector<std::array<double, 3>> len(T);
-  for (std::size_t t = 0; t < T; ++t)
-    for (int i = 0; i < 3; ++i) {
-      const int m = dt.neighbors[t][U(i)];
-      len[t][U(i)] = m < 0 ? HUGE_VAL : std::hypot(cc[U(m)][0] - cc[t][0], cc[U(m)][1] - cc[t][1]);
-    }
-  detail::SkeletonGrowth<3> growth(dt.triangles, dt.neighbors, len, n);
-  const std::vector<int> seeds = detail::skeleton_seeds<3>(dt.triangles, options.seed_limit);
-  detail::SkeletonGrowth<3>::Outcome best;
   auto& st = result.stats;
-  st.simplices = T;
-  detail::skeleton_search<3>(growth, seeds, n, options.prune, best, st.seeds_tried, st.seeds_pruned,
-                             st.seeds_complete, st.best_seed);
-  st.tree_length = best.length;
+  detail::SkeletonBody body = detail::skeleton_best_body<3>(dt.triangles, dt.neighbors, cc, n, options, st);
+  const std::vector<char>& reached = body.reached;
 
   // The polygon: free edges of the body, each CCW triangle's edge a->b has the body on its left.
-  std::vector<char> in_body(T, 0), reached(n, 0);
-  for (int t : best.added) {
-    in_body[U(t)] = 1;
-    result.triangles.push_back(dt.triangles[U(t)]);
-    for (int v : dt.triangles[U(t)]) reached[U(v)] = 1;
-  }
+  for (int t : body.added) result.triangles.push_back(dt.triangles[U(t)]);
   std::vector<int> nxt(n, -1);
-  for (int t : best.added)
+  for (int t : body.added)
     for (int i = 0; i < 3; ++i) {
       const int m = dt.neighbors[U(t)][U(i)];
-      if (m >= 0 && in_body[U(m)]) continue;
+      if (m >= 0 && body.in_body[U(m)]) continue;
       const auto& v = dt.triangles[U(t)];
       nxt[U(v[U((i + 1) % 3)])] = v[U((i + 2) % 3)];
     }
@@ -85,8 +69,7 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
     v = nxt[U(v)];
     if (v == start || result.boundary.size() > n) break;
   }
-  for (std::size_t v = 0; v < n; ++v)
-    if (!reached[v]) result.unplaced_points.push_back(static_cast<int>(v));
+  result.unplaced_points = std::move(body.unplaced);
   result.complete = result.unplaced_points.empty();
   const std::size_t m = result.boundary.size();
   for (std::size_t i = 0; i < m; ++i) {

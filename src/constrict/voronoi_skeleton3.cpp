@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Shortest Voronoi skeleton polyhedron (seed paper §2.7, §6, Fig. 11; O'Rourke, Booth &
-// Washington 1987). The growth is in detail/skeleton_growth.hpp; this file computes the dual
-// edge lengths, extracts the surface of the best body and validates it.
+// Washington 1987). The growth and the search are in detail/skeleton_growth.hpp; this file
+// computes the circumcentres, extracts the surface of the best body and validates it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -59,41 +59,18 @@ Status voronoi_skeleton3(const PointSet& points, const VoronoiSkeletonOptions& o
     const auto& v = dt.tets[t];
     cc[t] = circumcentre3(points[U(v[0])], points[U(v[1])], points[U(v[2])], points[U(v[3])]);
   }
-  std::vector<std::array<double, 4>> len(T);
-  for (std::size_t t = 0; t < T; ++t)
-    for (int i = 0; i < 4; ++i) {
-      const int m = dt.neighbors[t][U(i)];
-      if (m < 0) {
-        len[t][U(i)] = HUGE_VAL;
-        continue;
-      }
-      const double dx = cc[U(m)][0] - cc[t][0], dy = cc[U(m)][1] - cc[t][1], dz = cc[U(m)][2] - cc[t][2];
-      len[t][U(i)] = std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
-  detail::SkeletonGrowth<4> growth(dt.tets, dt.neighbors, len, n);
-  const std::vector<int> seeds = detail::skeleton_seeds<4>(dt.tets, options.seed_limit);
-  detail::SkeletonGrowth<4>::Outcome best;
   auto& st = result.stats;
-  st.simplices = T;
-  detail::skeleton_search<4>(growth, seeds, n, options.prune, best, st.seeds_tried, st.seeds_pruned,
-                             st.seeds_complete, st.best_seed);
-  st.tree_length = best.length;
+  detail::SkeletonBody body = detail::skeleton_best_body<4>(dt.tets, dt.neighbors, cc, n, options, st);
 
-  std::vector<char> in_body(T, 0), reached(n, 0);
-  for (int t : best.added) {
-    in_body[U(t)] = 1;
-    result.tets.push_back(dt.tets[U(t)]);
-    for (int v : dt.tets[U(t)]) reached[U(v)] = 1;
-  }
-  for (int t : best.added)
+  for (int t : body.added) result.tets.push_back(dt.tets[U(t)]);
+  for (int t : body.added)
     for (int i = 0; i < 4; ++i) {
       const int m = dt.neighbors[U(t)][U(i)];
-      if (m >= 0 && in_body[U(m)]) continue;
+      if (m >= 0 && body.in_body[U(m)]) continue;
       const auto& v = dt.tets[U(t)];
       result.mesh.triangles.push_back({{v[U(kFaceOut[i][0])], v[U(kFaceOut[i][1])], v[U(kFaceOut[i][2])]}});
     }
-  for (std::size_t v = 0; v < n; ++v)
-    if (!reached[v]) result.unplaced_points.push_back(static_cast<int>(v));
+  result.unplaced_points = std::move(body.unplaced);
   result.complete = result.unplaced_points.empty();
   result.volume = mesh_volume(points, result.mesh);
   result.surface_area = mesh_area(points, result.mesh);

@@ -43,6 +43,47 @@ struct Side {
   std::size_t samples = 0;
 };
 
+// The serial reduction of the per-element results (element order, whatever the thread count):
+// element maxima, integrals, measures (area or length) and sample counts.
+Side reduce(const std::vector<double>& emax, const std::vector<double>& eint, const std::vector<double>& emeasure,
+            const std::vector<std::size_t>& ecount) {
+  Side s;
+  double total = 0, integral = 0;
+  for (std::size_t i = 0; i < emax.size(); ++i) {
+    s.hmax = std::max(s.hmax, emax[i]);
+    integral += eint[i];
+    total += emeasure[i];
+    s.samples += ecount[i];
+  }
+  s.mean = total > 0 ? integral / total : 0;
+  return s;
+}
+
+// MeshDistance and CurveDistance2 report the two one-sided samplings under the same field names.
+template <class Distance>
+void put_sides(const Side& ab, const Side& ba, Distance& d) {
+  d.hausdorff_result_to_reference = ab.hmax;
+  d.hausdorff_reference_to_result = ba.hmax;
+  d.hausdorff = std::max(ab.hmax, ba.hmax);
+  d.mean_result_to_reference = ab.mean;
+  d.mean_reference_to_result = ba.mean;
+  d.mean = 0.5 * (ab.mean + ba.mean);
+  d.samples_result = ab.samples;
+  d.samples_reference = ba.samples;
+  if (d.bbox_diagonal > 0) {
+    d.relative_hausdorff = d.hausdorff / d.bbox_diagonal;
+    d.relative_mean = d.mean / d.bbox_diagonal;
+  }
+}
+
+// Built before the parallel sampling: CGAL builds the tree and the distance search structure
+// lazily on the first query, which is not safe from several threads at once.
+template <class Tree>
+void prepare(Tree& tree) {
+  tree.build();
+  tree.accelerate_distance_queries();
+}
+
 bool ok_options(const DistanceOptions& o) {
   return std::isfinite(o.relative_spacing) && o.relative_spacing > 0 && o.max_samples > 0;
 }
@@ -119,16 +160,7 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
       tcount[t] = (k + 1) * (k + 2) / 2;
     }
   });
-  Side s;
-  double total = 0, integral = 0;
-  for (std::size_t t = 0; t < F; ++t) {
-    s.hmax = std::max(s.hmax, tmax[t]);
-    integral += tint[t];
-    total += tarea[t];
-    s.samples += tcount[t];
-  }
-  s.mean = total > 0 ? integral / total : 0;
-  return s;
+  return reduce(tmax, tint, tarea, tcount);
 }
 
 std::size_t count3(const Mesh& a, double h) {
@@ -260,27 +292,14 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
 
   // Distances.
   TriTree tree_a(ta.begin(), ta.end()), tree_b(tb.begin(), tb.end());
-  tree_a.build();
-  tree_b.build();
-  tree_a.accelerate_distance_queries();
-  tree_b.accelerate_distance_queries();
+  prepare(tree_a);
+  prepare(tree_b);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
   d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count3(A, h); });
   d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count3(B, h); });
   const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
   const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
-  d.hausdorff_result_to_reference = ab.hmax;
-  d.hausdorff_reference_to_result = ba.hmax;
-  d.hausdorff = std::max(ab.hmax, ba.hmax);
-  d.mean_result_to_reference = ab.mean;
-  d.mean_reference_to_result = ba.mean;
-  d.mean = 0.5 * (ab.mean + ba.mean);
-  d.samples_result = ab.samples;
-  d.samples_reference = ba.samples;
-  if (d.bbox_diagonal > 0) {
-    d.relative_hausdorff = d.hausdorff / d.bbox_diagonal;
-    d.relative_mean = d.mean / d.bbox_diagonal;
-  }
+  put_sides(ab, ba, d);
   out = d;
   return Status::ok();
 }
@@ -342,16 +361,7 @@ Side sample2(const std::vector<Seg2>& s, const SegTree& tree, double h, const st
       scount[i] = k + 1;
     }
   });
-  Side out;
-  double total = 0, integral = 0;
-  for (std::size_t i = 0; i < M; ++i) {
-    out.hmax = std::max(out.hmax, smax[i]);
-    integral += sint[i];
-    total += slen[i];
-    out.samples += scount[i];
-  }
-  out.mean = total > 0 ? integral / total : 0;
-  return out;
+  return reduce(smax, sint, slen, scount);
 }
 
 // Unordered endpoint coordinates, -0 folded into +0: equal keys are the same segment.
@@ -398,27 +408,14 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
     }
   d.bbox_diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
   SegTree ta(ga.begin(), ga.end()), tb(gb.begin(), gb.end());
-  ta.build();
-  tb.build();
-  ta.accelerate_distance_queries();
-  tb.accelerate_distance_queries();
+  prepare(ta);
+  prepare(tb);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
   d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sa, h); });
   d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sb, h); });
   const Side ab = sample2(sa, tb, d.spacing_result, shared_segments(sa, sb));
   const Side ba = sample2(sb, ta, d.spacing_reference, shared_segments(sb, sa));
-  d.hausdorff_result_to_reference = ab.hmax;
-  d.hausdorff_reference_to_result = ba.hmax;
-  d.hausdorff = std::max(ab.hmax, ba.hmax);
-  d.mean_result_to_reference = ab.mean;
-  d.mean_reference_to_result = ba.mean;
-  d.mean = 0.5 * (ab.mean + ba.mean);
-  d.samples_result = ab.samples;
-  d.samples_reference = ba.samples;
-  if (d.bbox_diagonal > 0) {
-    d.relative_hausdorff = d.hausdorff / d.bbox_diagonal;
-    d.relative_mean = d.mean / d.bbox_diagonal;
-  }
+  put_sides(ab, ba, d);
   out = d;
   return Status::ok();
 }

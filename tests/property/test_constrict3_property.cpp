@@ -173,16 +173,24 @@ constexpr int kSeedsPerFamily = 8;
 constexpr int kMaxN = 400;
 #endif
 
+// Both property tests draw run s of family fi the same way, so they see the same inputs.
+std::uint64_t case_seed(int fi, int s) {
+  return 1000003ULL * static_cast<std::uint64_t>(fi + 1) + static_cast<std::uint64_t>(s);
+}
+// Sizes 4 .. kMaxN, log-uniform.
+PointSet case_points(Family fam, std::uint64_t seed) {
+  Gen gs(seed ^ 0x9e3779b97f4a7c15ULL);
+  const int n = static_cast<int>(std::exp(gs.u(std::log(4.0), std::log(static_cast<double>(kMaxN)))));
+  return generate(fam, n, seed);
+}
+
 TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
   for (int fi = 0; fi < static_cast<int>(Family::Count); ++fi) {
     const Family fam = static_cast<Family>(fi);
     int runs = 0, locks = 0, stuck = 0, cavities = 0;
     for (int s = 0; s < kSeedsPerFamily; ++s) {
-      const std::uint64_t seed = 1000003ULL * static_cast<std::uint64_t>(fi + 1) + static_cast<std::uint64_t>(s);
-      // sizes 4 .. kMaxN, log-uniform
-      Gen gs(seed ^ 0x9e3779b97f4a7c15ULL);
-      const int n = static_cast<int>(std::exp(gs.u(std::log(4.0), std::log(static_cast<double>(kMaxN)))));
-      const PointSet p = generate(fam, n, seed);
+      const std::uint64_t seed = case_seed(fi, s);
+      const PointSet p = case_points(fam, seed);
       SCOPED_TRACE(std::string(name(fam)) + " seed " + std::to_string(seed) + " n " + std::to_string(p.size()));
       if (p.size() < 4 || coplanar(p)) continue;
       Constrict3Options o;
@@ -244,10 +252,8 @@ TEST(Constrict3Property, OtherMethodsOnTheSameInputs) {
   for (int fi = 0; fi < static_cast<int>(Family::Count); ++fi) {
     const Family fam = static_cast<Family>(fi);
     for (int s = 0; s < kSeedsPerFamily; s += 6) {
-      const std::uint64_t seed = 1000003ULL * static_cast<std::uint64_t>(fi + 1) + static_cast<std::uint64_t>(s);
-      Gen gs(seed ^ 0x9e3779b97f4a7c15ULL);
-      const int n = static_cast<int>(std::exp(gs.u(std::log(4.0), std::log(static_cast<double>(kMaxN)))));
-      const PointSet p = generate(fam, n, seed);
+      const std::uint64_t seed = case_seed(fi, s);
+      const PointSet p = case_points(fam, seed);
       SCOPED_TRACE(std::string(name(fam)) + " seed " + std::to_string(seed) + " n " + std::to_string(p.size()));
       if (p.size() < 4 || coplanar(p)) continue;
       for (Criterion c : {Criterion::MinAreaChange, Criterion::Boissonnat}) {

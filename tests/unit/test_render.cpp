@@ -76,6 +76,25 @@ std::size_t count_colour(const Image& img, std::array<std::uint8_t, 3> c, int to
   return n;
 }
 
+// A square with a dent at point 4 (polygon 0 4 1 2 3), drawn over its Delaunay graph with point 4
+// and edge 0-4 highlighted: the 2D picture and the SVG writer are checked on the same scene.
+struct DentedSquare {
+  PointSet p;
+  GammaFaces dt;
+  PolygonSvgLayers layers;  // points into dt: fill in place, do not copy
+};
+
+void make_dented_square(DentedSquare& sq) {
+  sq.p.dim = 2;
+  sq.p.coords = {0, 0, 4, 0, 4, 4, 0, 4, 2, 1};
+  GraphSpec spec;
+  ASSERT_TRUE(GraphSpec::from_preset("delaunay", spec));
+  ASSERT_TRUE(build_gamma_graph(sq.p, spec, sq.dt));
+  sq.layers.graph = &sq.dt;
+  sq.layers.highlight_points = {4};
+  sq.layers.highlight_edges = {{{0, 4}}};
+}
+
 }  // namespace
 
 TEST(Render3, TetrahedronGolden) {
@@ -162,17 +181,10 @@ TEST(Render3, RejectsBadInput) {
 }
 
 TEST(Render2, SquareGolden) {
-  PointSet p;
-  p.dim = 2;
-  p.coords = {0, 0, 4, 0, 4, 4, 0, 4, 2, 1};
-  GammaFaces dt;
-  GraphSpec spec;
-  ASSERT_TRUE(GraphSpec::from_preset("delaunay", spec));
-  ASSERT_TRUE(build_gamma_graph(p, spec, dt));
-  PolygonSvgLayers layers;
-  layers.graph = &dt;
-  layers.highlight_points = {4};
-  layers.highlight_edges = {{{0, 4}}};
+  DentedSquare sq;
+  ASSERT_NO_FATAL_FAILURE(make_dented_square(sq));
+  const PointSet& p = sq.p;
+  PolygonSvgLayers& layers = sq.layers;
   RenderOptions2 o;
   o.width = o.height = 64;
   Image img;
@@ -265,17 +277,10 @@ bool well_formed(const std::string& s, std::string& why) {
 }  // namespace
 
 TEST(RenderSvg, PolygonSvgIsWellFormedXml) {
-  PointSet p;
-  p.dim = 2;
-  p.coords = {0, 0, 4, 0, 4, 4, 0, 4, 2, 1};
-  GammaFaces dt;
-  GraphSpec spec;
-  ASSERT_TRUE(GraphSpec::from_preset("delaunay", spec));
-  ASSERT_TRUE(build_gamma_graph(p, spec, dt));
-  PolygonSvgLayers layers;
-  layers.graph = &dt;
-  layers.highlight_points = {4};
-  layers.highlight_edges = {{{0, 4}}};
+  DentedSquare sq;
+  ASSERT_NO_FATAL_FAILURE(make_dented_square(sq));
+  const PointSet& p = sq.p;
+  PolygonSvgLayers& layers = sq.layers;
   layers.title = "a <title> & \"quotes\"";
   const std::string path = tmp("poly.svg");
   ASSERT_TRUE(write_polygon2(path, p, {0, 4, 1, 2, 3}, PolygonFormat::Svg, &layers));

@@ -13,7 +13,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
+
+#include "constrict/voronoi_skeleton.hpp"
 
 namespace constrict::detail {
 
@@ -179,6 +182,64 @@ void skeleton_search(SkeletonGrowth<K>& g, const std::vector<int>& seeds, std::s
       have_complete = full;
     }
   }
+}
+
+/// The winning body of a skeleton search, in the terms both dimensions extract their result from.
+struct SkeletonBody {
+  std::vector<int> added;      // simplex ids in growth order (seed first)
+  std::vector<char> in_body;   // per simplex
+  std::vector<char> reached;   // per point
+  std::vector<int> unplaced;   // points not reached, ascending
+};
+
+/// The search shared by voronoi_skeleton2/3: dual edge lengths from the circumcentres (infinite
+/// across the hull), the seeds, the growth from each; fills the search fields of @p st.
+/// @param cc circumcentre of each simplex (double arithmetic; only ranks dual edge lengths)
+template <int K>
+SkeletonBody skeleton_best_body(const std::vector<std::array<int, K>>& simplices,
+                                const std::vector<std::array<int, K>>& neighbors,
+                                const std::vector<std::array<double, K - 1>>& cc, std::size_t n,
+                                const VoronoiSkeletonOptions& options, VoronoiSkeletonStats& st) {
+  const auto U = [](int i) { return static_cast<std::size_t>(i); };
+  const std::size_t T = simplices.size();
+  std::vector<std::array<double, K>> len(T);
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < K; ++i) {
+      const int m = neighbors[t][U(i)];
+      if (m < 0) {
+        len[t][U(i)] = HUGE_VAL;
+        continue;
+      }
+      const auto& a = cc[t];
+      const auto& b = cc[U(m)];
+      // 2D has always used std::hypot and 3D the plain root; each keeps its rounding so that the
+      // lengths, and with them the ties of the search, stay bit-identical.
+      if constexpr (K == 3) {
+        len[t][U(i)] = std::hypot(b[0] - a[0], b[1] - a[1]);
+      } else {
+        const double dx = b[0] - a[0], dy = b[1] - a[1], dz = b[2] - a[2];
+        len[t][U(i)] = std::sqrt(dx * dx + dy * dy + dz * dz);
+      }
+    }
+  SkeletonGrowth<K> growth(simplices, neighbors, len, n);
+  const std::vector<int> seeds = skeleton_seeds<K>(simplices, options.seed_limit);
+  typename SkeletonGrowth<K>::Outcome best;
+  st.simplices = T;
+  skeleton_search<K>(growth, seeds, n, options.prune, best, st.seeds_tried, st.seeds_pruned, st.seeds_complete,
+                     st.best_seed);
+  st.tree_length = best.length;
+
+  SkeletonBody body;
+  body.in_body.assign(T, 0);
+  body.reached.assign(n, 0);
+  for (int t : best.added) {
+    body.in_body[U(t)] = 1;
+    for (int v : simplices[U(t)]) body.reached[U(v)] = 1;
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    if (!body.reached[v]) body.unplaced.push_back(static_cast<int>(v));
+  body.added = std::move(best.added);
+  return body;
 }
 
 }  // namespace constrict::detail
