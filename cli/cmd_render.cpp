@@ -241,6 +241,15 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
   std::vector<View> views;
   if (Status s = views_of(a, views); !s) return fail(s);
   Constrict3Options opt;
+  if (!a.stages.empty() || a.stop_after != SIZE_MAX) {
+    // Stages and partial states replay the variant that reconstruct3() chooses (the step-able
+    // constrictor runs one variant), so the last panel is the `reconstruct` result.
+    Mesh3Result best;
+    if (Status s = reconstruct3(pts, opt, best); !s) return fail(s);
+    opt.size_bias = best.size_bias;
+    opt.label_weight = best.label_weight;
+    opt.variants.clear();
+  }
   if (a.stages.empty()) {
     opt.stop_after = a.stop_after;
     Mesh3Result r;
