@@ -125,6 +125,18 @@ double mean_normal_angle(const PointSet& p, const TriMesh3& m) {
   return k ? sum / static_cast<double>(k) : -1;
 }
 
+// The row fields of a Voronoi-skeleton run (the 2D and 3D results share these member names).
+template <class Result> void skeleton_row(const Result& r, Row& row) {
+  row.ok = true;
+  row.complete = r.complete;
+  row.valid = r.complete && r.validated && r.check.reason.empty();
+  row.ms_method = r.stats.ms_grow;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "seeds %zu/%zu, %zu complete", r.stats.seeds_tried, r.stats.simplices,
+                r.stats.seeds_complete);
+  row.note = buf;
+}
+
 void run2(const Input& in, const PointSet& p, const std::string& method, std::size_t seed_limit, Row& row) {
   std::vector<int> boundary;
   const auto t0 = Clock::now();
@@ -135,15 +147,8 @@ void run2(const Input& in, const PointSet& p, const std::string& method, std::si
     const Status s = voronoi_skeleton2(p, o, r);
     row.ms_total = ms_since(t0);
     if (!s) { row.error = s.message(); return; }
-    row.ok = true;
-    row.complete = r.complete;
-    row.valid = r.complete && r.validated && r.check.reason.empty();
-    row.ms_method = r.stats.ms_grow;
+    skeleton_row(r, row);
     boundary = r.boundary;
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "seeds %zu/%zu, %zu complete", r.stats.seeds_tried, r.stats.simplices,
-                  r.stats.seeds_complete);
-    row.note = buf;
   } else {
     Constrict2Options o;
     (void)criterion_from_name(method.substr(0, method.find(':')), o.criterion);
@@ -190,16 +195,9 @@ void run3(const Input& in, const PointSet& p, const std::string& method, std::si
     const Status s = voronoi_skeleton3(p, o, r);
     row.ms_total = ms_since(t0);
     if (!s) { row.error = s.message(); return; }
-    row.ok = true;
-    row.complete = r.complete;
-    row.valid = r.complete && r.validated && r.check.reason.empty();
-    row.ms_method = r.stats.ms_grow;
+    skeleton_row(r, row);
     row.on_boundary = p.size() - r.unplaced_points.size();
     mesh = std::move(r.mesh);
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "seeds %zu/%zu, %zu complete", r.stats.seeds_tried, r.stats.simplices,
-                  r.stats.seeds_complete);
-    row.note = buf;
   } else {
     Constrict3Options o = method.find(":paper") != std::string::npos ? Constrict3Options::paper() : Constrict3Options{};
     (void)criterion_from_name(base, o.criterion);

@@ -11,16 +11,12 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/validate.hpp"
+#include "test_points2.hpp"
 
 namespace constrict {
 namespace {
 
-PointSet make2(const std::vector<std::array<double, 2>>& xy) {
-  PointSet p;
-  p.dim = 2;
-  for (const auto& q : xy) { p.coords.push_back(q[0]); p.coords.push_back(q[1]); }
-  return p;
-}
+using test::make2;
 
 double perimeter(const PointSet& p, const std::vector<int>& b) {
   double s = 0;
