@@ -5,12 +5,14 @@
 #include <benchmark/benchmark.h>
 
 #include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <vector>
 
 #include "bench_data.hpp"
 #include "constrict/constrict.hpp"
+#include "constrict/constrict3.hpp"
 
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -53,4 +55,34 @@ void sizes(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_CgalDelaunay2Same)->Apply(sizes);
 BENCHMARK(BM_Reconstruct2)->Apply(sizes);
+
+// 3D (issue 4 speed goal: reconstruct3 <= 2x CGAL's Delaunay_3 on 1e6 points of a closed
+// surface): an ellipsoid sampled with tiny noise, the default pipeline (variants, flips,
+// validation) against CGAL's Delaunay_3 built from the same points.
+void BM_CgalDelaunay3Same(benchmark::State& state) {
+  const auto pts = bench::points3(static_cast<std::size_t>(state.range(0)), bench::Dist::Surface);
+  std::vector<K::Point_3> v;
+  for (std::size_t i = 0; i < pts.size(); ++i) v.emplace_back(pts[i][0], pts[i][1], pts[i][2]);
+  for (auto _ : state) {
+    CGAL::Delaunay_triangulation_3<K> dt(v.begin(), v.end());
+    benchmark::DoNotOptimize(dt.number_of_cells());
+  }
+}
+
+void BM_Reconstruct3(benchmark::State& state) {
+  const auto pts = bench::points3(static_cast<std::size_t>(state.range(0)), bench::Dist::Surface);
+  for (auto _ : state) {
+    Mesh3Result r;
+    if (!reconstruct3(pts, Constrict3Options{}, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
+    benchmark::DoNotOptimize(r.mesh.triangles.data());
+  }
+}
+
+void sizes3(benchmark::internal::Benchmark* b) {
+  for (long n : {10000L, 100000L, 1000000L}) b->Args({n});
+  b->Unit(benchmark::kMillisecond)->Iterations(1);
+}
+
+BENCHMARK(BM_CgalDelaunay3Same)->Apply(sizes3);
+BENCHMARK(BM_Reconstruct3)->Apply(sizes3);
 }  // namespace

@@ -773,6 +773,11 @@ struct Constrictor3::Impl {
       if (on) si[ns++] = i; else oi[no++] = i;
     }
     if (ns != 2) return -1;
+    // The energy first (arithmetic on four points), the edge walk only for a shortening flip.
+    const double e_old = face_energy_of(t, si[0]) + face_energy_of(t, si[1]);
+    const double e_new = face_energy_of(t, oi[0]) + face_energy_of(t, oi[1]);
+    const double gain = e_old - e_new;
+    if (!(gain > 1e-9 * e_old)) return -1;  // relative margin: no flip-back cycles by rounding
     if (a) {
       if (edge_on_boundary(t, si[0], si[1])) return -1;
     } else {
@@ -781,10 +786,7 @@ struct Constrictor3::Impl {
       for (int x : ring)
         if (alive(x)) return -1;
     }
-    const double e_old = face_energy_of(t, si[0]) + face_energy_of(t, si[1]);
-    const double e_new = face_energy_of(t, oi[0]) + face_energy_of(t, oi[1]);
-    const double gain = e_old - e_new;
-    return gain > 1e-9 * e_old ? gain : -1;  // relative margin: no flip-back cycles by rounding
+    return gain;
   }
 
   mutable std::vector<int> ring_buf;
