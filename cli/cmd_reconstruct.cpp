@@ -214,6 +214,9 @@ class ProgressVisitor3 final : public Constrict3Visitor {
       if ((++removed_ & 4095u) == 0) progress_.count(removed_, 6 * n_);
     } else if (e.kind == Constrict3Event::Kind::Lock) {
       progress_.phase("lock: fallback");
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "candidates") {
+      // The variant runs are parallel and report no events (docs/reconstruction-3d.md §4.5).
+      progress_.phase("constricting: variant runs in parallel, then the smallest-area surface");
     }
   }
 
