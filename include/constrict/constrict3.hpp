@@ -62,9 +62,11 @@ struct Constrict3Variant {
   double label_weight = 0;  ///< Constrict3Options::label_weight of this run
 };
 
-/// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, the lock
-/// fallback and the Refine3::Alternate post-pass (best GT recovery measured, docs/reconstruction-3d.md
-/// §4). paper() selects the paper's plain behaviour (spec §5.3 golden tests).
+/// Options of reconstruct3(). Defaults: the γ-constriction with TwoFaceKey::Max, a size bias
+/// and inside/outside labels in the key (two variants, the smallest-area surface wins), the lock
+/// fallback and the Refine3::Alternate post-pass (best GT recovery measured,
+/// docs/reconstruction-3d.md §4.2, §4.5). paper() selects the paper's plain behaviour (spec §5.3
+/// golden tests).
 struct Constrict3Options {
   /// The paper's algorithm: TwoFaceKey::Sum, no post-pass (plus the lock fallback).
   static Constrict3Options paper() {
