@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Hand cases for the 3D reconstruction (spec gamma-graph.md §5.3) and degenerate inputs.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
@@ -303,6 +304,29 @@ TEST(Constrict3Unit, VariantSelectionKeepsTheSmallestArea) {
   bad.label_weight = std::nan("");
   bad.variants.clear();
   EXPECT_EQ(reconstruct3(p, bad, r).code(), StatusCode::InvalidArgument);
+}
+
+// The variant runs, the labels, the face terms and the flips run on TBB; the result must not
+// depend on the number of threads (fixed tie-breaks, per-run state, ordered reductions).
+TEST(Constrict3Unit, ThreadCountIndependent) {
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < 1500; ++i) {  // a bumpy star-shaped surface
+    const double t = 0.02 + 3.1 * i / 1500.0, ph = 2.399963 * i;
+    const double r = 1 + 0.25 * std::sin(3 * ph) * std::sin(4 * t);
+    pts.push_back({{r * std::sin(t) * std::cos(ph), r * std::sin(t) * std::sin(ph), r * std::cos(t)}});
+  }
+  const PointSet p = make3(pts);
+  Mesh3Result one, many;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    ASSERT_TRUE(reconstruct3(p, {}, one).is_ok());
+  }
+  ASSERT_TRUE(reconstruct3(p, {}, many).is_ok());
+  expect_valid(p, one);
+  EXPECT_EQ(one.mesh.triangles, many.mesh.triangles);
+  EXPECT_EQ(one.tets, many.tets);
+  EXPECT_EQ(one.size_bias, many.size_bias);
+  EXPECT_EQ(one.label_weight, many.label_weight);
 }
 
 TEST(Constrict3Unit, StepperAndStopAfter) {

@@ -3,6 +3,7 @@
 // invalid input, and random star polygons (many moves, many non-Delaunay edges) that must stay
 // simple, get shorter, and be invariant under an exact rotation.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -95,6 +96,21 @@ Star random_star(std::uint64_t seed, bool grid) {
   std::sort(ang.begin(), ang.end());
   for (const auto& a : ang) s.polygon.push_back(a.second);
   return s;
+}
+
+// The pre-test and the first sweep run on TBB: the result must not depend on the thread count.
+TEST(Refine2, ThreadCountIndependent) {
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    const Star s = random_star(seed, false);
+    if (!validate_polygon(s.points, s.polygon).is_ok()) continue;
+    std::vector<int> one = s.polygon, many = s.polygon;
+    {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+      ASSERT_TRUE(refine_polygon2(s.points, one).is_ok());
+    }
+    ASSERT_TRUE(refine_polygon2(s.points, many).is_ok());
+    EXPECT_EQ(one, many) << "seed " << seed;
+  }
 }
 
 TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
