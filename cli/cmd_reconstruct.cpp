@@ -25,6 +25,7 @@ struct ReconstructArgs {
   std::string method = "gamma";  // a Criterion name or "voronoi-skeleton"
   std::size_t seed_limit = 0;    // voronoi-skeleton: 0 = every seed
   bool ascii = false;
+  bool fast = false;  // 3D: one variant run instead of the default two
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
 };
@@ -240,6 +241,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   opt.fallback = a.fallback == "none" ? Fallback3::None : Fallback3::Auto;
   opt.stop_after = a.stop_after;
   if (a.refine == "none") opt.refine = Refine3::None;
+  if (a.fast) opt.variants = {{1.0, 1.0}};
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   (void)criterion_from_name(a.method, opt.criterion);
   progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
@@ -394,6 +396,7 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--refine", a->refine,
                   "post-pass on the complete result: auto (default: 2D local search, 3D flip pass) | none (the paper's algorithm)")
       ->check(CLI::IsMember({"auto", "none"}));
+  cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants");
   cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
   cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")
