@@ -4,6 +4,8 @@
 /// behind the scenes). All return -1, 0 or +1 and are exact for any finite double input.
 #pragma once
 
+#include <cstddef>
+
 namespace constrict {
 
 /// Sign of the orientation of (a, b, c): +1 counter-clockwise, -1 clockwise, 0 collinear.
@@ -43,5 +45,13 @@ bool collinear3(const double* a, const double* b, const double* c) noexcept;
 /// Position of p in the circumcircle plane of triangle abc (3D) when p is coplanar:
 /// +1 strictly inside the circumcircle, 0 on it, -1 outside. @pre a,b,c,p coplanar, abc not collinear.
 int in_circle_coplanar3(const double* a, const double* b, const double* c, const double* p) noexcept;
+
+/// Sign of the signed volume enclosed by oriented triangles: the sign of the sum over the triangles
+/// (a, b, c) of det(a - o, b - o, c - o), o the first point of the first triangle (for a closed
+/// surface the sum is 6 x the volume whatever o is). Exact for any finite doubles: a double sum with a
+/// conservative error bound first, exact multi-precision arithmetic (CGAL::Mpzf) when the bound
+/// does not decide (cancellation, overflow or underflow). +1 for a closed surface oriented outward.
+/// @param[in] xyz coordinates, 3 per point; @param[in] tris 3 point indices per triangle
+int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept;
 
 }  // namespace constrict

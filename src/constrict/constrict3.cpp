@@ -68,6 +68,8 @@ std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 
 struct Constrictor3::Impl {
   const PointSet* pts = nullptr;
+  std::shared_ptr<const PointSet> scaled;  // power-of-two scaled copy of the input (init), or null
+  int scale_exp = 0;                       // pts = input * 2^-scale_exp
   Constrict3Options opt;
   Constrict3Visitor* visitor = nullptr;
   bool ready = false;
@@ -877,12 +879,29 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
     return {StatusCode::InvalidArgument, "size_bias and label_weight must be in [0, 100]"};
   if (Status st = check_points(points); !st) return st;
   s.pts = &points;
+  // Far from 1 in magnitude, the double parts (γ magnitudes, circumballs, lengths) would overflow
+  // or underflow: work on a copy scaled by a power of two, which changes no predicate and makes
+  // every magnitude scale free (the result is then the same at any scale); areas and volumes are
+  // scaled back in finish.
+  {
+    double m = 0;
+    for (double c : points.coords) m = std::max(m, std::abs(c));
+    int e = 0;
+    std::frexp(m, &e);
+    if (e > 64 || e < -64) {
+      auto scaled = std::make_shared<PointSet>(points);
+      for (double& c : scaled->coords) c = std::ldexp(c, -e);
+      s.scale_exp = e;
+      s.pts = scaled.get();
+      s.scaled = std::move(scaled);
+    }
+  }
   s.opt = options;
   s.visitor = visitor;
   s.n = points.size();
   const auto t0 = Clock::now();
   auto dg = std::make_shared<DelaunayGamma3>();
-  if (Status st = delaunay_gamma3(points, *dg); !st) return st;
+  if (Status st = delaunay_gamma3(*s.pts, *dg); !st) return st;
   s.ms_delaunay = ms_since(t0);
   s.tets = std::move(dg->dt.tets);
   s.nbr = std::move(dg->dt.neighbors);
@@ -1044,8 +1063,8 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
       r.tets.push_back(s.tets[t]);
       if (t >= s.T0) ++r.non_delaunay_tets;
     }
-  r.volume = mesh_volume(*s.pts, r.mesh);
-  r.surface_area = mesh_area(*s.pts, r.mesh);
+  r.volume = std::ldexp(mesh_volume(*s.pts, r.mesh), 3 * s.scale_exp);
+  r.surface_area = std::ldexp(mesh_area(*s.pts, r.mesh), 2 * s.scale_exp);
   if (validate) validate_result(s, r);
   return Status::ok();
 }

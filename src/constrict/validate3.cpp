@@ -342,7 +342,9 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
 
   // 7. outward
   d.volume = mesh_volume(pts, mesh);
-  d.outward = d.volume > 0;
+  // The sign decides, exactly (the double volume can overflow, underflow or cancel).
+  d.outward = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
+                                 mesh.triangles.size()) > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
 
   // 8. self-intersections (sweep over x-extents)

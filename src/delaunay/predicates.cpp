@@ -5,6 +5,9 @@
 #include "core/detail/semi_static.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
+
+#include <cmath>
 
 
 namespace constrict {
@@ -71,6 +74,47 @@ int in_circle_coplanar3(const double* a, const double* b, const double* c,
                         const double* p) noexcept {
   // For p in the plane of abc, inside the smallest sphere of abc <=> inside its circumcircle.
   return static_cast<int>(K().side_of_bounded_sphere_3_object()(p3(a), p3(b), p3(c), p3(p)));
+}
+
+int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
+  if (n_tris == 0) return 0;
+  const double* o = xyz + 3 * static_cast<std::size_t>(tris[0]);
+  const auto pt = [&](std::size_t t, int k) { return xyz + 3 * static_cast<std::size_t>(tris[3 * t + static_cast<std::size_t>(k)]); };
+  // Filter: the translated determinants in double. Each translated coordinate has relative error
+  // <= eps, each determinant <= 5 eps of its permanent on top, the sum n eps of the permanents:
+  // |S - exact| <= (n + 16) * 2^-52 * P (generous), valid without overflow and underflow.
+  double sum = 0, perm = 0;
+  for (std::size_t t = 0; t < n_tris; ++t) {
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = pt(t, 0)[k] - o[k];
+      v[k] = pt(t, 1)[k] - o[k];
+      w[k] = pt(t, 2)[k] - o[k];
+    }
+    const double d = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                     u[2] * (v[0] * w[1] - v[1] * w[0]);
+    const double p = std::abs(u[0]) * (std::abs(v[1] * w[2]) + std::abs(v[2] * w[1])) +
+                     std::abs(u[1]) * (std::abs(v[0] * w[2]) + std::abs(v[2] * w[0])) +
+                     std::abs(u[2]) * (std::abs(v[0] * w[1]) + std::abs(v[1] * w[0]));
+    sum += d;
+    perm += p;
+  }
+  const double bound = (static_cast<double>(n_tris) + 16.0) * std::ldexp(1.0, -52) * perm;
+  if (std::isfinite(sum) && std::isfinite(bound) && perm > 1e-280 && std::abs(sum) > bound)
+    return sum > 0 ? 1 : -1;
+  // Exact: Mpzf sums and products of doubles are exact (unbounded exponent range).
+  CGAL::Mpzf total(0);
+  for (std::size_t t = 0; t < n_tris; ++t) {
+    CGAL::Mpzf u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = CGAL::Mpzf(pt(t, 0)[k]) - CGAL::Mpzf(o[k]);
+      v[k] = CGAL::Mpzf(pt(t, 1)[k]) - CGAL::Mpzf(o[k]);
+      w[k] = CGAL::Mpzf(pt(t, 2)[k]) - CGAL::Mpzf(o[k]);
+    }
+    total = total + (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                     u[2] * (v[0] * w[1] - v[1] * w[0]));
+  }
+  return static_cast<int>(CGAL::sign(total));
 }
 
 }  // namespace constrict

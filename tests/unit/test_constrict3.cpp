@@ -329,6 +329,31 @@ TEST(Constrict3Unit, ThreadCountIndependent) {
   EXPECT_EQ(one.label_weight, many.label_weight);
 }
 
+// Exact power-of-two scalings far outside the double range of the magnitudes (squares, cubes,
+// circumballs) give the same surface: reconstruct3 works on a power-of-two normalised copy. The
+// area scales exactly; the outward test is exact at any scale (signed_volume_sign).
+TEST(Constrict3Unit, ScaleInvariantFarFromOne) {
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < 300; ++i) {
+    const double t = 0.05 + 3.0 * i / 300.0, ph = 2.399963 * i;
+    const double r = 1 + 0.3 * std::sin(2 * ph) * std::sin(3 * t);
+    pts.push_back({{r * std::sin(t) * std::cos(ph), 0.6 * r * std::sin(t) * std::sin(ph), r * std::cos(t)}});
+  }
+  const PointSet p = make3(pts);
+  Mesh3Result ref;
+  ASSERT_TRUE(reconstruct3(p, {}, ref).is_ok());
+  for (const int k : {300, -300, 900, -900}) {
+    PointSet q = p;
+    for (double& c : q.coords) c = std::ldexp(c, k);
+    Mesh3Result r;
+    ASSERT_TRUE(reconstruct3(q, {}, r).is_ok()) << "2^" << k;
+    EXPECT_EQ(r.mesh.triangles, ref.mesh.triangles) << "2^" << k;
+    if (std::abs(2 * k) < 1000) {
+      EXPECT_DOUBLE_EQ(r.surface_area, std::ldexp(ref.surface_area, 2 * k)) << "2^" << k;
+    }
+  }
+}
+
 TEST(Constrict3Unit, StepperAndStopAfter) {
   const PointSet p = make3({{0, 0, 0}, {6, 0, 0}, {0, 6, 0}, {0, 0, 6}, {1, 2, 1}});
   Constrictor3 c;

@@ -12,6 +12,7 @@
 
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
+#include "constrict/predicates.hpp"
 
 namespace constrict {
 namespace {
@@ -231,6 +232,29 @@ TEST(MeshWrite, FormatsRoundTripVertices) {
   const std::string v = slurp(vtk);
   EXPECT_NE(v.find("CELLS 1 5\n4 0 1 2 3\n"), std::string::npos);
   EXPECT_NE(v.find("CELL_TYPES 1\n10\n"), std::string::npos);
+}
+
+// The outward test is exact: a tetrahedron's surface at scales where the double volume overflows
+// (2^1000), underflows (2^-1000, and subnormal coordinates), and far from the origin (cancellation).
+TEST(MeshVolumeSign, ExactAtAnyScale) {
+  const int out[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};  // outward for the points below
+  for (const int k : {0, 1000, -1000, -1070}) {
+    for (const double shift : {0.0, 1e15}) {
+      std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+      for (double& c : xyz) c = std::ldexp(c, k) + (k == 0 ? shift : 0.0);
+      std::vector<int> tris, rev;
+      for (const auto& f : out) {
+        tris.insert(tris.end(), {f[0], f[1], f[2]});
+        rev.insert(rev.end(), {f[0], f[2], f[1]});
+      }
+      EXPECT_EQ(signed_volume_sign(xyz.data(), tris.data(), 4), 1) << "2^" << k << " shift " << shift;
+      EXPECT_EQ(signed_volume_sign(xyz.data(), rev.data(), 4), -1) << "2^" << k << " shift " << shift;
+    }
+  }
+  // A flat closed "surface" (two copies of one triangle, opposite orientations) has volume 0.
+  const std::vector<double> flat = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::vector<int> two = {0, 1, 2, 0, 2, 1};
+  EXPECT_EQ(signed_volume_sign(flat.data(), two.data(), 2), 0);
 }
 
 }  // namespace
