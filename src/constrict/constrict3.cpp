@@ -164,21 +164,21 @@ struct Constrictor3::Impl {
     return -1;
   }
 
-  // Is the edge (tets[t][i], tets[t][j]) on the surface? Walk around it from t through the faces
-  // that contain it; it is on the surface iff the walk meets a non-alive tet before closing.
-  bool edge_on_boundary(int t, int i, int j) const {
+  // Walks around the edge (tets[t][i], tets[t][j]) from t through the tetrahedra sharing it, in
+  // direction dir (0 or 1), calling f(next) for each neighbour met: next < 0 at the convex hull,
+  // next == t when the ring closes. Stops when f returns true.
+  template <class F> void walk_edge(int t, int i, int j, int dir, F&& f) const {
     const int a = tets[uz(t)][uz(i)], b = tets[uz(t)][uz(j)];
     int k = 0;
     while (k == i || k == j) ++k;
     int l = 0;
     while (l == i || l == j || l == k) ++l;
-    int cur = t, exit_v = tets[uz(t)][uz(k)], keep = tets[uz(t)][uz(l)];
+    int cur = t, exit_v = tets[uz(t)][uz(dir ? l : k)], keep = tets[uz(t)][uz(dir ? k : l)];
     for (std::size_t guard = 0; guard < tets.size() + 1; ++guard) {
       const int li = local_index(cur, exit_v);
       CONSTRICT_CHECK(li >= 0, "edge walk lost its way");
       const int nx = nbr[uz(cur)][uz(li)];
-      if (!alive(nx)) return true;
-      if (nx == t) return false;
+      if (f(nx) || nx < 0 || nx == t) return;
       int w = -1;
       for (int x : tets[uz(nx)])
         if (x != a && x != b && x != keep) w = x;
@@ -187,13 +187,22 @@ struct Constrictor3::Impl {
       cur = nx;
     }
     CONSTRICT_CHECK(false, "edge walk did not terminate");
-    return true;
   }
 
-  // Sculpt3::Bridges: longest edge of the face opposite i over the largest spacing of its vertices.
-  double face_bridge(int t, int i) const {
-    const auto& v = tets[uz(t)];
-    const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
+  // Is the edge (tets[t][i], tets[t][j]) on the surface? It is iff the walk around it meets a
+  // non-alive tetrahedron before closing.
+  bool edge_on_boundary(int t, int i, int j) const {
+    bool on = false;
+    walk_edge(t, i, j, 0, [&](int nx) {
+      on = !alive(nx);
+      return on;
+    });
+    return on;
+  }
+
+  // Bridge ratio of the triangle abc: its longest edge over the largest nearest-neighbour
+  // distance of its vertices (size bias, Sculpt3::Bridges).
+  double bridge_ratio(int a, int b, int c) const {
     const auto d2 = [&](int x, int y) {
       const double dx = P(x)[0] - P(y)[0], dy = P(x)[1] - P(y)[1], dz = P(x)[2] - P(y)[2];
       return dx * dx + dy * dy + dz * dz;
@@ -201,6 +210,11 @@ struct Constrictor3::Impl {
     const double longest = std::sqrt(std::max({d2(a, b), d2(b, c), d2(c, a)}));
     const double h = std::max({spacing[uz(a)], spacing[uz(b)], spacing[uz(c)]});
     return h > 0 ? longest / h : 0;
+  }
+  // bridge_ratio of the face opposite i.
+  double face_bridge(int t, int i) const {
+    const auto& v = tets[uz(t)];
+    return bridge_ratio(v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]);
   }
   // ln(max(1, face_bridge)) of the face opposite i: precomputed for the Delaunay faces (shared by
   // the candidate runs), computed on the fly for fallback tetrahedra.
@@ -212,16 +226,8 @@ struct Constrictor3::Impl {
     const GammaFaces& f = dg().faces;
     auto out = std::make_shared<std::vector<double>>(f.size(), 0.0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        const int a = f.vertex(k, 0), b = f.vertex(k, 1), c = f.vertex(k, 2);
-        const auto d2 = [&](int x, int y) {
-          const double dx = P(x)[0] - P(y)[0], dy = P(x)[1] - P(y)[1], dz = P(x)[2] - P(y)[2];
-          return dx * dx + dy * dy + dz * dz;
-        };
-        const double longest = std::sqrt(std::max({d2(a, b), d2(b, c), d2(c, a)}));
-        const double h = std::max({spacing[uz(a)], spacing[uz(b)], spacing[uz(c)]});
-        (*out)[k] = h > 0 ? std::log(std::max(1.0, longest / h)) : 0.0;
-      }
+      for (std::size_t k = r.begin(); k != r.end(); ++k)
+        (*out)[k] = std::log(std::max(1.0, bridge_ratio(f.vertex(k, 0), f.vertex(k, 1), f.vertex(k, 2))));
     });
     face_log = std::move(out);
   }
@@ -715,28 +721,17 @@ struct Constrictor3::Impl {
   void edge_ring(int t, int i, int j, std::vector<int>& out) const {
     out.clear();
     out.push_back(t);
-    const int a = tets[uz(t)][uz(i)], b = tets[uz(t)][uz(j)];
-    int k = 0;
-    while (k == i || k == j) ++k;
-    int l = 0;
-    while (l == i || l == j || l == k) ++l;
-    for (int dir = 0; dir < 2; ++dir) {
-      int cur = t, exit_v = tets[uz(t)][uz(dir ? l : k)], keep = tets[uz(t)][uz(dir ? k : l)];
-      for (std::size_t guard = 0; guard < tets.size() + 1; ++guard) {
-        const int li = local_index(cur, exit_v);
-        CONSTRICT_CHECK(li >= 0, "edge ring lost its way");
-        const int nx = nbr[uz(cur)][uz(li)];
-        if (nx < 0) break;      // open ring: walk the other way
-        if (nx == t) return;    // closed ring
+    bool closed = false;
+    for (int dir = 0; dir < 2 && !closed; ++dir)
+      walk_edge(t, i, j, dir, [&](int nx) {
+        if (nx < 0) return true;  // open ring: walk the other way
+        if (nx == t) {
+          closed = true;
+          return true;
+        }
         out.push_back(nx);
-        int w = -1;
-        for (int x : tets[uz(nx)])
-          if (x != a && x != b && x != keep) w = x;
-        exit_v = keep;
-        keep = w;
-        cur = nx;
-      }
-    }
+        return false;
+      });
   }
 
   double face_energy(int a, int b, int c) const {

@@ -106,20 +106,17 @@ class EdgeGrid {
 
 class Refiner {
  public:
-  Refiner(const PointSet& pts, const Delaunay2& dt, std::vector<int>& tour,
-          std::size_t budget, Refine2Stats& st)
+  // xy: the coordinates in polygon order (polygon_coordinates()).
+  Refiner(std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour, std::size_t budget,
+          Refine2Stats& st)
       : poly_(tour), budget_(budget), st_(st), n_(tour.size()) {
     // Local ids = positions in the input polygon: the hot loops walk along the polygon, and the
     // input order of the points is arbitrary (often shuffled), so this relabelling turns random
     // memory accesses into nearly sequential ones.
     id_ = tour;
+    xy_ = std::move(xy);
     std::vector<int> local(n_);
-    xy_.resize(2 * n_);
-    for (std::size_t i = 0; i < n_; ++i) {
-      local[U(id_[i])] = static_cast<int>(i);
-      xy_[2 * i] = pts[U(id_[i])][0];
-      xy_[2 * i + 1] = pts[U(id_[i])][1];
-    }
+    for (std::size_t i = 0; i < n_; ++i) local[U(id_[i])] = static_cast<int>(i);
     build_neighbours(dt, local);
     tour_.resize(n_);
     pos_.resize(n_);
@@ -476,16 +473,8 @@ namespace {
 // removal of a segment ending at e saves. When
 // this returns false the search would make no move, so the expensive set-up is skipped: on a
 // good reconstruction of a dense curve the pass costs about as much as the validation.
-bool may_improve(const PointSet& pts, const Delaunay2& dt, const std::vector<int>& poly, double& perimeter) {
+bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::vector<int>& poly, double& perimeter) {
   const std::size_t n = poly.size();
-  // Coordinates in polygon order (one pass of random reads), then sequential passes.
-  std::vector<double> xy(2 * n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      xy[2 * i] = pts[U(poly[i])][0];
-      xy[2 * i + 1] = pts[U(poly[i])][1];
-    }
-  });
   const auto dpos = [&](std::size_t i, std::size_t j) {
     const double dx = xy[2 * i] - xy[2 * j], dy = xy[2 * i + 1] - xy[2 * j + 1];
     return std::sqrt(dx * dx + dy * dy);
@@ -566,6 +555,20 @@ bool may_improve(const PointSet& pts, const Delaunay2& dt, const std::vector<int
   return any.load();
 }
 
+// The coordinates in polygon order (one pass of random reads, in parallel): both the pre-test and
+// the search work on them.
+std::vector<double> polygon_coordinates(const PointSet& pts, const std::vector<int>& poly) {
+  const std::size_t n = poly.size();
+  std::vector<double> xy(2 * n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      xy[2 * i] = pts[U(poly[i])][0];
+      xy[2 * i + 1] = pts[U(poly[i])][1];
+    }
+  });
+  return xy;
+}
+
 // CCW (exact turn at the lexicographically smallest vertex), starting at the smallest index.
 void normalise_polygon(const PointSet& pts, std::vector<int>& poly) {
   const std::size_t n = poly.size();
@@ -586,13 +589,14 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
                      std::size_t work_budget, Refine2Stats& stats) {
   stats = Refine2Stats{};
   if (polygon.size() < 4 || polygon.size() != points.size()) return;
+  std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
-  if (!may_improve(points, dt, polygon, len)) {
+  if (!may_improve(xy, dt, polygon, len)) {
     normalise_polygon(points, polygon);
     stats.length_before = stats.length_after = len;
     return;
   }
-  Refiner r(points, dt, polygon, work_budget, stats);
+  Refiner r(std::move(xy), dt, polygon, work_budget, stats);
   r.run();
 }
 

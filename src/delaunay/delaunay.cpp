@@ -129,6 +129,37 @@ std::string duplicate_message(std::size_t n, std::size_t nv) {
 // permutation is exactly the sequential one, whatever the number of threads.
 constexpr std::ptrdiff_t kParallelSort = std::ptrdiff_t{1} << 15;
 
+// Numbers the finite simplices in CGAL's container order (info() = index, -1 for the infinite
+// ones, which are also collected in *infinite when given), then exports them (2D and 3D).
+template <int K, class Handle, class It, class VertexHandle, class LocalMesh>
+void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, const detail::BigArray<int>& id,
+                   std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
+                   LocalMesh& lm, bool local, std::vector<Handle>* infinite) {
+  std::vector<Handle> hs;
+  hs.reserve(reserve);
+  for (It s = first; s != last; ++s) {
+    bool is_infinite = false;
+    for (int k = 0; k < K; ++k) is_infinite = is_infinite || s->vertex(k) == inf;
+    if (is_infinite) {
+      s->info() = -1;
+      if (infinite) infinite->push_back(s);
+    } else {
+      s->info() = static_cast<int>(hs.size());
+      hs.push_back(s);
+    }
+  }
+  const std::size_t T = hs.size();
+  detail::resize_big(simplices, T);
+  detail::resize_big(neighbors, T);
+  if (local) {
+    lm.simplices.allocate(T);
+    lm.opposite.allocate(T);
+    lm.mirror.allocate(T);
+    lm.owned.allocate(T);
+  }
+  export_simplices<K>(hs, id, simplices, neighbors, lm, local);
+}
+
 template <class Traits, int x, bool upx, bool upy, class It>
 void hilbert2(const CGAL::Hilbert_sort_median_2<Traits, CGAL::Sequential_tag>& hs, const Traits& k, It begin, It end,
               std::ptrdiff_t limit) {
@@ -280,28 +311,9 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
   const detail::BigArray<int>& id = lm.id;
 
   // Finite faces in CGAL's finite_faces order (= all faces, infinite ones skipped).
-  const DT2::Vertex_handle inf = dt.infinite_vertex();
-  std::vector<DT2::Face_handle> fh;
-  fh.reserve(2 * n);
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
-    if (f->vertex(0) == inf || f->vertex(1) == inf || f->vertex(2) == inf) {
-      f->info() = -1;
-    } else {
-      f->info() = static_cast<int>(fh.size());
-      fh.push_back(f);
-    }
-  }
-  const std::size_t T = fh.size();
   out.n_vertices = n;
-  detail::resize_big(out.triangles, T);
-  detail::resize_big(out.neighbors, T);
-  if (local) {
-    lm.simplices.allocate(T);
-    lm.opposite.allocate(T);
-    lm.mirror.allocate(T);
-    lm.owned.allocate(T);
-  }
-  export_simplices<3>(fh, id, out.triangles, out.neighbors, lm, local != nullptr);
+  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, id,
+                                     out.triangles, out.neighbors, lm, local != nullptr, nullptr);
   return Status::ok();
 }
 
@@ -329,30 +341,11 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
 
   // Finite cells in CGAL's finite_cells order (= all cells, infinite ones skipped).
   const DT3::Vertex_handle inf = dt.infinite_vertex();
-  std::vector<DT3::Cell_handle> ch;
-  ch.reserve(dt.number_of_finite_cells());
   std::vector<DT3::Cell_handle> inf_cells;
   if (local) inf_cells.reserve(dt.number_of_cells() - dt.number_of_finite_cells());
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    if (c->vertex(0) == inf || c->vertex(1) == inf || c->vertex(2) == inf || c->vertex(3) == inf) {
-      c->info() = -1;
-      if (local) inf_cells.push_back(c);
-    } else {
-      c->info() = static_cast<int>(ch.size());
-      ch.push_back(c);
-    }
-  }
-  const std::size_t T = ch.size();
   out.n_vertices = n;
-  detail::resize_big(out.tets, T);
-  detail::resize_big(out.neighbors, T);
-  if (local) {
-    lm.simplices.allocate(T);
-    lm.opposite.allocate(T);
-    lm.mirror.allocate(T);
-    lm.owned.allocate(T);
-  }
-  export_simplices<4>(ch, id, out.tets, out.neighbors, lm, local != nullptr);
+  export_finite<4, DT3::Cell_handle>(dt.all_cells_begin(), dt.all_cells_end(), inf, dt.number_of_finite_cells(), id,
+                                     out.tets, out.neighbors, lm, local != nullptr, local ? &inf_cells : nullptr);
   if (local) {
     // Hull facets and their adjacency, from the infinite cells (one per hull facet; two hull
     // facets share an edge iff their infinite cells are neighbours across a face through the

@@ -13,16 +13,12 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/mesh.hpp"
+#include "test_fixtures.hpp"
 
 namespace constrict {
 namespace {
 
-PointSet make3(const std::vector<std::array<double, 3>>& xyz) {
-  PointSet p;
-  p.dim = 3;
-  for (const auto& q : xyz) p.coords.insert(p.coords.end(), q.begin(), q.end());
-  return p;
-}
+using test::make3;
 
 std::set<std::array<int, 3>> sorted_faces(const TriMesh3& m) {
   std::set<std::array<int, 3>> s;

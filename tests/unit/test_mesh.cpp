@@ -13,16 +13,12 @@
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
+#include "test_fixtures.hpp"
 
 namespace constrict {
 namespace {
 
-PointSet make3(const std::vector<std::array<double, 3>>& xyz) {
-  PointSet p;
-  p.dim = 3;
-  for (const auto& q : xyz) p.coords.insert(p.coords.end(), q.begin(), q.end());
-  return p;
-}
+using test::make3;
 
 constexpr double kPi = 3.14159265358979323846;
 const std::vector<std::array<double, 3>> kTet = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

@@ -12,7 +12,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/validate.hpp"
-#include "test_points2.hpp"
+#include "test_fixtures.hpp"
 
 namespace constrict {
 namespace {
