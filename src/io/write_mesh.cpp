@@ -41,44 +41,39 @@ void put_point(std::string& s, const double* p, char sep) {
   put_double(s, p[2]);
 }
 
+// The ASCII vertex and face lines shared by OFF, OBJ and ASCII PLY: "<vprefix>x y z" per point,
+// "<fprefix>i j k" per triangle with indices shifted by `base` (1 for OBJ).
+void put_ascii_mesh(std::string& s, const PointSet& pts, const TriMesh3& m, const char* vprefix, const char* fprefix,
+                    long long base) {
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    s += vprefix;
+    put_point(s, pts[i], ' ');
+    s += '\n';
+  }
+  for (const auto& t : m.triangles) {
+    s += fprefix;
+    put_int(s, t[0] + base);
+    s += ' ';
+    put_int(s, t[1] + base);
+    s += ' ';
+    put_int(s, t[2] + base);
+    s += '\n';
+  }
+}
+
 std::string to_off(const PointSet& pts, const TriMesh3& m) {
   std::string s = "OFF\n";
   put_int(s, static_cast<long long>(pts.size()));
   s += ' ';
   put_int(s, static_cast<long long>(m.triangles.size()));
   s += " 0\n";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    put_point(s, pts[i], ' ');
-    s += '\n';
-  }
-  for (const auto& t : m.triangles) {
-    s += "3 ";
-    put_int(s, t[0]);
-    s += ' ';
-    put_int(s, t[1]);
-    s += ' ';
-    put_int(s, t[2]);
-    s += '\n';
-  }
+  put_ascii_mesh(s, pts, m, "", "3 ", 0);
   return s;
 }
 
 std::string to_obj(const PointSet& pts, const TriMesh3& m) {
   std::string s = "# constrict 3D reconstruction\n";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    s += "v ";
-    put_point(s, pts[i], ' ');
-    s += '\n';
-  }
-  for (const auto& t : m.triangles) {
-    s += "f ";
-    put_int(s, t[0] + 1LL);
-    s += ' ';
-    put_int(s, t[1] + 1LL);
-    s += ' ';
-    put_int(s, t[2] + 1LL);
-    s += '\n';
-  }
+  put_ascii_mesh(s, pts, m, "v ", "f ", 1);
   return s;
 }
 
@@ -91,19 +86,7 @@ std::string to_ply(const PointSet& pts, const TriMesh3& m, bool ascii) {
   put_int(s, static_cast<long long>(m.triangles.size()));
   s += "\nproperty list uchar int vertex_indices\nend_header\n";
   if (ascii) {
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      put_point(s, pts[i], ' ');
-      s += '\n';
-    }
-    for (const auto& t : m.triangles) {
-      s += "3 ";
-      put_int(s, t[0]);
-      s += ' ';
-      put_int(s, t[1]);
-      s += ' ';
-      put_int(s, t[2]);
-      s += '\n';
-    }
+    put_ascii_mesh(s, pts, m, "", "3 ", 0);
   } else {
     s.reserve(s.size() + pts.size() * 24 + m.triangles.size() * 13);
     for (std::size_t i = 0; i < pts.size(); ++i)
