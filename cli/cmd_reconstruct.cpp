@@ -240,7 +240,10 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   Constrict3Options opt;
   opt.fallback = a.fallback == "none" ? Fallback3::None : Fallback3::Auto;
   opt.stop_after = a.stop_after;
-  if (a.refine == "none") opt.refine = Refine3::None;
+  if (a.refine == "none") {
+    opt.refine = Refine3::None;
+    opt.carve_confidence = 2;  // the paper's algorithm: no post-pass at all
+  }
   if (a.fast) opt.variants = {{1.0, 1.0}};
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   (void)criterion_from_name(a.method, opt.criterion);
@@ -336,6 +339,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"},
                    {"added", r.refine_added},
                    {"removed", r.refine_removed}};
+    j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
     j["size_bias"] = r.size_bias;
     j["label_weight"] = r.label_weight;
     nlohmann::json variants = nlohmann::json::array();
@@ -344,7 +348,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                           {"surface_area", c.surface_area}, {"complete", c.complete}, {"ms", c.ms}});
     j["variants"] = variants;
     j["timings_ms"] = {{"read", ms(t0, t1)},          {"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict},
-                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"refine", r.ms_refine},
+                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"carve", r.ms_carve},
+                       {"refine", r.ms_refine},
                        {"variants_setup", r.ms_setup}, {"variants_total", r.ms_variants}, {"validate", ms_validate},
                        {"write", ms_write},           {"total", ms(t0, Clock::now())}};
     j["warnings"] = rep.warnings;
@@ -394,7 +399,7 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 (2D) | none")
       ->check(CLI::IsMember({"auto", "gamma0", "degree4", "none"}));
   cmd->add_option("--refine", a->refine,
-                  "post-pass on the complete result: auto (default: 2D local search, 3D flip pass) | none (the paper's algorithm)")
+                  "post-pass on the complete result: auto (default: 2D local search, 3D carve + flip passes) | none (the paper's algorithm)")
       ->check(CLI::IsMember({"auto", "none"}));
   cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants");
   cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");

@@ -75,6 +75,7 @@ struct Constrict3Options {
     o.refine = Refine3::None;
     o.variants.clear();
     o.size_bias = 0;
+    o.carve_confidence = 2;  // no carve pass
     return o;
   }
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
@@ -103,6 +104,12 @@ struct Constrict3Options {
   /// from the convex hull, as in the power crust; docs/reconstruction-3d.md §4.6): key += w for a
   /// tetrahedron labelled outside, -w for inside, scaled by the label's confidence. 0 = off.
   double label_weight = 0.0;
+  /// Carve pass after the constriction, before the flips (Criterion::Gamma only;
+  /// docs/reconstruction-3d.md §4.6): remove the surface-connected regions of Delaunay
+  /// tetrahedra labelled outside with at least this confidence, through non-manifold
+  /// intermediate states, keeping a region's removals only up to its last valid state (closed
+  /// 2-manifold, genus 0, every point on the surface). > 1 = off.
+  double carve_confidence = 0.5;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
@@ -148,6 +155,8 @@ struct Mesh3Result {
   std::size_t removed_one_face = 0;       ///< tetrahedra removed by the one-face rule
   std::size_t removed_two_face = 0;       ///< ... by the two-face rule (sculpting included)
   std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
+  std::size_t carved = 0;                 ///< tetrahedra removed by the carve pass (kept)
+  std::size_t carve_undone = 0;           ///< carve removals undone (no valid end state)
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
@@ -158,7 +167,7 @@ struct Mesh3Result {
   double size_bias = 0;                   ///< size bias of the run that produced this result
   double label_weight = 0;                ///< label weight of the run that produced this result
   std::vector<Constrict3Candidate> candidates;  ///< every candidate run (empty: single run)
-  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_refine = 0, ms_validate = 0;
+  double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_carve = 0, ms_refine = 0, ms_validate = 0;
   /// Variant selection: time of the labels / spacing set-up plus the parallel runs (wall clock);
   /// 0 for a single run. ms_constrict ... ms_refine are those of the winning run.
   double ms_setup = 0, ms_variants = 0;

@@ -833,6 +833,228 @@ struct Constrictor3::Impl {
     heap.clear();
   }
 
+  // ---- carve pass: remove the surface-connected tetrahedra labelled outside ------------------
+  // (docs/reconstruction-3d.md §4.6). The constriction rules keep the surface a 2-manifold at
+  // every single removal, which blocks the "bridges": regions labelled outside whose vertices are
+  // all on the surface already (removing any of their tetrahedra pinches a vertex). Here each
+  // connected region of outside tetrahedra is carved from the surface inwards, through
+  // non-manifold intermediate states, and the state is kept only where it is valid again:
+  // every vertex touched has a single-cycle surface link (vertex- and edge-manifold, still in
+  // the body) and the surface has 2N-4 faces (Euler characteristic 2). The region's removals
+  // after its last valid state are undone. Connectivity is checked once at the end.
+  std::vector<int> vt_off, vt_idx;  // alive tets per vertex at the start of the carve (CSR)
+  std::size_t carved = 0, carve_regions = 0, carve_undone = 0;
+  void build_vt() {
+    vt_off.assign(n + 1, 0);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive)
+        for (int x : tets[t]) ++vt_off[uz(x) + 1];
+    for (std::size_t v = 0; v < n; ++v) vt_off[v + 1] += vt_off[v];
+    vt_idx.assign(uz(vt_off[n]), 0);
+    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive)
+        for (int x : tets[t]) vt_idx[uz(fill[uz(x)]++)] = static_cast<int>(t);
+  }
+  // Is the surface around v a single disk (the link of v one simple cycle)?
+  bool vertex_manifold(int v, std::vector<std::array<int, 2>>& link) const {
+    link.clear();
+    for (int k = vt_off[uz(v)]; k < vt_off[uz(v) + 1]; ++k) {
+      const int t = vt_idx[uz(k)];
+      if (!alive(t)) continue;
+      const int li = local_index(t, v);
+      for (int i = 0; i < 4; ++i) {
+        if (i == li || alive(nbr[uz(t)][uz(i)])) continue;
+        std::array<int, 2> e{};
+        int c = 0;
+        for (int l = 0; l < 4; ++l)
+          if (l != i && l != li) e[uz(c++)] = tets[uz(t)][uz(l)];
+        link.push_back(e);
+      }
+    }
+    if (link.size() < 3) return false;
+    // Every link vertex of degree 2, and one cycle through all link edges.
+    std::size_t steps = 0;
+    int prev = link[0][0], cur = link[0][1];
+    std::size_t cur_e = 0;
+    for (;;) {
+      std::size_t next_e = SIZE_MAX;
+      int deg = 0;
+      for (std::size_t j = 0; j < link.size(); ++j)
+        if (link[j][0] == cur || link[j][1] == cur) {
+          ++deg;
+          if (j != cur_e) next_e = j;
+        }
+      if (deg != 2) return false;
+      ++steps;
+      const int nx = link[next_e][0] == cur ? link[next_e][1] : link[next_e][0];
+      prev = cur;
+      cur = nx;
+      cur_e = next_e;
+      if (cur_e == 0) break;
+      if (steps > link.size()) return false;
+    }
+    (void)prev;
+    return steps == link.size();
+  }
+  int surface_faces_of(int t) const {
+    int k = 0;
+    for (int i = 0; i < 4; ++i) k += boundary_face(t, i) ? 1 : 0;
+    return k;
+  }
+  bool body_connected() const {
+    std::vector<char> seen(tets.size(), 0);
+    std::vector<int> st;
+    std::size_t total = 0, reached = 0;
+    int start = -1;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive) { ++total; if (start < 0) start = static_cast<int>(t); }
+    if (start < 0) return false;
+    st.push_back(start);
+    seen[uz(start)] = 1;
+    while (!st.empty()) {
+      const int t = st.back();
+      st.pop_back();
+      ++reached;
+      for (int m : nbr[uz(t)])
+        if (alive(m) && !seen[uz(m)]) { seen[uz(m)] = 1; st.push_back(m); }
+    }
+    return reached == total;
+  }
+  // Keeps vertex x's "not manifold" flag and the count of such vertices up to date.
+  void update_bad(int x, std::vector<char>& bad_of, std::size_t& nbad, std::vector<std::array<int, 2>>& link) const {
+    const char b = vertex_manifold(x, link) ? 0 : 1;
+    if (b != bad_of[uz(x)]) {
+      nbad = b ? nbad + 1 : nbad - 1;
+      bad_of[uz(x)] = b;
+    }
+  }
+  void carve(double min_conf) {
+    if (!label) return;
+    build_vt();
+    const std::vector<std::uint8_t> state0 = state;
+    std::size_t F = 0;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive) F += uz(surface_faces_of(static_cast<int>(t)));
+    const std::size_t targetF = 2 * n - 4;
+    if (F != targetF) return;
+    std::vector<int> alive_at(n, 0);  // body tetrahedra per vertex
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive)
+        for (int x : tets[t]) ++alive_at[uz(x)];
+    // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss)
+    // keeps one of them, its anchor: the one with the shortest longest edge.
+    const auto outside = [&](std::size_t t) { return t < T0 && (*label)[t] >= min_conf; };
+    std::vector<char> keep_v(n, 1), anchor(tets.size(), 0);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kAlive && !outside(t))
+        for (int x : tets[t]) keep_v[uz(x)] = 0;
+    {
+      std::vector<double> best(n, HUGE_VAL);
+      std::vector<int> arg(n, -1);
+      for (std::size_t t = 0; t < tets.size(); ++t) {
+        if (state[t] != kAlive) continue;
+        const auto& v = tets[t];
+        double le = 0;
+        for (int i = 0; i < 4; ++i)
+          for (int j = i + 1; j < 4; ++j) {
+            const double* a = P(v[uz(i)]);
+            const double* b = P(v[uz(j)]);
+            le = std::max(le, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+          }
+        for (int x : v)
+          if (keep_v[uz(x)] && le < best[uz(x)]) { best[uz(x)] = le; arg[uz(x)] = static_cast<int>(t); }
+      }
+      for (std::size_t v = 0; v < n; ++v)
+        if (arg[v] >= 0) anchor[uz(arg[v])] = 1;
+    }
+    const auto cand = [&](int t) { return alive(t) && outside(uz(t)) && !anchor[uz(t)]; };
+    std::vector<char> seen(tets.size(), 0), bad_of(n, 0);
+    std::size_t nbad = 0;
+    std::vector<int> region, pending, region_removed;
+    std::vector<std::array<int, 2>> link;
+    const auto toggle = [&](int t, bool make_alive) {
+      if (make_alive) {
+        for (int x : tets[uz(t)]) ++alive_at[uz(x)];
+        state[uz(t)] = kAlive;
+        F = F - 4 + 2 * uz(surface_faces_of(t));
+      } else {
+        F = F + 4 - 2 * uz(surface_faces_of(t));
+        for (int x : tets[uz(t)]) --alive_at[uz(x)];
+        state[uz(t)] = kOutside;
+      }
+      ++ver[uz(t)];
+      for (int x : tets[uz(t)]) update_bad(x, bad_of, nbad, link);
+    };
+    for (std::size_t s0 = 0; s0 < T0; ++s0) {
+      if (seen[s0] || !cand(static_cast<int>(s0))) continue;
+      // The face-connected region of outside tetrahedra around s0.
+      region.clear();
+      region.push_back(static_cast<int>(s0));
+      seen[s0] = 1;
+      bool touches_surface = false;
+      for (std::size_t q = 0; q < region.size(); ++q)
+        for (int m : nbr[uz(region[q])]) {
+          if (!alive(m)) touches_surface = true;
+          else if (!seen[uz(m)] && cand(m)) { seen[uz(m)] = 1; region.push_back(m); }
+        }
+      if (!touches_surface) continue;
+      ++carve_regions;
+      // Most confident first, ties -> smaller id; a tetrahedron is removed once it has a surface
+      // face (no cavities) and is not the last body tetrahedron of a vertex.
+      std::priority_queue<std::pair<float, int>> pq;
+      for (int t : region)
+        if (surface_faces_of(t) > 0) pq.push({(*label)[uz(t)], -t});
+      pending.clear();
+      region_removed.clear();
+      while (!pq.empty()) {
+        const int t = -pq.top().second;
+        pq.pop();
+        if (!alive(t) || surface_faces_of(t) == 0) continue;
+        bool last = false;
+        for (int x : tets[uz(t)]) last = last || alive_at[uz(x)] == 1;
+        if (last) continue;
+        toggle(t, false);
+        pending.push_back(t);
+        region_removed.push_back(t);
+        for (int m : nbr[uz(t)])
+          if (cand(m)) pq.push({(*label)[uz(m)], -m});
+        if (nbad == 0 && F == targetF) pending.clear();  // a valid state: keep it
+      }
+      // Repair: put back removed tetrahedra at the vertices that are not manifold, latest removal
+      // first, a few rounds; keep the state if it is valid then.
+      for (int round = 0; round < 16 && nbad > 0 && !pending.empty(); ++round)
+        for (std::size_t j = pending.size(); j-- > 0 && nbad > 0;) {
+          const int t = pending[j];
+          if (alive(t)) continue;
+          bool at_bad = false;
+          for (int x : tets[uz(t)]) at_bad = at_bad || bad_of[uz(x)];
+          if (at_bad) toggle(t, true);
+        }
+      std::vector<int> still;
+      for (int t : pending)
+        if (!alive(t)) still.push_back(t);
+      if (nbad == 0 && F == targetF) still.clear();
+      // Undo back to the last valid state.
+      carve_undone += still.size();
+      for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, true);
+      for (int t : region_removed)
+        for (int x : tets[uz(t)]) update_bad(x, bad_of, nbad, link);
+      CONSTRICT_CHECK(F == targetF && nbad == 0, "carve undo did not restore the surface");
+    }
+    // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
+    // also have 2N-4 faces: excluded here (then the whole pass is undone).
+    if (!body_connected()) {
+      state = state0;
+      carved = 0;
+      return;
+    }
+    carved = 0;
+    for (std::size_t t = 0; t < state0.size(); ++t)
+      if (state0[t] == kAlive && state[t] != kAlive) ++carved;
+    removed += carved;
+  }
+
   // ---- validation of the body -------------------------------------------------------------
   void check_body() const {
     for (std::size_t t = 0; t < tets.size(); ++t) {
@@ -904,7 +1126,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.T0 = s.tets.size();
   const auto t_setup = Clock::now();
   s.compute_terms();
-  bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges, need_label = s.opt.label_weight > 0;
+  bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges, need_label = s.opt.label_weight > 0 || (s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma);
   for (const Constrict3Variant& v : s.opt.variants) {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
@@ -996,6 +1218,15 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   }
   r.complete = s.n_onb == s.n;
   if (!r.complete) r.method = s.stopped ? "stopped" : "locked";
+  if (r.complete && s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma && s.label) {
+    stage_event("carve");
+    t0 = Clock::now();
+    s.carve(s.opt.carve_confidence);
+    r.ms_carve = ms_since(t0);
+    r.carved = s.carved;
+    r.carve_undone = s.carve_undone;
+    r.stages.push_back({"carve", 0, s.carved});
+  }
   // (3) sculpting post-pass (only on complete surfaces: all points stay on the boundary since
   // two-face removals add no point and remove none).
   if (r.complete && s.opt.sculpt == Sculpt3::TwoFace) {
@@ -1139,7 +1370,7 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   std::vector<Constrict3Candidate> summary;
   for (std::size_t i = 0; i < k; ++i)
     summary.push_back({cand[i].size_bias, cand[i].label_weight, res[i].surface_area, res[i].complete, res[i].ms_constrict + res[i].ms_fallback +
-                                                                           res[i].ms_sculpt + res[i].ms_refine});
+                                                                           res[i].ms_sculpt + res[i].ms_carve + res[i].ms_refine});
   const double ms_runs = ms_since(tv);
   result = std::move(res[best]);
   result.candidates = std::move(summary);
