@@ -875,7 +875,7 @@ struct Constrictor3::Impl {
     if (link.size() < 3) return false;
     // Every link vertex of degree 2, and one cycle through all link edges.
     std::size_t steps = 0;
-    int prev = link[0][0], cur = link[0][1];
+    int cur = link[0][1];
     std::size_t cur_e = 0;
     for (;;) {
       std::size_t next_e = SIZE_MAX;
@@ -888,13 +888,11 @@ struct Constrictor3::Impl {
       if (deg != 2) return false;
       ++steps;
       const int nx = link[next_e][0] == cur ? link[next_e][1] : link[next_e][0];
-      prev = cur;
       cur = nx;
       cur_e = next_e;
       if (cur_e == 0) break;
       if (steps > link.size()) return false;
     }
-    (void)prev;
     return steps == link.size();
   }
   int surface_faces_of(int t) const {
@@ -934,14 +932,14 @@ struct Constrictor3::Impl {
     build_vt();
     const std::vector<std::uint8_t> state0 = state;
     std::size_t F = 0;
-    for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kAlive) F += uz(surface_faces_of(static_cast<int>(t)));
-    const std::size_t targetF = 2 * n - 4;
-    if (F != targetF) return;
     std::vector<int> alive_at(n, 0);  // body tetrahedra per vertex
     for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kAlive)
+      if (state[t] == kAlive) {
+        F += uz(surface_faces_of(static_cast<int>(t)));
         for (int x : tets[t]) ++alive_at[uz(x)];
+      }
+    const std::size_t targetF = 2 * n - 4;
+    if (F != targetF) return;
     // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss)
     // keeps one of them, its anchor: the one with the shortest longest edge.
     const auto outside = [&](std::size_t t) { return t < T0 && (*label)[t] >= min_conf; };
@@ -971,7 +969,7 @@ struct Constrictor3::Impl {
     const auto cand = [&](int t) { return alive(t) && outside(uz(t)) && !anchor[uz(t)]; };
     std::vector<char> seen(tets.size(), 0), bad_of(n, 0);
     std::size_t nbad = 0;
-    std::vector<int> region, pending, region_removed;
+    std::vector<int> region, pending;
     std::vector<std::array<int, 2>> link;
     const auto toggle = [&](int t, bool make_alive) {
       if (make_alive) {
@@ -1006,7 +1004,6 @@ struct Constrictor3::Impl {
       for (int t : region)
         if (surface_faces_of(t) > 0) pq.push({(*label)[uz(t)], -t});
       pending.clear();
-      region_removed.clear();
       while (!pq.empty()) {
         const int t = -pq.top().second;
         pq.pop();
@@ -1016,7 +1013,6 @@ struct Constrictor3::Impl {
         if (last) continue;
         toggle(t, false);
         pending.push_back(t);
-        region_removed.push_back(t);
         for (int m : nbr[uz(t)])
           if (cand(m)) pq.push({(*label)[uz(m)], -m});
         if (nbad == 0 && F == targetF) pending.clear();  // a valid state: keep it
@@ -1037,9 +1033,8 @@ struct Constrictor3::Impl {
       if (nbad == 0 && F == targetF) still.clear();
       // Undo back to the last valid state.
       carve_undone += still.size();
+      // (Every toggle re-evaluates its four vertices, the only ones whose links it changes.)
       for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, true);
-      for (int t : region_removed)
-        for (int x : tets[uz(t)]) update_bad(x, bad_of, nbad, link);
       CONSTRICT_CHECK(F == targetF && nbad == 0, "carve undo did not restore the surface");
     }
     // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
