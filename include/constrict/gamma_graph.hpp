@@ -84,7 +84,10 @@ struct DelaunayGamma3 {
 /// @note O(N log N) expected (2D); the completion costs O(m^2) per co-circular cluster of m points.
 Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out);
 /// 3D version; the completion adds all non-collinear triples of each co-spherical cluster.
-Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out);
+/// With complete_degenerate = false the completion is skipped: faces holds the DT faces only
+/// (what the constriction reads, through simplex_face). Its cost is cubic in the size of a
+/// co-spherical cluster, so a sphere sampled exactly needs this (docs/reconstruction-3d.md §2).
+Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out, bool complete_degenerate = true);
 
 /// Parameters of a graph of the family.
 struct GraphSpec {

@@ -1113,7 +1113,9 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.n = points.size();
   const auto t0 = Clock::now();
   auto dg = std::make_shared<DelaunayGamma3>();
-  if (Status st = delaunay_gamma3(*s.pts, *dg); !st) return st;
+  // The DT faces only: the co-spherical completion (every triple of a co-spherical cluster) is
+  // part of the γ graph, not of the tetrahedralization the constriction carves.
+  if (Status st = delaunay_gamma3(*s.pts, *dg, false); !st) return st;
   s.ms_delaunay = ms_since(t0);
   s.tets = std::move(dg->dt.tets);
   s.nbr = std::move(dg->dt.neighbors);

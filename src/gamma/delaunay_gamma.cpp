@@ -283,7 +283,7 @@ struct FaceOrder {
 
 }  // namespace
 
-Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
+Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out, bool complete_degenerate) {
   detail::LocalMesh<3> loc;
   if (Status s = detail::build_delaunay3_local(points, out.dt, &loc); !s) return s;
   const auto& tet = out.dt.tets;
@@ -357,6 +357,7 @@ Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out) {
     }
   });
 
+  if (!complete_degenerate) return Status::ok();
   // ---- Degeneracy completion (docs/gamma-graph.md §"Co-spherical input") -------------------
   // (1) disc groups: connected sets of coplanar, co-circular Delaunay faces (on the hull, or on
   //     the boundary of a co-spherical cluster). All triangles on one circle share c, r and the

@@ -250,6 +250,29 @@ TEST(Constrict3Unit, CubeWithFaceGridsAndRegularGrid) {
   }
 }
 
+// 918 integer points exactly on the sphere of radius 63: one co-spherical cluster whose γ-graph
+// completion would have C(918, 3) = 128 million triangles. The reconstruction needs only the
+// tetrahedralization (symbolic perturbation) and must not build that completion.
+TEST(Constrict3Unit, LargeCoSphericalSet) {
+  constexpr int R = 63;
+  std::vector<std::array<double, 3>> pts;
+  for (int x = -R; x <= R; ++x)
+    for (int y = -R; y <= R; ++y) {
+      const int z2 = R * R - x * x - y * y;
+      if (z2 < 0) continue;
+      const int z = static_cast<int>(std::lround(std::sqrt(double(z2))));
+      if (z * z != z2) continue;
+      pts.push_back({{double(x), double(y), double(z)}});
+      if (z != 0) pts.push_back({{double(x), double(y), double(-z)}});
+    }
+  ASSERT_EQ(pts.size(), 918u);
+  const PointSet p = make3(pts);
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  expect_valid(p, r);
+  EXPECT_EQ(r.method, "gamma");  // every point is on the hull: nothing to carve
+}
+
 TEST(Constrict3Unit, Deterministic) {
   std::vector<std::array<double, 3>> pts;
   for (int i = 0; i < 200; ++i) {
