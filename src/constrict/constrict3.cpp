@@ -967,7 +967,8 @@ struct Constrictor3::Impl {
         if (arg[v] >= 0) anchor[uz(arg[v])] = 1;
     }
     const auto cand = [&](int t) { return alive(t) && outside(uz(t)) && !anchor[uz(t)]; };
-    std::vector<char> seen(tets.size(), 0), bad_of(n, 0);
+    std::vector<char> seen(tets.size(), 0), bad_of(n, 0), dirty(n, 0);
+    std::vector<int> dirty_list;
     std::size_t nbad = 0;
     std::vector<int> region, pending;
     std::vector<std::array<int, 2>> link;
@@ -982,7 +983,23 @@ struct Constrictor3::Impl {
         state[uz(t)] = kOutside;
       }
       ++ver[uz(t)];
-      for (int x : tets[uz(t)]) update_bad(x, bad_of, nbad, link);
+      for (int x : tets[uz(t)])
+        if (!dirty[uz(x)]) { dirty[uz(x)] = 1; dirty_list.push_back(x); }
+    };
+    // The manifold flags of the vertices touched since the last flush are evaluated lazily: a
+    // valid state needs F == 2N-4 first (O(1)), so long invalid runs (a genus-1 hole carved
+    // through, high-degree vertices) do not pay a link evaluation per toggle.
+    const auto flush = [&]() {
+      for (int x : dirty_list) {
+        dirty[uz(x)] = 0;
+        update_bad(x, bad_of, nbad, link);
+      }
+      dirty_list.clear();
+    };
+    const auto valid_now = [&]() {
+      if (F != targetF) return false;
+      flush();
+      return nbad == 0;
     };
     for (std::size_t s0 = 0; s0 < T0; ++s0) {
       if (seen[s0] || !cand(static_cast<int>(s0))) continue;
@@ -1015,8 +1032,9 @@ struct Constrictor3::Impl {
         pending.push_back(t);
         for (int m : nbr[uz(t)])
           if (cand(m)) pq.push({(*label)[uz(m)], -m});
-        if (nbad == 0 && F == targetF) pending.clear();  // a valid state: keep it
+        if (valid_now()) pending.clear();  // a valid state: keep it
       }
+      flush();
       // Repair: put back removed tetrahedra at the vertices that are not manifold, latest removal
       // first, a few rounds; keep the state if it is valid then.
       for (int round = 0; round < 16 && nbad > 0 && !pending.empty(); ++round)
@@ -1025,7 +1043,10 @@ struct Constrictor3::Impl {
           if (alive(t)) continue;
           bool at_bad = false;
           for (int x : tets[uz(t)]) at_bad = at_bad || bad_of[uz(x)];
-          if (at_bad) toggle(t, true);
+          if (at_bad) {
+            toggle(t, true);
+            flush();
+          }
         }
       std::vector<int> still;
       for (int t : pending)
@@ -1033,8 +1054,9 @@ struct Constrictor3::Impl {
       if (nbad == 0 && F == targetF) still.clear();
       // Undo back to the last valid state.
       carve_undone += still.size();
-      // (Every toggle re-evaluates its four vertices, the only ones whose links it changes.)
+      // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
       for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, true);
+      flush();
       CONSTRICT_CHECK(F == targetF && nbad == 0, "carve undo did not restore the surface");
     }
     // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
