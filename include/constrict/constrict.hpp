@@ -81,7 +81,7 @@ struct Polygon2Result {
   std::size_t fallback_insertions = 0;  ///< points placed by the fallbacks
   std::vector<std::array<int, 2>> fallback_edges;  ///< non-Delaunay polygon edges (made by a
                                                    ///< fallback or the refinement), (min, max) ids
-  std::size_t refine_moves = 0;     ///< 2-opt + Or-opt moves of the refinement
+  std::size_t refine_moves = 0;     ///< 2-opt + Or-opt + deep moves of the refinement
   bool refine_budget_hit = false;   ///< the refinement stopped at its work bound
   double perimeter_before_refine = 0;  ///< perimeter before the refinement (== perimeter if none)
   double area = 0, perimeter = 0;       ///< of the final polygon (double arithmetic)
@@ -154,6 +154,7 @@ Status reconstruct2(const PointSet& points, const Constrict2Options& options,
 struct Refine2Stats {
   std::size_t moves_2opt = 0;   ///< accepted 2-opt moves
   std::size_t moves_oropt = 0;  ///< accepted Or-opt moves (segments of 1-8 points)
+  std::size_t moves_deep = 0;   ///< accepted Lin–Kernighan (k-opt, k <= 6) and double-bridge moves
   std::size_t rejected = 0;     ///< shortening moves rejected because the polygon would not be simple
   bool budget_hit = false;      ///< stopped by the work bound (the polygon is still valid)
   double length_before = 0, length_after = 0;  ///< perimeters (double arithmetic)
@@ -161,10 +162,10 @@ struct Refine2Stats {
 
 /// Shortens a simple polygon through all points by local moves (the Refine2::LocalSearch post-pass
 /// of reconstruct2(), usable on any valid polygon): 2-opt moves and Or-opt moves of segments of 1–8
-/// points, whose new edges join near Delaunay neighbours. A move is applied only if it shortens the
-/// polygon and the result is simple (exact orient2 tests against the nearby edges), so the polygon
-/// is valid after every move. Deterministic; the result is counter-clockwise and starts at its
-/// smallest index.
+/// points, then Lin–Kernighan (k <= 6) and double-bridge moves (docs §4c), built from near Delaunay
+/// neighbours. A move is applied only if it shortens the polygon and the result is simple (exact
+/// orient2 tests against the nearby edges), so the polygon is valid after every move.
+/// Deterministic; the result is counter-clockwise and starts at its smallest index.
 /// @param[in] points 2D, at least 3 points, not all collinear
 /// @param[in,out] polygon a simple polygon through every point, either orientation
 /// @param[out] stats optional move counts and perimeters

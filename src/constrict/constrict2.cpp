@@ -735,7 +735,7 @@ struct Constrictor2::Impl {
       const auto tr = Clock::now();
       Refine2Stats rs;
       detail::refine_polygon2(*pts, dt, r.boundary, opt.refine_work_per_point * n, rs);
-      r.refine_moves = rs.moves_2opt + rs.moves_oropt;
+      r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;
       r.stages.push_back({"refine", 0});

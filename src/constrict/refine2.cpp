@@ -28,6 +28,18 @@ std::size_t U(int i) { return static_cast<std::size_t>(i); }
 // Longest Or-opt segment.
 constexpr int kMaxSegment = 8;
 
+// Deep moves (second phase, docs §4c): sequential k-opt moves of at most kMaxDepth exchanged edges
+// (a bounded Lin–Kernighan step), trying the kBreadth[i] nearest candidates at level i + 1, and
+// double bridges made of two interleaved splitting 2-exchanges.
+constexpr int kMaxDepth = 6;
+constexpr std::array<std::size_t, kMaxDepth - 1> kBreadth{{5, 5, 5, 3, 3}};
+// Edges exchanged by one deep move (a double bridge exchanges 4).
+constexpr int kMaxExchanged = kMaxDepth > 4 ? kMaxDepth : 4;
+// Search-node bound of the deep phase (candidate edges tried, bridge pairs tested): per point plus
+// a floor, so that small inputs are not starved (s2d_spiral_e0.9: 189 points, about 25 000 nodes).
+constexpr std::size_t kDeepNodesPerPoint = 256;
+constexpr std::size_t kDeepNodesFloor = std::size_t{1} << 20;
+
 std::uint64_t edge_key(int u, int v) {
   if (u > v) std::swap(u, v);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) |
@@ -132,31 +144,61 @@ class Refiner {
     // queue and the result do not depend on the thread count. Most vertices of a good
     // reconstruction have none, and the sequential pass below visits only the flagged ones and
     // the vertices its moves touch.
+    // The region of the deep phase: these vertices, the vertices with a shortening splitting
+    // 2-exchange (half of a double bridge), and every vertex a move touches.
     std::vector<char> queued(n_, 0);
+    region_.assign(n_, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         const int v = tour_[i];
         queued[U(v)] = static_cast<char>(try_two_opt<true>(v) || try_or_opt<true>(v));
+        region_[U(v)] = static_cast<char>(queued[U(v)] || for_each_split(v, [](int, double) { return true; }));
       }
     });
     std::deque<int> queue;
     for (int v : tour_)
       if (queued[U(v)]) queue.push_back(v);
+    const auto requeue = [&](int a) {
+      for (int v : touched_)
+        if (!queued[U(v)]) {
+          queued[U(v)] = region_[U(v)] = 1;
+          queue.push_back(v);
+        }
+      if (a >= 0 && !queued[U(a)]) {
+        queued[U(a)] = 1;
+        queue.push_back(a);
+      }
+    };
+    // Phase 1: 2-opt and Or-opt until no vertex has an applicable move.
     while (!queue.empty() && !st_.budget_hit) {
       const int a = queue.front();
       queue.pop_front();
       queued[U(a)] = 0;
       touched_.clear();
       if (!try_two_opt<false>(a) && !try_or_opt<false>(a)) continue;
-      for (int v : touched_)
-        if (!queued[U(v)]) {
-          queued[U(v)] = 1;
-          queue.push_back(v);
-        }
-      if (!queued[U(a)]) {
-        queued[U(a)] = 1;
-        queue.push_back(a);
+      requeue(a);
+    }
+    // Phase 2 (deep moves), only in the region of phase 1: from every vertex of the region, the
+    // phase-1 moves and then a bounded Lin–Kernighan step; when no vertex has one, a double
+    // bridge. Stops at a local optimum of all three or at a work bound.
+    node_budget_ = kDeepNodesPerPoint * n_ + kDeepNodesFloor;
+    for (int v : tour_)
+      if (region_[U(v)]) {
+        queued[U(v)] = 1;
+        queue.push_back(v);
       }
+    while (!st_.budget_hit) {
+      while (!queue.empty() && !st_.budget_hit) {
+        const int a = queue.front();
+        queue.pop_front();
+        queued[U(a)] = 0;
+        touched_.clear();
+        if (!try_two_opt<false>(a) && !try_or_opt<false>(a) && !try_lin_kernighan(a)) continue;
+        requeue(a);
+      }
+      touched_.clear();
+      if (st_.budget_hit || !try_double_bridge()) break;
+      requeue(-1);
     }
     normalise();
     st_.length_after = length();
@@ -248,22 +290,26 @@ class Refiner {
   // against the current edges near it (minus the removed ones).
   template <std::size_t R, std::size_t A>
   bool valid(const std::array<Edge, R>& rem, const std::array<Edge, A>& add) {
+    return valid(rem.data(), R, add.data(), A);
+  }
+  bool valid(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) {
     // Fast path: every polygon edge and every new edge is a Delaunay edge, and distinct edges of a
     // triangulation meet only at shared endpoints (no fold-back either).
     std::size_t removed_non_dt = 0;
     bool all_dt = true;
-    for (const Edge& e : rem) removed_non_dt += is_dt_edge(e.u, e.v) ? 0 : 1;
-    for (const Edge& e : add) all_dt = all_dt && is_dt_edge(e.u, e.v);
+    for (std::size_t i = 0; i < nr; ++i) removed_non_dt += is_dt_edge(rem[i].u, rem[i].v) ? 0 : 1;
+    for (std::size_t i = 0; i < na; ++i) all_dt = all_dt && is_dt_edge(add[i].u, add[i].v);
     if (all_dt && non_dt_ == removed_non_dt) return true;
-    for (std::size_t i = 0; i < A; ++i)
-      for (std::size_t j = i + 1; j < A; ++j)
+    for (std::size_t i = 0; i < na; ++i)
+      for (std::size_t j = i + 1; j < na; ++j)
         if (conflict(add[i].u, add[i].v, add[j].u, add[j].v)) return false;
     if (!grid_.built()) build_grid();
-    for (const Edge& e : add) {
+    for (std::size_t i = 0; i < na; ++i) {
+      const Edge& e = add[i];
       const bool hit = grid_.any(P(e.u), P(e.v), [&](std::uint64_t k) {
         const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
-        for (const Edge& r : rem)
-          if (r.same(a, b)) return false;
+        for (std::size_t r = 0; r < nr; ++r)
+          if (rem[r].same(a, b)) return false;
         return conflict(e.u, e.v, a, b);
       });
       if (hit) return false;
@@ -279,13 +325,18 @@ class Refiner {
   }
   template <std::size_t R, std::size_t A>
   void commit_edges(const std::array<Edge, R>& rem, const std::array<Edge, A>& add) {
-    for (const Edge& e : rem) {
+    commit_edges(rem.data(), R, add.data(), A);
+  }
+  void commit_edges(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) {
+    for (std::size_t i = 0; i < nr; ++i) {
+      const Edge& e = rem[i];
       non_dt_ -= is_dt_edge(e.u, e.v) ? 0 : 1;
       if (grid_.built()) grid_.remove(P(e.u), P(e.v), edge_key(e.u, e.v));
       touched_.push_back(e.u);
       touched_.push_back(e.v);
     }
-    for (const Edge& e : add) {
+    for (std::size_t i = 0; i < na; ++i) {
+      const Edge& e = add[i];
       non_dt_ += is_dt_edge(e.u, e.v) ? 0 : 1;
       if (grid_.built()) grid_.add(P(e.u), P(e.v), edge_key(e.u, e.v));
       touched_.push_back(e.u);
@@ -426,6 +477,236 @@ class Refiner {
     if (!want_sl_at_x && len > 1) two_opt_edges(x, sl, s0, y);
   }
 
+  // Counts one search node of the deep phase; false when the node bound is reached.
+  bool node() {
+    if (++nodes_ <= node_budget_) return true;
+    st_.budget_hit = true;
+    return false;
+  }
+  bool is_tour_edge(int u, int v) const { return succ(u) == v || pred(u) == v; }
+
+  // Lin–Kernighan step from t1 (sequential k-opt, 2 <= k <= kMaxDepth): remove (t1, t2) with t2 a
+  // polygon neighbour, add (t2, t3) with t3 a near candidate of t2, remove (t3, t4) with t4 a
+  // polygon neighbour of t3, and so on; the move closes with (t2k, t1). Every partial gain must
+  // stay positive (the LK gain criterion), which prunes the search; the first closing move that
+  // shortens the polygon, gives one cycle and keeps it simple is applied.
+  bool try_lin_kernighan(int t1) {
+    for (const bool fwd : {true, false}) {
+      lk_[0] = t1;
+      lk_[1] = step(t1, fwd);
+      const double g = d(t1, lk_[1]);
+      if (lin_kernighan_level(1, g, g)) return true;
+      if (st_.budget_hit) return false;
+    }
+    return false;
+  }
+  // lk_[0 .. 2i) chosen: removed (lk_[2j], lk_[2j+1]) and added (lk_[2j+1], lk_[2j+2]), j < i.
+  // g: the partial gain, removed: the removed length.
+  bool lin_kernighan_level(int i, double g, double removed) {
+    const std::size_t I = U(i);
+    const int last = lk_[2 * I - 1];
+    const std::size_t end = std::min(off_[U(last) + 1], off_[U(last)] + kBreadth[I - 1]);
+    // Is (a, b) one of the first `count` removed (first = 0) or added (first = 1) edges?
+    const auto in_move = [&](int a, int b, std::size_t first, std::size_t count) {
+      for (std::size_t j = 0; j < count; ++j)
+        if (Edge{lk_[2 * j + first], lk_[2 * j + first + 1]}.same(a, b)) return true;
+      return false;
+    };
+    for (std::size_t k = off_[U(last)]; k < end; ++k) {
+      const int c = near_[k];
+      const double g1 = g - near_d_[k];
+      if (g1 <= 0) break;
+      if (!node()) return false;
+      if (is_tour_edge(last, c) || in_move(last, c, 1, I - 1)) continue;
+      for (const bool fwd : {true, false}) {
+        const int c2 = step(c, fwd);
+        if (in_move(c, c2, 0, I)) continue;
+        lk_[2 * I] = c;
+        lk_[2 * I + 1] = c2;
+        const double dcc2 = d(c, c2);
+        const double g2 = g1 + dcc2;
+        const int t1 = lk_[0];
+        if (c2 != t1 && !is_tour_edge(c2, t1) && !in_move(c2, t1, 1, I) && improves(g2 - d(c2, t1), removed + dcc2) &&
+            close_lin_kernighan(i + 1))
+          return true;
+        if (st_.budget_hit) return false;
+        if (i + 1 < kMaxDepth && lin_kernighan_level(i + 1, g2, removed + dcc2)) return true;
+        if (st_.budget_hit) return false;
+      }
+    }
+    return false;
+  }
+  // The move of the k removed edges lk_[0 .. 2k) closed by (lk_[2k-1], lk_[0]): applied when it
+  // gives one cycle and a simple polygon.
+  bool close_lin_kernighan(int k) {
+    std::array<Edge, kMaxExchanged> rem{}, add{};
+    for (std::size_t j = 0; j < U(k); ++j) {
+      rem[j] = {lk_[2 * j], lk_[2 * j + 1]};
+      add[j] = {lk_[2 * j + 1], j + 1 < U(k) ? lk_[2 * j + 2] : lk_[0]};
+    }
+    if (!exchange(rem.data(), add.data(), U(k), false)) return false;
+    if (!valid(rem.data(), U(k), add.data(), U(k))) {
+      ++st_.rejected;
+      return false;
+    }
+    commit_edges(rem.data(), U(k), add.data(), U(k));
+    exchange(rem.data(), add.data(), U(k), true);
+    ++st_.moves_deep;
+    return true;
+  }
+
+  // The shortening splitting 2-exchanges from t1: remove (t1, t2 = succ t1) and (t3, t4 = succ t3),
+  // add (t2, t3) and (t4, t1), with t3 a near candidate of t2 closer than t1. Calls f(t3, gain)
+  // until it returns true. Read-only.
+  template <class F> bool for_each_split(int t1, F&& f) const {
+    const int t2 = succ(t1);
+    const double d12 = d(t1, t2);
+    for (std::size_t k = off_[U(t2)]; k < off_[U(t2) + 1]; ++k) {
+      const int t3 = near_[k];
+      if (near_d_[k] >= d12) break;
+      const int t4 = succ(t3);
+      if (t3 == t1 || t3 == succ(t2) || t4 == t1 || t4 == pred(t1)) continue;
+      const double d34 = d(t3, t4);
+      const double gain = d12 - near_d_[k] + d34 - d(t4, t1);
+      if (improves(gain, d12 + d34) && f(t3, gain)) return true;
+    }
+    return false;
+  }
+
+  // Double bridge: two splitting 2-exchanges, each removing tour edges (t1, t2 = succ t1) and
+  // (t3, t4 = succ t3) and adding (t2, t3) and (t4, t1) — alone each cuts the polygon into two
+  // cycles — whose removed edges interleave along the polygon, so that together they give one
+  // cycle (the segments A B C D become A D C B). Sequential moves cannot reach it: it is how the
+  // interleaved cross edges of a sparse spiral are removed. Both exchanges must shorten, and so
+  // their sum; the candidates come from the region of the deep phase.
+  bool try_double_bridge() {
+    struct Split {
+      double gain;
+      int t1, t3;
+    };
+    std::vector<Split> splits;
+    for (const int t1 : tour_) {
+      if (!region_[U(t1)]) continue;
+      if (!node()) return false;
+      for_each_split(t1, [&](int t3, double gain) {
+        // The same exchange seen from t3 is (t3, t4, t1, t2): keep the one with t1 first.
+        if (pos_[U(t1)] < pos_[U(t3)]) splits.push_back({gain, t1, t3});
+        else splits.push_back({gain, t3, t1});
+        return false;
+      });
+    }
+    // Largest gain first; ties by polygon position (deterministic), duplicates removed.
+    const auto by_pos = [&](const Split& a, const Split& b) {
+      return pos_[U(a.t1)] != pos_[U(b.t1)] ? pos_[U(a.t1)] < pos_[U(b.t1)] : pos_[U(a.t3)] < pos_[U(b.t3)];
+    };
+    std::sort(splits.begin(), splits.end(), by_pos);
+    splits.erase(std::unique(splits.begin(), splits.end(),
+                             [](const Split& a, const Split& b) { return a.t1 == b.t1 && a.t3 == b.t3; }),
+                 splits.end());
+    std::stable_sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) { return a.gain > b.gain; });
+    for (std::size_t x = 0; x < splits.size(); ++x) {
+      const Split& A = splits[x];
+      const std::size_t i = U(pos_[U(A.t1)]), j = U(pos_[U(A.t3)]);  // i < j
+      for (std::size_t y = x + 1; y < splits.size(); ++y) {
+        const Split& B = splits[y];
+        if (!node()) return false;
+        const std::size_t k = U(pos_[U(B.t1)]), l = U(pos_[U(B.t3)]);
+        if (k == i || k == j || l == i || l == j) continue;
+        if ((i < k && k < j) == (i < l && l < j)) continue;  // not interleaved
+        const int a2 = succ(A.t1), a4 = succ(A.t3), b2 = succ(B.t1), b4 = succ(B.t3);
+        const std::array<Edge, 4> rem{{{A.t1, a2}, {A.t3, a4}, {B.t1, b2}, {B.t3, b4}}};
+        const std::array<Edge, 4> add{{{a2, A.t3}, {a4, A.t1}, {b2, B.t3}, {b4, B.t1}}};
+        bool distinct = true;
+        for (std::size_t p = 0; p < 4; ++p)
+          for (std::size_t q = 0; q < 4; ++q)
+            distinct = distinct && !add[p].same(rem[q].u, rem[q].v) && (q <= p || !add[p].same(add[q].u, add[q].v));
+        if (!distinct || !exchange(rem.data(), add.data(), 4, false)) continue;
+        if (!valid(rem, add)) {
+          ++st_.rejected;
+          continue;
+        }
+        commit_edges(rem, add);
+        exchange(rem.data(), add.data(), 4, true);
+        ++st_.moves_deep;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // The k-exchange that removes the tour edges rem[0 .. k) and adds add[0 .. k): does it give one
+  // cycle (O(k^2), on the segments between the cuts)? With apply, rewrites the tour: every segment
+  // but the longest is copied in its new order (the copy counts as reversal work).
+  bool exchange(const Edge* rem, const Edge* add, std::size_t k, bool apply) {
+    std::array<std::size_t, kMaxExchanged> cut;  // the edge (tour_[cut], tour_[cut + 1]) is removed
+    for (std::size_t j = 0; j < k; ++j) {
+      const int u = rem[j].u, v = rem[j].v;
+      cut[j] = U(succ(u) == v ? pos_[U(u)] : pos_[U(v)]);
+    }
+    std::sort(cut.begin(), cut.begin() + static_cast<std::ptrdiff_t>(k));
+    for (std::size_t j = 1; j < k; ++j)
+      if (cut[j] == cut[j - 1]) return false;
+    // Segment s runs from position cut[s] + 1 to cut[s + 1] (cyclic). Slot 2s is its first vertex,
+    // 2s + 1 its last; link[] pairs the slots joined by an added edge.
+    const auto first = [&](std::size_t s) { return (cut[s] + 1) % n_; };
+    const auto last = [&](std::size_t s) { return cut[(s + 1) % k]; };
+    std::array<int, 2 * kMaxExchanged> link;
+    link.fill(-1);
+    const auto free_slot = [&](int v) {
+      const std::size_t p = U(pos_[U(v)]);
+      for (std::size_t s = 0; s < k; ++s) {
+        if (first(s) == p && link[2 * s] == -1) return static_cast<int>(2 * s);
+        if (last(s) == p && link[2 * s + 1] == -1) return static_cast<int>(2 * s + 1);
+      }
+      return -1;
+    };
+    for (std::size_t j = 0; j < k; ++j) {
+      const int a = free_slot(add[j].u);
+      if (a < 0) return false;
+      link[U(a)] = -2;  // reserve: add[j].v may be the same vertex's other slot
+      const int b = free_slot(add[j].v);
+      if (b < 0) return false;
+      link[U(a)] = b;
+      link[U(b)] = a;
+    }
+    const auto length = [&](std::size_t s) { return (last(s) + n_ - first(s)) % n_ + 1; };
+    std::size_t keep = 0;
+    for (std::size_t s = 1; s < k; ++s)
+      if (length(s) > length(keep)) keep = s;
+    std::array<std::pair<std::size_t, bool>, kMaxExchanged> order;  // (segment, forward)
+    std::size_t m = 0;
+    int slot = static_cast<int>(2 * keep + 1);
+    for (;;) {
+      const int in = link[U(slot)];
+      const std::size_t s = U(in) / 2;
+      if (s == keep) {
+        if (U(in) != 2 * keep) return false;
+        break;
+      }
+      if (m == k - 1) return false;
+      const bool fwd = in % 2 == 0;
+      order[m++] = {s, fwd};
+      slot = fwd ? static_cast<int>(2 * s + 1) : static_cast<int>(2 * s);
+    }
+    if (m != k - 1) return false;
+    if (!apply) return true;
+    buf_.clear();
+    for (std::size_t o = 0; o < m; ++o) {
+      const auto [s, fwd] = order[o];
+      const std::size_t len = length(s);
+      for (std::size_t t = 0; t < len; ++t) buf_.push_back(tour_[fwd ? (first(s) + t) % n_ : (last(s) + n_ - t) % n_]);
+    }
+    std::size_t p = (last(keep) + 1) % n_;
+    for (const int v : buf_) {
+      tour_[p] = v;
+      pos_[U(v)] = static_cast<int>(p);
+      p = p + 1 == n_ ? 0 : p + 1;
+    }
+    work_ += buf_.size();
+    if (work_ > budget_) st_.budget_hit = true;
+    return true;
+  }
+
   // Writes the polygon back in input ids: CCW (exact turn at the lexicographically smallest
   // vertex), starting at the smallest input index.
   void normalise() {
@@ -460,6 +741,10 @@ class Refiner {
   std::size_t non_dt_ = 0, work_ = 0;
   EdgeGrid grid_;
   std::vector<int> touched_;
+  std::vector<char> region_;      // vertices of the deep phase (queued at least once)
+  std::array<int, 2 * kMaxDepth> lk_{};  // the Lin–Kernighan chain t1 t2 ... t2k
+  std::vector<int> buf_;          // segment copy of exchange()
+  std::size_t nodes_ = 0, node_budget_ = 0;
 };
 
 }  // namespace
@@ -542,6 +827,19 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
               const double dab = dv(Uu, Nb), dcd = dv(Vv, Dd);
               const double g = dab - d + dcd - dv(Nb, Dd);
               if (g > 1e-9 * (dab + dcd)) hit = true;
+            }
+            // The splitting 2-exchange of Refiner::for_each_split with t2 = u, t3 = v: it puts t1
+            // in the region of the deep phase (double bridges), so the search must run.
+            const int t1 = Uu.pred, t4 = Vv.succ;
+            if (!hit && v != t1 && v != Uu.succ && t4 != t1) {
+              const VInfo& T1 = vi[U(t1)];
+              const double d12 = dv(T1, Uu);
+              if (t4 != T1.pred && d < d12) {
+                const VInfo& T4 = vi[U(t4)];
+                const double d34 = dv(Vv, T4);
+                const double g = d12 - d + d34 - dv(T4, T1);
+                if (g > 1e-9 * (d12 + d34)) hit = true;
+              }
             }
           }
           if (hit) {

@@ -62,6 +62,41 @@ TEST(Refine2, OptimalPolygonIsOnlyNormalised) {
   EXPECT_EQ(st.length_before, st.length_after);
 }
 
+// A thick ring with a gap (a "C", the ground truth) and the polygon made of its two circles closing
+// the gap, joined by a corridor of two parallel cross edges: the two circles cross the gap, the
+// corridor crosses the band. Replacing the gap edges by the two caps, or the corridor by the two
+// band edges, alone cuts the polygon in two (a splitting 2-exchange); the two exchanges interleave
+// along the polygon, so together (a double bridge) they give the C. No 2-opt or Or-opt move
+// applies; the deep phase must find the C.
+TEST(Refine2, DoubleBridgeJoinsTwoInterleavedSplits) {
+  const int m = 36, j = 18;  // m + 1 points per arc; the corridor between angles j and j + 1
+  const double alpha = 0.2, step = (2 * M_PI - 2 * alpha) / m;
+  std::vector<std::array<double, 2>> xy;
+  for (const double r : {10.0, 8.0})
+    for (int i = 0; i <= m; ++i) xy.push_back({{r * std::cos(alpha + step * i), r * std::sin(alpha + step * i)}});
+  const PointSet p = make2(xy);
+  const auto outer = [](int i) { return i; };
+  const auto inner = [&](int i) { return m + 1 + i; };
+  std::vector<int> c_shape, rings;
+  for (int i = 0; i <= m; ++i) c_shape.push_back(outer(i));
+  for (int i = m; i >= 0; --i) c_shape.push_back(inner(i));
+  for (int i = 0; i <= j; ++i) rings.push_back(outer(i));
+  for (int i = j; i >= 0; --i) rings.push_back(inner(i));
+  for (int i = m; i > j; --i) rings.push_back(inner(i));
+  for (int i = j + 1; i <= m; ++i) rings.push_back(outer(i));
+  ASSERT_TRUE(validate_polygon_brute_force(p, rings).is_ok());
+  ASSERT_LT(perimeter(p, c_shape), perimeter(p, rings));
+  std::vector<int> poly = rings;
+  Refine2Stats st;
+  ASSERT_TRUE(refine_polygon2(p, poly, &st).is_ok());
+  std::printf("[ Refine2 ] ring: 2opt=%zu oropt=%zu deep=%zu rejected=%zu %.4f -> %.4f (C %.4f)\n", st.moves_2opt,
+              st.moves_oropt, st.moves_deep, st.rejected, st.length_before, st.length_after, perimeter(p, c_shape));
+  EXPECT_EQ(poly, c_shape);
+  EXPECT_EQ(st.moves_2opt + st.moves_oropt, 0u);
+  EXPECT_GE(st.moves_deep, 1u);
+  EXPECT_TRUE(validate_polygon_brute_force(p, poly).is_ok());
+}
+
 TEST(Refine2, RejectsInvalidPolygon) {
   const PointSet p = make2({{0, 0}, {4, 0}, {4, 4}, {0, 4}});
   std::vector<int> bowtie{0, 2, 1, 3};
@@ -115,7 +150,7 @@ TEST(Refine2, ThreadCountIndependent) {
 
 TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
   int runs = 0;
-  std::size_t moves = 0, rejected = 0;
+  std::size_t moves = 0, deep = 0, rejected = 0;
   for (std::uint64_t seed = 1; seed <= 400; ++seed) {
     const bool grid = seed % 3 == 0;
     Star s = random_star(seed, grid);
@@ -129,7 +164,8 @@ TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
     ASSERT_TRUE(v.is_ok()) << "seed " << seed << " (grid=" << grid << ", n=" << s.points.size() << "): " << v.message();
     EXPECT_LE(perimeter(s.points, poly), perimeter(s.points, s.polygon) * (1 + 1e-12)) << "seed " << seed;
     EXPECT_NEAR(st.length_after, perimeter(s.points, poly), 1e-9 * st.length_after) << "seed " << seed;
-    moves += st.moves_2opt + st.moves_oropt;
+    moves += st.moves_2opt + st.moves_oropt + st.moves_deep;
+    deep += st.moves_deep;
     rejected += st.rejected;
     // Deterministic, and invariant under the exact rotation (x, y) -> (-y, x): distances and
     // orientations are unchanged, so is every decision.
@@ -151,13 +187,14 @@ TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
     Refine2Stats bs;
     ASSERT_TRUE(refine_polygon2(s.points, bounded, &bs, 0).is_ok());
     ASSERT_TRUE(validate_polygon(s.points, bounded).is_ok()) << "seed " << seed;
-    if (st.moves_2opt + st.moves_oropt > 0) {
+    if (st.moves_2opt + st.moves_oropt + st.moves_deep > 0) {
       EXPECT_TRUE(bs.budget_hit) << "seed " << seed;
     }
-    EXPECT_LE(bs.moves_2opt + bs.moves_oropt, 1u) << "seed " << seed;
+    EXPECT_LE(bs.moves_2opt + bs.moves_oropt + bs.moves_deep, 1u) << "seed " << seed;
   }
-  std::printf("[ Refine2 ] star polygons=%d moves=%zu rejected(non-simple)=%zu\n", runs, moves, rejected);
+  std::printf("[ Refine2 ] star polygons=%d moves=%zu (deep %zu) rejected(non-simple)=%zu\n", runs, moves, deep, rejected);
   EXPECT_GT(runs, 250);
+  EXPECT_GT(deep, 0u);  // the deep phase (k-opt moves, double bridges) is exercised
   EXPECT_GT(rejected, 0u);  // the exact simplicity test is exercised
 }
 

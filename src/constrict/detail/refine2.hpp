@@ -13,15 +13,18 @@
 
 namespace constrict::detail {
 
-/// Improves a simple polygon through all points by 2-opt and Or-opt moves whose new edges join
-/// Delaunay neighbours (candidate lists: the Delaunay 1-ring of each vertex, by distance). A move
+/// Improves a simple polygon through all points by 2-opt and Or-opt moves, then (deep phase, in
+/// the region of those) Lin–Kernighan k-opt (k <= 6) and double-bridge moves, built from Delaunay
+/// neighbours (candidate lists: the Delaunay 1-ring of each vertex, by distance). A move
 /// is applied only if it shortens the polygon by more than a relative 1e-9 of the replaced edges
 /// and the resulting polygon is simple (exact orient2 tests against the edges near the new ones).
 /// @param[in] points 2D input
 /// @param[in] dt the Delaunay triangulation of all points
 /// @param[in,out] polygon a simple polygon through all points; stays simple and through all points
-/// @param[in] work_budget maximal number of array elements moved by reversals (bounds the worst case)
-/// @note O(N·deg) per sweep plus the reversal work (≤ work_budget). Deterministic.
+/// @param[in] work_budget maximal number of array elements moved by reversals and segment copies
+///   (bounds the worst case)
+/// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
+///   2^20 candidate nodes). Deterministic.
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats);
 
