@@ -26,6 +26,7 @@ struct ReconstructArgs {
   std::size_t seed_limit = 0;    // voronoi-skeleton: 0 = every seed
   bool ascii = false;
   bool fast = false;  // 3D: one variant run instead of the default two
+  bool no_grow = false;  // 3D: constriction from the convex hull only
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
 };
@@ -243,7 +244,9 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (a.refine == "none") {
     opt.refine = Refine3::None;
     opt.carve_confidence = 2;  // the paper's algorithm: no post-pass at all
+    opt.grow = false;
   }
+  if (a.no_grow) opt.grow = false;
   if (a.fast) opt.variants = {{1.0, 1.0}};
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   (void)criterion_from_name(a.method, opt.criterion);
@@ -340,6 +343,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                    {"added", r.refine_added},
                    {"removed", r.refine_removed}};
     j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
+    j["grow"] = {{"enabled", opt.grow}, {"tetrahedra", r.grown}, {"labelled_outside", r.grown_outside}, {"filled", r.filled}};
     j["size_bias"] = r.size_bias;
     j["label_weight"] = r.label_weight;
     nlohmann::json variants = nlohmann::json::array();
@@ -348,6 +352,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                           {"surface_area", c.surface_area}, {"complete", c.complete}, {"ms", c.ms}});
     j["variants"] = variants;
     j["timings_ms"] = {{"read", ms(t0, t1)},          {"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict},
+                       {"grow", r.ms_grow},           {"fill", r.ms_fill},
                        {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"carve", r.ms_carve},
                        {"refine", r.ms_refine},
                        {"variants_setup", r.ms_setup}, {"variants_total", r.ms_variants}, {"validate", ms_validate},
@@ -401,7 +406,8 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--refine", a->refine,
                   "post-pass on the complete result: auto (default: 2D local search, 3D carve + flip passes) | none (the paper's algorithm)")
       ->check(CLI::IsMember({"auto", "none"}));
-  cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants");
+  cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants, when the growth does not reach every point");
+  cmd->add_flag("--no-grow", a->no_grow, "3D: no growth from the inside; constrict from the convex hull (docs/reconstruction-3d.md §4.7)");
   cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
   cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")

@@ -76,6 +76,7 @@ struct Constrict3Options {
     o.variants.clear();
     o.size_bias = 0;
     o.carve_confidence = 2;  // no carve pass
+    o.grow = false;
     return o;
   }
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
@@ -110,6 +111,14 @@ struct Constrict3Options {
   /// intermediate states, keeping a region's removals only up to its last valid state (closed
   /// 2-manifold, genus 0, every point on the surface). > 1 = off.
   double carve_confidence = 0.5;
+  /// Growth (Criterion::Gamma; docs/reconstruction-3d.md §4.7): before any constriction, grow
+  /// the body from the inside along the inside/outside labels, adding Delaunay tetrahedra only by
+  /// the mirror images of the removal rules (a triangulated ball with every point on its
+  /// surface), then fill the inside regions it left out. When every point is reached this is the
+  /// result (then the flips and the variants are not run); otherwise the constriction from the
+  /// convex hull runs as without it. Default on: the best GT recovery and distances measured on
+  /// every shared model it completes.
+  bool grow = true;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
@@ -157,6 +166,9 @@ struct Mesh3Result {
   std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
   std::size_t carved = 0;                 ///< tetrahedra removed by the carve pass (kept)
   std::size_t carve_undone = 0;           ///< carve removals undone (no valid end state)
+  std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
+  std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
+  std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
@@ -168,6 +180,7 @@ struct Mesh3Result {
   double label_weight = 0;                ///< label weight of the run that produced this result
   std::vector<Constrict3Candidate> candidates;  ///< every candidate run (empty: single run)
   double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_sculpt = 0, ms_carve = 0, ms_refine = 0, ms_validate = 0;
+  double ms_grow = 0, ms_fill = 0;  ///< growth and its fill pass (§4.7)
   /// Variant selection: time of the labels / spacing set-up plus the parallel runs (wall clock);
   /// 0 for a single run. ms_constrict ... ms_refine are those of the winning run.
   double ms_setup = 0, ms_variants = 0;

@@ -330,6 +330,8 @@ struct Constrictor3::Impl {
       }
     }
     label = std::move(out);
+    cradius.resize(T0);
+    for (std::size_t t = 0; t < T0; ++t) cradius[t] = ball[t][3];
   }
 
   void compute_spacing() {
@@ -833,6 +835,104 @@ struct Constrictor3::Impl {
     heap.clear();
   }
 
+  // ---- growth (docs/reconstruction-3d.md §4.7) ------------------------------------------------
+  // The body grows from the inside instead of shrinking from the hull: it starts with the inside
+  // tetrahedron of the largest circumradius and adds Delaunay tetrahedra only by the mirror
+  // images of the removal rules, so it stays a triangulated ball: a tetrahedron glued along one
+  // face whose fourth vertex is not yet in the body, or glued along two faces whose free edge is
+  // not yet in the body (never three faces: that would bury a vertex). Every vertex in the body is
+  // therefore on its surface. Order: tetrahedra labelled inside by the largest circumradius first
+  // (from the medial axis outwards, which keeps the growth front from wrapping around pockets);
+  // when none is left, a tetrahedron labelled outside only if it brings a new point into the
+  // body (one-face rule), least confident first (thin parts the labels miss).
+  std::vector<double> cradius;  // circumradius per Delaunay tetrahedron (labels), < 0 if flat
+  std::size_t grown = 0, grown_outside = 0;
+  bool edge_in_body(int t, int i, int j) const {
+    bool hit = false, hull = false;
+    walk_edge(t, i, j, 0, [&](int nx) {
+      if (nx < 0) { hull = true; return true; }
+      hit = alive(nx);
+      return hit;
+    });
+    if (!hit && hull)  // the ring is open at the hull: walk the other way too
+      walk_edge(t, i, j, 1, [&](int nx) {
+        if (nx < 0) return true;
+        hit = alive(nx);
+        return hit;
+      });
+    return hit;
+  }
+  // 1 / 2: t can join the body glued along one / two faces; 0: it cannot.
+  int addable(int t) const {
+    int g[4], ng = 0;
+    for (int i = 0; i < 4; ++i)
+      if (alive(nbr[uz(t)][uz(i)])) g[ng++] = i;
+    if (ng == 1) return onb[uz(tets[uz(t)][uz(g[0])])] ? 0 : 1;
+    if (ng == 2) return edge_in_body(t, g[0], g[1]) ? 0 : 2;
+    return 0;
+  }
+  // Inside: 1000 + ln r (above every outside key); outside: 1 - confidence, in [0, 1].
+  double grow_key(int t) const {
+    const double l = (*label)[uz(t)];
+    if (l < 0) return 1000.0 + (cradius[uz(t)] > 0 ? std::log(cradius[uz(t)]) : -500.0);
+    return 1.0 - l;
+  }
+  void grow_add(int t) {
+    state[uz(t)] = kAlive;
+    ++ver[uz(t)];
+    ++grown;
+    for (int x : tets[uz(t)])
+      if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
+    for (int m : nbr[uz(t)])
+      if (m >= 0 && uz(m) < T0 && !alive(m)) {
+        ++ver[uz(m)];
+        heap_push({grow_key(m), m, ver[uz(m)]});
+      }
+  }
+  // Grows the body; true when every point is on its surface. The caller restores the hull state
+  // otherwise (reset_to_hull).
+  bool grow() {
+    int seed = -1;
+    for (std::size_t t = 0; t < T0; ++t)
+      if ((*label)[t] < 0 && cradius[t] > 0 && (seed < 0 || cradius[t] > cradius[uz(seed)])) seed = static_cast<int>(t);
+    if (seed < 0) return false;
+    state.assign(T0, kOutside);
+    for (auto& v : ver) ++v;
+    onb.assign(n, 0);
+    n_onb = 0;
+    heap.clear();
+    grow_add(seed);
+    while (!heap.empty()) {
+      const Entry e = heap_pop();
+      if (alive(e.tet) || e.version != ver[uz(e.tet)]) continue;
+      const int kind = addable(e.tet);
+      if (!kind) continue;
+      if (!((*label)[uz(e.tet)] < 0)) {
+        if (kind != 1) continue;  // (one-face rule: its fourth vertex is a new point)
+        ++grown_outside;
+      }
+      grow_add(e.tet);
+    }
+    heap.clear();
+    return n_onb == n;
+  }
+  // The state of init(): the whole tetrahedralization, the hull points on the boundary.
+  void reset_to_hull() {
+    state.assign(T0, kAlive);
+    for (auto& v : ver) ++v;
+    onb.assign(n, 0);
+    n_onb = 0;
+    for (std::size_t t = 0; t < T0; ++t)
+      for (int i = 0; i < 4; ++i)
+        if (nbr[t][uz(i)] < 0)
+          for (int k = 0; k < 3; ++k) {
+            const int x = tets[t][uz(kFaceOut[i][k])];
+            if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
+          }
+    grown = grown_outside = 0;
+    start_heap();
+  }
+
   // ---- carve pass: remove the surface-connected tetrahedra labelled outside ------------------
   // (docs/reconstruction-3d.md §4.6). The constriction rules keep the surface a 2-manifold at
   // every single removal, which blocks the "bridges": regions labelled outside whose vertices are
@@ -843,17 +943,19 @@ struct Constrictor3::Impl {
   // the body) and the surface has 2N-4 faces (Euler characteristic 2). The region's removals
   // after its last valid state are undone. Connectivity is checked once at the end.
   std::vector<int> vt_off, vt_idx;  // alive tets per vertex at the start of the carve (CSR)
-  std::size_t carved = 0, carve_regions = 0, carve_undone = 0;
-  void build_vt() {
+  std::size_t carved = 0, carve_regions = 0, carve_undone = 0, filled = 0;
+  // all: every tetrahedron that can be in the body (the fill adds tetrahedra), else the alive ones.
+  void build_vt(bool all) {
+    const auto in = [&](std::size_t t) { return all ? state[t] != kReplaced : state[t] == kAlive; };
     vt_off.assign(n + 1, 0);
     for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kAlive)
+      if (in(t))
         for (int x : tets[t]) ++vt_off[uz(x) + 1];
     for (std::size_t v = 0; v < n; ++v) vt_off[v + 1] += vt_off[v];
     vt_idx.assign(uz(vt_off[n]), 0);
     std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
     for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kAlive)
+      if (in(t))
         for (int x : tets[t]) vt_idx[uz(fill[uz(x)]++)] = static_cast<int>(t);
   }
   // Is the surface around v a single disk (the link of v one simple cycle)?
@@ -927,9 +1029,32 @@ struct Constrictor3::Impl {
       bad_of[uz(x)] = b;
     }
   }
-  void carve(double min_conf) {
+  // Does every tetrahedron outside the body reach the convex hull through tetrahedra outside the
+  // body (no enclosed void)?
+  bool outside_connected() const {
+    std::vector<char> seen(tets.size(), 0);
+    std::vector<int> st;
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      if (state[t] != kOutside) continue;
+      for (int m : nbr[t])
+        if (m < 0) { seen[t] = 1; st.push_back(static_cast<int>(t)); break; }
+    }
+    while (!st.empty()) {
+      const int t = st.back();
+      st.pop_back();
+      for (int m : nbr[uz(t)])
+        if (m >= 0 && state[uz(m)] == kOutside && !seen[uz(m)]) { seen[uz(m)] = 1; st.push_back(m); }
+    }
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kOutside && !seen[t]) return false;
+    return true;
+  }
+  // Carve (fill = false): remove the surface-connected regions of tetrahedra labelled outside
+  // with confidence >= min_conf. Fill (fill = true): the mirror image, add the regions of
+  // Delaunay tetrahedra labelled inside (confidence >= min_conf) that the body left out.
+  void carve(double min_conf, bool fill = false) {
     if (!label) return;
-    build_vt();
+    build_vt(fill);
     const std::vector<std::uint8_t> state0 = state;
     std::size_t F = 0;
     std::vector<int> alive_at(n, 0);  // body tetrahedra per vertex
@@ -943,8 +1068,8 @@ struct Constrictor3::Impl {
     // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss)
     // keeps one of them, its anchor: the one with the shortest longest edge.
     const auto outside = [&](std::size_t t) { return t < T0 && (*label)[t] >= min_conf; };
-    std::vector<char> keep_v(n, 1), anchor(tets.size(), 0);
-    for (std::size_t t = 0; t < tets.size(); ++t)
+    std::vector<char> keep_v(n, fill ? 0 : 1), anchor(tets.size(), 0);
+    for (std::size_t t = 0; t < tets.size() && !fill; ++t)
       if (state[t] == kAlive && !outside(t))
         for (int x : tets[t]) keep_v[uz(x)] = 0;
     {
@@ -966,7 +1091,12 @@ struct Constrictor3::Impl {
       for (std::size_t v = 0; v < n; ++v)
         if (arg[v] >= 0) anchor[uz(arg[v])] = 1;
     }
-    const auto cand = [&](int t) { return alive(t) && outside(uz(t)) && !anchor[uz(t)]; };
+    const auto cand = [&](int t) {
+      if (fill) return uz(t) < T0 && state[uz(t)] == kOutside && (*label)[uz(t)] <= -min_conf;
+      return alive(t) && outside(uz(t)) && !anchor[uz(t)];
+    };
+    // Label order: most confident first (outside: largest label; inside: smallest).
+    const auto prio = [&](int t) { return fill ? -(*label)[uz(t)] : (*label)[uz(t)]; };
     std::vector<char> seen(tets.size(), 0), bad_of(n, 0), dirty(n, 0);
     std::vector<int> dirty_list;
     std::size_t nbad = 0;
@@ -1010,28 +1140,30 @@ struct Constrictor3::Impl {
       bool touches_surface = false;
       for (std::size_t q = 0; q < region.size(); ++q)
         for (int m : nbr[uz(region[q])]) {
-          if (!alive(m)) touches_surface = true;
-          else if (!seen[uz(m)] && cand(m)) { seen[uz(m)] = 1; region.push_back(m); }
+          if (fill ? alive(m) : !alive(m)) touches_surface = true;
+          else if (m >= 0 && !seen[uz(m)] && cand(m)) { seen[uz(m)] = 1; region.push_back(m); }
         }
       if (!touches_surface) continue;
       ++carve_regions;
       // Most confident first, ties -> smaller id; a tetrahedron is removed once it has a surface
       // face (no cavities) and is not the last body tetrahedron of a vertex.
       std::priority_queue<std::pair<float, int>> pq;
+      // (fill: a tetrahedron outside the body is glued to it iff it has fewer than 4 surface faces)
+      const auto at_front = [&](int t) { return fill ? !alive(t) && surface_faces_of(t) < 4 : alive(t) && surface_faces_of(t) > 0; };
       for (int t : region)
-        if (surface_faces_of(t) > 0) pq.push({(*label)[uz(t)], -t});
+        if (at_front(t)) pq.push({prio(t), -t});
       pending.clear();
       while (!pq.empty()) {
         const int t = -pq.top().second;
         pq.pop();
-        if (!alive(t) || surface_faces_of(t) == 0) continue;
+        if (!at_front(t)) continue;
         bool last = false;
-        for (int x : tets[uz(t)]) last = last || alive_at[uz(x)] == 1;
+        for (int x : tets[uz(t)]) last = last || (!fill && alive_at[uz(x)] == 1);
         if (last) continue;
-        toggle(t, false);
+        toggle(t, fill);
         pending.push_back(t);
         for (int m : nbr[uz(t)])
-          if (cand(m)) pq.push({(*label)[uz(m)], -m});
+          if (m >= 0 && cand(m)) pq.push({prio(m), -m});
         if (valid_now()) pending.clear();  // a valid state: keep it
       }
       flush();
@@ -1040,24 +1172,36 @@ struct Constrictor3::Impl {
       for (int round = 0; round < 16 && nbad > 0 && !pending.empty(); ++round)
         for (std::size_t j = pending.size(); j-- > 0 && nbad > 0;) {
           const int t = pending[j];
-          if (alive(t)) continue;
+          if (alive(t) != fill) continue;
           bool at_bad = false;
           for (int x : tets[uz(t)]) at_bad = at_bad || bad_of[uz(x)];
           if (at_bad) {
-            toggle(t, true);
+            toggle(t, !fill);
             flush();
           }
         }
       std::vector<int> still;
       for (int t : pending)
-        if (!alive(t)) still.push_back(t);
+        if (alive(t) == fill) still.push_back(t);
       if (nbad == 0 && F == targetF) still.clear();
       // Undo back to the last valid state.
       carve_undone += still.size();
       // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
-      for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, true);
+      for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, !fill);
       flush();
       CONSTRICT_CHECK(F == targetF && nbad == 0, "carve undo did not restore the surface");
+    }
+    if (fill) {
+      // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void
+      // would also have 2N-4 faces in total: excluded here (then the whole pass is undone).
+      if (!outside_connected()) {
+        state = state0;
+        return;
+      }
+      filled = 0;
+      for (std::size_t t = 0; t < state0.size(); ++t)
+        if (state0[t] != kAlive && state[t] == kAlive) ++filled;
+      return;
     }
     // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
     // also have 2N-4 faces: excluded here (then the whole pass is undone).
@@ -1145,7 +1289,8 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.T0 = s.tets.size();
   const auto t_setup = Clock::now();
   s.compute_terms();
-  bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges, need_label = s.opt.label_weight > 0 || (s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma);
+  bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges,
+       need_label = s.opt.label_weight > 0 || ((s.opt.carve_confidence <= 1 || s.opt.grow) && s.opt.criterion == Criterion::Gamma);
   for (const Constrict3Variant& v : s.opt.variants) {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
@@ -1156,20 +1301,11 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   }
   if (need_label) s.compute_labels();
   s.ms_setup = ms_since(t_setup);
-  s.state.assign(s.T0, kAlive);
   s.ver.assign(s.T0, 0);
   s.mark.assign(s.T0, 0);
-  s.onb.assign(s.n, 0);
-  for (std::size_t t = 0; t < s.T0; ++t)
-    for (int i = 0; i < 4; ++i)
-      if (s.nbr[t][uz(i)] < 0)
-        for (int k = 0; k < 3; ++k) {
-          const int x = s.tets[t][uz(kFaceOut[i][k])];
-          if (!s.onb[uz(x)]) { s.onb[uz(x)] = 1; ++s.n_onb; }
-        }
-  s.n_hull = s.n_onb;
   s.heap.reserve(s.T0 / 4 + 16);
-  s.start_heap();
+  s.reset_to_hull();
+  s.n_hull = s.n_onb;
   s.ready = true;
   return Status::ok();
 }
@@ -1200,13 +1336,32 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   r.stages.push_back({"hull", s.n_hull, 0});
   // (1) Delaunay constriction (the caller may have stepped already).
   auto t0 = Clock::now();
-  const std::size_t removed_before = s.removed;
-  while (s.step()) {
+  // (0) Growth from the inside (§4.7), only from the untouched initial state.
+  bool grown = false;
+  if (s.opt.grow && s.label && s.opt.criterion == Criterion::Gamma && s.removed == 0 && s.opt.stop_after == SIZE_MAX) {
+    stage_event("grow");
+    grown = s.grow();
+    r.ms_grow = ms_since(t0);
+    if (grown) {
+      r.grown = s.grown;
+      r.grown_outside = s.grown_outside;
+      r.stages.push_back({"grow", s.n - s.n_hull, 0});
+      stage_event("fill");
+      t0 = Clock::now();
+      s.carve(s.opt.carve_confidence <= 1 ? s.opt.carve_confidence : 0.5, true);
+      r.filled = s.filled;
+      r.ms_fill = ms_since(t0);
+      r.stages.push_back({"fill", 0, 0});
+    } else {
+      s.reset_to_hull();
+    }
+    t0 = Clock::now();
+  }
+  while (!grown && s.step()) {
   }
   r.ms_constrict = ms_since(t0);
-  r.stages.push_back({"gamma", s.n_onb - s.n_hull, s.removed});
-  (void)removed_before;
-  r.method = "gamma";
+  if (!grown) r.stages.push_back({"gamma", s.n_onb - s.n_hull, s.removed});
+  r.method = grown ? "grow" : "gamma";
   if (s.n_onb < s.n && !s.stopped) {
     r.locked = true;
     r.stuck_points = s.inside();
@@ -1237,7 +1392,7 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   }
   r.complete = s.n_onb == s.n;
   if (!r.complete) r.method = s.stopped ? "stopped" : "locked";
-  if (r.complete && s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma && s.label) {
+  if (r.complete && !grown && s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma && s.label) {
     stage_event("carve");
     t0 = Clock::now();
     s.carve(s.opt.carve_confidence);
@@ -1260,7 +1415,7 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
     r.stages.push_back({"sculpt", 0, s.removed_sculpt});
   }
   // (4) Refine3 flip post-pass (complete surfaces only).
-  if (r.complete && s.opt.refine != Refine3::None) {
+  if (r.complete && !grown && s.opt.refine != Refine3::None) {
     stage_event("refine");
     t0 = Clock::now();
     s.energy = s.opt.refine == Refine3::Alternate ? Refine3::Area : s.opt.refine;
@@ -1364,6 +1519,19 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     e.kind = Constrict3Event::Kind::StageBegin;
     e.stage = "candidates";
     visitor->on_event(e);
+  }
+  if (impl_->opt.grow && impl_->label && impl_->opt.criterion == Criterion::Gamma) {
+    // Growth first (§4.7): when it reaches every point, its surface is the result.
+    auto g = std::make_unique<Impl>(*impl_);
+    Mesh3Result rg;
+    if (Status s = finish_impl(*g, rg, false); !s) return s;
+    if (rg.method == "grow") {
+      result = std::move(rg);
+      result.ms_setup = impl_->ms_setup;
+      if (options.validate) validate_result(*g, result);
+      return Status::ok();
+    }
+    impl_->opt.grow = false;  // the variants below start from the hull
   }
   const std::vector<Constrict3Variant>& cand = options.variants;
   const std::size_t k = cand.size();

@@ -178,6 +178,7 @@ TEST(Constrict3Unit, RefineFlipsLowerTheAreaAndKeepValidity) {
     for (TwoFaceKey k : {TwoFaceKey::Sum, TwoFaceKey::Max}) {
       Constrict3Options o, plain;
       o.two_face_key = plain.two_face_key = k;
+      o.grow = plain.grow = false;  // the flips run after the constriction from the hull
       // One variant: with two, the smallest-area choice may pick different runs for a and b.
       Constrict3Variant one;
       one.size_bias = 1.0;
@@ -287,6 +288,53 @@ TEST(Constrict3Unit, Deterministic) {
   EXPECT_EQ(a.tets, b.tets);
 }
 
+// Growth from the inside (docs/reconstruction-3d.md §4.7) on a bumpy sphere: it reaches every
+// point (method "grow", no flips, no variants), the result is valid, and the same input permuted
+// gives the same surface (ties are broken by ids, not by the input order of the tetrahedra).
+TEST(Constrict3Unit, GrowthReachesEveryPointAndIsDeterministic) {
+  std::vector<std::array<double, 3>> pts;
+  for (int i = 0; i < 600; ++i) {
+    const double u = -1 + (2.0 * i + 1) / 600.0, ph = 2.399963 * i, s = std::sqrt(1 - u * u);
+    const double x = s * std::cos(ph), y = s * std::sin(ph), z = u;
+    const double r = 1 + 0.25 * std::sin(3 * x + 2 * y) + 0.15 * std::sin(5 * z);
+    pts.push_back({{r * x, r * y, 1.5 * r * z}});
+  }
+  const PointSet p = make3(pts);
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  expect_valid(p, r);
+  EXPECT_EQ(r.method, "grow");
+  EXPECT_EQ(r.grown, r.tets.size() - r.filled);
+  EXPECT_TRUE(r.candidates.empty());
+  EXPECT_EQ(r.refine_added + r.refine_removed, 0u);
+  // Reversed input order: the same triangles up to the index map.
+  std::vector<std::array<double, 3>> rev(pts.rbegin(), pts.rend());
+  Mesh3Result q;
+  ASSERT_TRUE(reconstruct3(make3(rev), {}, q).is_ok());
+  const int n = static_cast<int>(pts.size());
+  std::vector<std::array<int, 3>> a, b;
+  for (auto t : r.mesh.triangles) {
+    std::sort(t.begin(), t.end());
+    a.push_back(t);
+  }
+  for (auto t : q.mesh.triangles) {
+    for (int& x : t) x = n - 1 - x;
+    std::sort(t.begin(), t.end());
+    b.push_back(t);
+  }
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  // Off: the constriction from the hull (a different surface, also valid).
+  Constrict3Options off;
+  off.grow = false;
+  Mesh3Result h;
+  ASSERT_TRUE(reconstruct3(p, off, h).is_ok());
+  expect_valid(p, h);
+  EXPECT_NE(h.method, "grow");
+  EXPECT_EQ(h.grown, 0u);
+}
+
 // Variant selection (Constrict3Options::variants): the result is the complete run with the
 // smallest surface area, identical to that variant run alone, and deterministic.
 TEST(Constrict3Unit, VariantSelectionKeepsTheSmallestArea) {
@@ -299,6 +347,7 @@ TEST(Constrict3Unit, VariantSelectionKeepsTheSmallestArea) {
   const PointSet p = make3(pts);
   Constrict3Options o;
   o.variants = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.25, 2.0}};
+  o.grow = false;  // the variants run when the growth is off or does not reach every point
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, o, r).is_ok());
   expect_valid(p, r);
