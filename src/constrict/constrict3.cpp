@@ -330,8 +330,10 @@ struct Constrictor3::Impl {
       }
     }
     label = std::move(out);
-    cradius.resize(T0);
-    for (std::size_t t = 0; t < T0; ++t) cradius[t] = ball[t][3];
+    lrad.resize(T0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) lrad[t] = ball[t][3] > 0 ? std::log(ball[t][3]) : -1e300;
+    });
   }
 
   void compute_spacing() {
@@ -462,6 +464,8 @@ struct Constrictor3::Impl {
 
   bool step() {
     if (!ready || stopped || n_onb == n) return false;
+    stepped = true;
+    ensure_hull_start();
     if (removed >= opt.stop_after) { stopped = true; return false; }
     if (pop_and_remove(-1e300, "gamma")) return true;
     locked_now = true;
@@ -845,7 +849,8 @@ struct Constrictor3::Impl {
   // (from the medial axis outwards, which keeps the growth front from wrapping around pockets);
   // when none is left, a tetrahedron labelled outside only if it brings a new point into the
   // body (one-face rule), least confident first (thin parts the labels miss).
-  std::vector<double> cradius;  // circumradius per Delaunay tetrahedron (labels), < 0 if flat
+  std::vector<double> lrad;  // ln circumradius per Delaunay tetrahedron (labels), -1e300 if flat
+  std::vector<char> queued;  // growth: in the heap (its key is static: one entry is enough)
   std::size_t grown = 0, grown_outside = 0;
   bool edge_in_body(int t, int i, int j) const {
     bool hit = false, hull = false;
@@ -863,18 +868,19 @@ struct Constrictor3::Impl {
     return hit;
   }
   // 1 / 2: t can join the body glued along one / two faces; 0: it cannot.
-  int addable(int t) const {
+  // one_face_only: only the one-face rule counts (no edge walk for the two-face rule).
+  int addable(int t, bool one_face_only = false) const {
     int g[4], ng = 0;
     for (int i = 0; i < 4; ++i)
       if (alive(nbr[uz(t)][uz(i)])) g[ng++] = i;
     if (ng == 1) return onb[uz(tets[uz(t)][uz(g[0])])] ? 0 : 1;
-    if (ng == 2) return edge_in_body(t, g[0], g[1]) ? 0 : 2;
+    if (ng == 2 && !one_face_only) return edge_in_body(t, g[0], g[1]) ? 0 : 2;
     return 0;
   }
   // Inside: 1000 + ln r (above every outside key); outside: 1 - confidence, in [0, 1].
   double grow_key(int t) const {
     const double l = (*label)[uz(t)];
-    if (l < 0) return 1000.0 + (cradius[uz(t)] > 0 ? std::log(cradius[uz(t)]) : -500.0);
+    if (l < 0) return 1000.0 + std::max(-500.0, lrad[uz(t)]);
     return 1.0 - l;
   }
   void grow_add(int t) {
@@ -883,10 +889,12 @@ struct Constrictor3::Impl {
     ++grown;
     for (int x : tets[uz(t)])
       if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
+    // A tetrahedron whose glued faces change is examined again; one heap entry per tetrahedron
+    // suffices (static key), so the pop order is that of a re-push per change.
     for (int m : nbr[uz(t)])
-      if (m >= 0 && uz(m) < T0 && !alive(m)) {
-        ++ver[uz(m)];
-        heap_push({grow_key(m), m, ver[uz(m)]});
+      if (m >= 0 && uz(m) < T0 && !alive(m) && !queued[uz(m)]) {
+        queued[uz(m)] = 1;
+        heap_push({grow_key(m), m, 0});
       }
   }
   // Grows the body; true when every point is on its surface. The caller restores the hull state
@@ -894,26 +902,27 @@ struct Constrictor3::Impl {
   bool grow() {
     int seed = -1;
     for (std::size_t t = 0; t < T0; ++t)
-      if ((*label)[t] < 0 && cradius[t] > 0 && (seed < 0 || cradius[t] > cradius[uz(seed)])) seed = static_cast<int>(t);
+      if ((*label)[t] < 0 && lrad[t] > -1e300 && (seed < 0 || lrad[t] > lrad[uz(seed)])) seed = static_cast<int>(t);
     if (seed < 0) return false;
     state.assign(T0, kOutside);
     for (auto& v : ver) ++v;
     onb.assign(n, 0);
     n_onb = 0;
     heap.clear();
+    queued.assign(T0, 0);
     grow_add(seed);
     while (!heap.empty()) {
       const Entry e = heap_pop();
-      if (alive(e.tet) || e.version != ver[uz(e.tet)]) continue;
-      const int kind = addable(e.tet);
-      if (!kind) continue;
-      if (!((*label)[uz(e.tet)] < 0)) {
-        if (kind != 1) continue;  // (one-face rule: its fourth vertex is a new point)
-        ++grown_outside;
-      }
+      queued[uz(e.tet)] = 0;
+      if (alive(e.tet)) continue;
+      // Outside: the one-face rule only (its fourth vertex is a new point).
+      const bool outside = !((*label)[uz(e.tet)] < 0);
+      if (!addable(e.tet, outside)) continue;
+      if (outside) ++grown_outside;
       grow_add(e.tet);
     }
     heap.clear();
+    std::vector<char>().swap(queued);
     return n_onb == n;
   }
   // The state of init(): the whole tetrahedralization, the hull points on the boundary.
@@ -930,7 +939,38 @@ struct Constrictor3::Impl {
             if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
           }
     grown = grown_outside = 0;
+    heap.clear();
+    hull_ready = false;
+  }
+  // The constriction from the hull needs the face terms, the spacing / bridge ratios (size bias)
+  // and its initial heap; they are made on first use, so a growth that reaches every point does
+  // not pay for them.
+  bool need_size = false, hull_ready = false, stepped = false, grow_only = false;
+  bool can_grow() const {
+    return opt.grow && label && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX;
+  }
+  void ensure_hull_start() {
+    if (hull_ready) return;
+    auto t0 = Clock::now();
+    if (!dgp) {
+      // Same builder, same input: the same tetrahedra in the same order (checked).
+      auto dg = std::make_shared<DelaunayGamma3>();
+      const Status st = delaunay_gamma3(*pts, *dg, false);
+      CONSTRICT_CHECK(st.is_ok() && dg->dt.tets.size() == T0 && std::equal(dg->dt.tets.begin(), dg->dt.tets.end(), tets.begin()),
+                      "the γ pass did not reproduce the tetrahedralization");
+      dg->dt = Delaunay3{};
+      dgp = std::move(dg);
+      ms_delaunay += ms_since(t0);
+      t0 = Clock::now();
+    }
+    if (!terms) compute_terms();
+    if (need_size && !face_log) {
+      compute_spacing();
+      compute_face_log();
+    }
     start_heap();
+    hull_ready = true;
+    ms_setup += ms_since(t0);
   }
 
   // ---- carve pass: remove the surface-connected tetrahedra labelled outside ------------------
@@ -1278,27 +1318,33 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.visitor = visitor;
   s.n = points.size();
   const auto t0 = Clock::now();
-  auto dg = std::make_shared<DelaunayGamma3>();
-  // The DT faces only: the co-spherical completion (every triple of a co-spherical cluster) is
-  // part of the γ graph, not of the tetrahedralization the constriction carves.
-  if (Status st = delaunay_gamma3(*s.pts, *dg, false); !st) return st;
+  if (s.opt.grow && s.opt.criterion == Criterion::Gamma && s.opt.stop_after == SIZE_MAX) {
+    // The growth reads the tetrahedralization and the labels only: the γ-values are computed
+    // when the constriction from the hull needs them (ensure_hull_start).
+    Delaunay3 dt;
+    if (Status st = build_delaunay3(*s.pts, dt); !st) return st;
+    s.tets = std::move(dt.tets);
+    s.nbr = std::move(dt.neighbors);
+  } else {
+    auto dg = std::make_shared<DelaunayGamma3>();
+    // The DT faces only: the co-spherical completion (every triple of a co-spherical cluster) is
+    // part of the γ graph, not of the tetrahedralization the constriction carves.
+    if (Status st = delaunay_gamma3(*s.pts, *dg, false); !st) return st;
+    s.tets = std::move(dg->dt.tets);
+    s.nbr = std::move(dg->dt.neighbors);
+    dg->dt = Delaunay3{};
+    s.dgp = std::move(dg);
+  }
   s.ms_delaunay = ms_since(t0);
-  s.tets = std::move(dg->dt.tets);
-  s.nbr = std::move(dg->dt.neighbors);
-  s.dgp = std::move(dg);
   s.T0 = s.tets.size();
   const auto t_setup = Clock::now();
-  s.compute_terms();
   bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges,
        need_label = s.opt.label_weight > 0 || ((s.opt.carve_confidence <= 1 || s.opt.grow) && s.opt.criterion == Criterion::Gamma);
   for (const Constrict3Variant& v : s.opt.variants) {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
   }
-  if (need_size) {
-    s.compute_spacing();
-    s.compute_face_log();
-  }
+  s.need_size = need_size;
   if (need_label) s.compute_labels();
   s.ms_setup = ms_since(t_setup);
   s.ver.assign(s.T0, 0);
@@ -1306,6 +1352,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.heap.reserve(s.T0 / 4 + 16);
   s.reset_to_hull();
   s.n_hull = s.n_onb;
+  if (!s.can_grow()) s.ensure_hull_start();
   s.ready = true;
   return Status::ok();
 }
@@ -1338,7 +1385,7 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   auto t0 = Clock::now();
   // (0) Growth from the inside (§4.7), only from the untouched initial state.
   bool grown = false;
-  if (s.opt.grow && s.label && s.opt.criterion == Criterion::Gamma && s.removed == 0 && s.opt.stop_after == SIZE_MAX) {
+  if (s.can_grow() && !s.stepped) {
     stage_event("grow");
     grown = s.grow();
     r.ms_grow = ms_since(t0);
@@ -1354,6 +1401,10 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
       r.stages.push_back({"fill", 0, 0});
     } else {
       s.reset_to_hull();
+      if (s.grow_only) {
+        r.method = "grow-incomplete";
+        return Status::ok();
+      }
     }
     t0 = Clock::now();
   }
@@ -1463,6 +1514,8 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
       r.tets.push_back(s.tets[t]);
       if (t >= s.T0) ++r.non_delaunay_tets;
     }
+  r.ms_setup = s.ms_setup;  // (the hull start may have been made on demand, with the γ pass)
+  r.ms_delaunay = s.ms_delaunay;
   r.volume = std::ldexp(mesh_volume(*s.pts, r.mesh), 3 * s.scale_exp);
   r.surface_area = std::ldexp(mesh_area(*s.pts, r.mesh), 2 * s.scale_exp);
   if (validate) validate_result(s, r);
@@ -1520,19 +1573,20 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     e.stage = "candidates";
     visitor->on_event(e);
   }
-  if (impl_->opt.grow && impl_->label && impl_->opt.criterion == Criterion::Gamma) {
+  if (impl_->can_grow()) {
     // Growth first (§4.7): when it reaches every point, its surface is the result.
-    auto g = std::make_unique<Impl>(*impl_);
     Mesh3Result rg;
-    if (Status s = finish_impl(*g, rg, false); !s) return s;
+    impl_->grow_only = true;
+    if (Status s = finish_impl(*impl_, rg, false); !s) return s;
+    impl_->grow_only = false;
     if (rg.method == "grow") {
       result = std::move(rg);
-      result.ms_setup = impl_->ms_setup;
-      if (options.validate) validate_result(*g, result);
+      if (options.validate) validate_result(*impl_, result);
       return Status::ok();
     }
-    impl_->opt.grow = false;  // the variants below start from the hull
+    impl_->opt.grow = false;  // the variants below start from the hull (reset by finish_impl)
   }
+  impl_->ensure_hull_start();  // shared face terms and bridge ratios, before the copies
   const std::vector<Constrict3Variant>& cand = options.variants;
   const std::size_t k = cand.size();
   std::vector<Mesh3Result> res(k);
