@@ -517,10 +517,15 @@ struct Constrictor3::Impl {
   }
 
   // The tets around vertex p (all alive: p is not on the surface).
+  // The side of the surface the cavity works in: the body (the constriction's stuck points are
+  // inside it) or, mirrored for the growth (§4.7), the Delaunay tetrahedra outside the body (the
+  // growth's unreached points are there; the convex hull then bounds the side).
+  bool mirror_cavity = false;
+  bool in_side(int m) const { return mirror_cavity ? m >= 0 && state[uz(m)] == kOutside : alive(m); }
   bool star_of(int p, std::vector<int>& out) {
     out.clear();
     const int t0 = vert_tet[uz(p)];
-    if (!alive(t0) || local_index(t0, p) < 0) return false;
+    if (!in_side(t0) || local_index(t0, p) < 0) return false;
     ++epoch;
     mark[uz(t0)] = epoch;
     out.push_back(t0);
@@ -529,7 +534,8 @@ struct Constrictor3::Impl {
       for (int i = 0; i < 4; ++i) {
         if (tets[uz(t)][uz(i)] == p) continue;
         const int m = nbr[uz(t)][uz(i)];
-        if (!alive(m)) return false;  // p would be on the surface
+        if (mirror_cavity && m < 0) continue;  // p on the convex hull: this hull face stays
+        if (!in_side(m)) return false;  // p would be on the surface
         if (mark[uz(m)] != epoch) { mark[uz(m)] = epoch; out.push_back(m); }
       }
       if (out.size() > 100000) return false;
@@ -563,7 +569,7 @@ struct Constrictor3::Impl {
       for (int t : cur) {
         for (int i = 0; i < 4; ++i) {
           const int m = nbr[uz(t)][uz(i)];
-          if (!alive(m)) {
+          if (mirror_cavity ? alive(m) : !alive(m)) {
             const auto& v = tets[uz(t)];
             const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
             if (orient3(P(a), P(b), P(c), P(p)) < 0) {
@@ -571,7 +577,7 @@ struct Constrictor3::Impl {
               std::sort(ids.begin(), ids.end());
               out.push_back({target_key(a, b, c, p), t, i, ids});
             }
-          } else if (mark[uz(m)] != epoch) {
+          } else if (in_side(m) && mark[uz(m)] != epoch) {
             mark[uz(m)] = epoch;
             next.push_back(m);
           }
@@ -606,9 +612,12 @@ struct Constrictor3::Impl {
         if (m >= 0 && mark[uz(m)] == in_u) continue;
         const auto& v = tets[uz(t)];
         const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
-        if (a == p || b == p || c == p) return false;  // p on U's boundary: cannot happen, be safe
+        if (a == p || b == p || c == p) {
+          if (mirror_cavity && m < 0) continue;  // a convex-hull face at p: it stays (cone side)
+          return false;                          // p on U's boundary: cannot happen, be safe
+        }
         if (orient3(P(a), P(b), P(c), P(p)) < 0) continue;  // visible
-        if (!alive(m)) return false;                        // would cross the surface
+        if (!in_side(m)) return false;                      // would cross the surface
         if (U.size() >= opt.max_cavity_tets) return false;
         mark[uz(m)] = in_u;
         U.push_back(m);
@@ -619,13 +628,20 @@ struct Constrictor3::Impl {
     // U's boundary faces, outward from U.
     struct BFace { int a, b, c, outside; };
     std::vector<BFace> bf;
+    std::vector<std::uint64_t> hull_edges;  // edges opposite p of the hull faces at p (mirror)
     for (int t : U)
       for (int i = 0; i < 4; ++i) {
         const int m = nbr[uz(t)][uz(i)];
         if (m >= 0 && mark[uz(m)] == in_u) continue;
         const auto& v = tets[uz(t)];
-        bf.push_back({v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])], m});
+        const int a = v[uz(kFaceOut[i][0])], b = v[uz(kFaceOut[i][1])], c = v[uz(kFaceOut[i][2])];
+        if (a == p || b == p || c == p) {  // (only a hull face at p gets here, see above)
+          hull_edges.push_back(a == p ? edge_key(b, c) : b == p ? edge_key(a, c) : edge_key(a, b));
+          continue;
+        }
+        bf.push_back({a, b, c, m});
       }
+    std::sort(hull_edges.begin(), hull_edges.end());
     // No vertex of U may disappear: every vertex of U other than p lies on its boundary.
     {
       std::vector<int> vb, vu;
@@ -663,12 +679,19 @@ struct Constrictor3::Impl {
         }
       }
     }
-    for (const auto& kv : edge_slots)
-      if (kv.second[2] == -1) return false;
+    // Every cone face at p is shared by two cone tetrahedra, or is one of the hull faces at p.
+    std::size_t open = 0;
+    for (const auto& kv : edge_slots) {
+      const bool hull = std::binary_search(hull_edges.begin(), hull_edges.end(), kv.first);
+      if ((kv.second[2] == -1) != hull) return false;
+      open += hull ? 1 : 0;
+    }
+    if (open != hull_edges.size()) return false;
     // Commit.
     for (std::size_t k = 0; k < bf.size(); ++k) {
       const auto& f = bf[k];
       const int tid = new_tet({{f.a, f.c, f.b, p}});
+      if (mirror_cavity) state[uz(tid)] = kOutside;  // the cone stays outside the body
       created.push_back(tid);
       nbr[uz(tid)][3] = f.outside;
       if (f.outside >= 0) {
@@ -687,13 +710,14 @@ struct Constrictor3::Impl {
     for (const auto& kv : edge_slots) {
       const auto& s = kv.second;
       nbr[uz(s[0])][uz(s[1])] = s[2];
-      nbr[uz(s[2])][uz(s[3])] = s[0];
+      if (s[2] >= 0) nbr[uz(s[2])][uz(s[3])] = s[0];
     }
     for (int t : U) { state[uz(t)] = kReplaced; ++ver[uz(t)]; }
     for (int t : created)
       for (int x : tets[uz(t)]) vert_tet[uz(x)] = t;
     for (int t : created)
-      if (boundary_face(t, 3)) try_push(t);
+      if (!mirror_cavity && boundary_face(t, 3)) try_push(t);
+    last_created.swap(created);
     // Alive tets outside U keep their faces; their removability is unchanged.
     ++cavities;
     if (visitor) {
@@ -707,6 +731,7 @@ struct Constrictor3::Impl {
     return true;
   }
 
+  std::vector<int> last_created;  // the cone tetrahedra of the last successful try_cavity
   bool place_by_cavity(int p) {
     std::vector<int> star;
     if (!star_of(p, star)) return false;
@@ -923,10 +948,58 @@ struct Constrictor3::Impl {
     }
     heap.clear();
     std::vector<char>().swap(queued);
+    if (n_onb < n) place_unreached();
     return n_onb == n;
+  }
+  // Growth lock: a point that no Delaunay tetrahedron can bring into the body (its star is cut
+  // off from the body by tetrahedra whose fourth vertex is already in it) gets a cone over a body
+  // face it sees: the star-cavity re-tetrahedralization of §3, mirrored to the outside of the body
+  // (it re-tetrahedralizes a star-shaped region of outside tetrahedra, exactly, and leaves the
+  // body unchanged); the cone tetrahedron over the body face then joins the body by the one-face
+  // rule. Points in ascending id, passes while one succeeds.
+  std::size_t grow_cavities = 0;
+  std::vector<std::array<int, 4>> nbr_delaunay;  // adjacency before place_unreached (for a reset)
+  void place_unreached() {
+    nbr_delaunay = nbr;
+    vert_tet.assign(n, -1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (state[t] == kOutside)
+        for (int x : tets[t]) vert_tet[uz(x)] = static_cast<int>(t);
+    const std::size_t cav0 = cavities, att0 = cavity_attempts;
+    for (bool progress = true; progress && n_onb < n;) {
+      progress = false;
+      for (std::size_t p = 0; p < n; ++p) {
+        if (onb[p]) continue;
+        mirror_cavity = true;
+        const bool ok = place_by_cavity(static_cast<int>(p));
+        mirror_cavity = false;
+        if (!ok) continue;
+        int cone = -1;
+        for (int t : last_created)
+          if (alive(nbr[uz(t)][3])) { cone = t; break; }
+        CONSTRICT_CHECK(cone >= 0, "growth cavity without a cone over the body");
+        state[uz(cone)] = kAlive;
+        ++ver[uz(cone)];
+        ++grown;
+        for (int x : tets[uz(cone)])
+          if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
+        ++grow_cavities;
+        progress = true;
+      }
+    }
+    cavities = cav0;  // (the constriction's fallback counts stay its own)
+    cavity_attempts = att0;
   }
   // The state of init(): the whole tetrahedralization, the hull points on the boundary.
   void reset_to_hull() {
+    if (tets.size() > T0) {  // undo the growth's cavities: the Delaunay tetrahedra again
+      tets.resize(T0);
+      nbr.swap(nbr_delaunay);
+      nbr.resize(T0);
+      ver.resize(T0);
+      mark.resize(T0);
+    }
+    std::vector<std::array<int, 4>>().swap(nbr_delaunay);
     state.assign(T0, kAlive);
     for (auto& v : ver) ++v;
     onb.assign(n, 0);
@@ -938,7 +1011,7 @@ struct Constrictor3::Impl {
             const int x = tets[t][uz(kFaceOut[i][k])];
             if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
           }
-    grown = grown_outside = 0;
+    grown = grown_outside = grow_cavities = 0;
     heap.clear();
     hull_ready = false;
   }
@@ -947,7 +1020,9 @@ struct Constrictor3::Impl {
   // not pay for them.
   bool need_size = false, hull_ready = false, stepped = false, grow_only = false;
   bool can_grow() const {
-    return opt.grow && label && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX;
+    // (every point on the convex hull: the hull itself is the answer, nothing to grow)
+    return opt.grow && label && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None &&
+           n_hull < n;
   }
   void ensure_hull_start() {
     if (hull_ready) return;
@@ -1318,7 +1393,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.visitor = visitor;
   s.n = points.size();
   const auto t0 = Clock::now();
-  if (s.opt.grow && s.opt.criterion == Criterion::Gamma && s.opt.stop_after == SIZE_MAX) {
+  if (s.opt.grow && s.opt.criterion == Criterion::Gamma && s.opt.stop_after == SIZE_MAX && s.opt.sculpt == Sculpt3::None) {
     // The growth reads the tetrahedralization and the labels only: the γ-values are computed
     // when the constriction from the hull needs them (ensure_hull_start).
     Delaunay3 dt;
@@ -1391,6 +1466,7 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
     r.ms_grow = ms_since(t0);
     if (grown) {
       r.grown = s.grown;
+      r.grow_cavities = s.grow_cavities;
       r.grown_outside = s.grown_outside;
       r.stages.push_back({"grow", s.n - s.n_hull, 0});
       stage_event("fill");
