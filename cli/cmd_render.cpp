@@ -242,8 +242,11 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
   if (Status s = views_of(a, views); !s) return fail(s);
   Constrict3Options opt;
   if (!a.stages.empty() || a.stop_after != SIZE_MAX) {
-    // Stages and partial states replay the variant that reconstruct3() chooses (the step-able
-    // constrictor runs one variant), so the last panel is the `reconstruct` result.
+    // Stages and partial states show the paper's process, the constriction from the convex hull
+    // (not the default growth from the inside, docs/reconstruction-3d.md §4.7): they replay the
+    // variant that reconstruct3() with --no-grow chooses (the step-able constrictor runs one
+    // variant), so the last panel is the `reconstruct --no-grow` result.
+    opt.grow = false;
     Mesh3Result best;
     if (Status s = reconstruct3(pts, opt, best); !s) return fail(s);
     opt.size_bias = best.size_bias;

@@ -209,7 +209,7 @@ void run3(const Input& in, const PointSet& p, const std::string& method, std::si
     row.complete = r.complete;
     MeshCheck mc;
     row.valid = r.complete && validate_mesh3(p, r.mesh, &mc).is_ok();
-    row.ms_method = r.ms_constrict + r.ms_fallback + r.ms_sculpt + r.ms_carve + r.ms_refine;
+    row.ms_method = r.ms_grow + r.ms_fill + r.ms_constrict + r.ms_fallback + r.ms_sculpt + r.ms_carve + r.ms_refine;
     row.on_boundary = p.size() - r.unplaced_points.size();
     mesh = std::move(r.mesh);
     row.note = r.method + (r.cavities ? ", " + std::to_string(r.cavities) + " cavities" : "");
