@@ -1169,6 +1169,15 @@ struct Constrictor3::Impl {
   // Delaunay tetrahedra labelled inside (confidence >= min_conf) that the body left out.
   void carve(double min_conf, bool fill = false) {
     if (!label) return;
+    if (fill) {
+      // Nothing to fill (the usual case): no left-out inside tetrahedron touches the body.
+      bool any = false;
+      for (std::size_t t = 0; t < T0 && !any; ++t) {
+        if (state[t] != kOutside || !((*label)[t] <= -min_conf)) continue;
+        for (int m : nbr[t]) any = any || alive(m);
+      }
+      if (!any) return;
+    }
     build_vt(fill);
     const std::vector<std::uint8_t> state0 = state;
     std::size_t F = 0;
