@@ -216,6 +216,10 @@ class ProgressVisitor3 final : public Constrict3Visitor {
       if ((++removed_ & 4095u) == 0) progress_.count(removed_, 6 * n_);
     } else if (e.kind == Constrict3Event::Kind::Lock) {
       progress_.phase("lock: fallback");
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "grow") {
+      progress_.phase("growing the body from the inside (labels)");
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "fill") {
+      progress_.phase("filling the pockets of the grown body");
     } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "candidates") {
       // The variant runs are parallel and report no events (docs/reconstruction-3d.md §4.5).
       progress_.phase("constricting: variant runs in parallel, then the smallest-area surface");
@@ -250,7 +254,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (a.fast) opt.variants = {{1.0, 1.0}};
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   (void)criterion_from_name(a.method, opt.criterion);
-  progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
+  progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay tetrahedralization, labels");
   ProgressVisitor3 visitor(progress, pts.size());
   Mesh3Result r;
   VoronoiSkeletonStats skel;

@@ -1662,8 +1662,11 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     // Growth first (§4.7): when it reaches every point, its surface is the result.
     Mesh3Result rg;
     impl_->grow_only = true;
-    if (Status s = finish_impl(*impl_, rg, false); !s) return s;
+    impl_->visitor = visitor;  // (stage events; the parallel variant runs below report none)
+    const Status sg = finish_impl(*impl_, rg, false);
+    impl_->visitor = nullptr;
     impl_->grow_only = false;
+    if (!sg) return sg;
     if (rg.method == "grow") {
       result = std::move(rg);
       if (options.validate) validate_result(*impl_, result);
