@@ -347,7 +347,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                    {"added", r.refine_added},
                    {"removed", r.refine_removed}};
     j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
-    j["grow"] = {{"enabled", opt.grow}, {"tetrahedra", r.grown}, {"labelled_outside", r.grown_outside}, {"filled", r.filled}, {"cavities", r.grow_cavities}};
+    j["grow"] = {{"enabled", opt.grow}, {"tetrahedra", r.grown}, {"labelled_outside", r.grown_outside}, {"filled", r.filled}, {"cavities", r.grow_cavities}, {"unreached", r.grow_unreached}};
     j["size_bias"] = r.size_bias;
     j["label_weight"] = r.label_weight;
     nlohmann::json variants = nlohmann::json::array();

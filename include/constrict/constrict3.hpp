@@ -170,6 +170,7 @@ struct Mesh3Result {
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
   std::size_t grow_cavities = 0;          ///< points the growth placed by a mirrored star cavity
+  std::size_t grow_unreached = 0;         ///< growth tried and failed: points it left (then the constriction ran)
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass

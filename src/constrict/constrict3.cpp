@@ -1485,6 +1485,7 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
       r.ms_fill = ms_since(t0);
       r.stages.push_back({"fill", 0, 0});
     } else {
+      r.grow_unreached = s.n - s.n_onb;
       s.reset_to_hull();
       if (s.grow_only) {
         r.method = "grow-incomplete";
@@ -1652,12 +1653,7 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   o.size_bias = options.variants[0].size_bias;
   o.label_weight = options.variants[0].label_weight;
   if (Status s = init(points, o, nullptr); !s) return s;
-  if (visitor) {
-    Constrict3Event e;
-    e.kind = Constrict3Event::Kind::StageBegin;
-    e.stage = "candidates";
-    visitor->on_event(e);
-  }
+  std::size_t grow_unreached = 0;
   if (impl_->can_grow()) {
     // Growth first (§4.7): when it reaches every point, its surface is the result.
     Mesh3Result rg;
@@ -1673,6 +1669,13 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
       return Status::ok();
     }
     impl_->opt.grow = false;  // the variants below start from the hull (reset by finish_impl)
+    grow_unreached = rg.grow_unreached;
+  }
+  if (visitor) {
+    Constrict3Event e;
+    e.kind = Constrict3Event::Kind::StageBegin;
+    e.stage = "candidates";
+    visitor->on_event(e);
   }
   impl_->ensure_hull_start();  // shared face terms and bridge ratios, before the copies
   const std::vector<Constrict3Variant>& cand = options.variants;
@@ -1702,6 +1705,7 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
                                                                            res[i].ms_sculpt + res[i].ms_carve + res[i].ms_refine});
   const double ms_runs = ms_since(tv);
   result = std::move(res[best]);
+  result.grow_unreached = grow_unreached;
   result.candidates = std::move(summary);
   result.ms_variants = ms_runs;
   result.ms_setup = impl_->ms_setup;

@@ -187,7 +187,7 @@ PointSet case_points(Family fam, std::uint64_t seed) {
 TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
   for (int fi = 0; fi < static_cast<int>(Family::Count); ++fi) {
     const Family fam = static_cast<Family>(fi);
-    int runs = 0, locks = 0, stuck = 0, cavities = 0, grown = 0;
+    int runs = 0, locks = 0, stuck = 0, cavities = 0, grown = 0, grow_failed = 0;
     for (int s = 0; s < kSeedsPerFamily; ++s) {
       const std::uint64_t seed = case_seed(fi, s);
       const PointSet p = case_points(fam, seed);
@@ -209,6 +209,7 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
       stuck += static_cast<int>(r.stuck_points.size());
       cavities += static_cast<int>(r.cavities);
       grown += r.method == "grow";
+      grow_failed += r.grow_unreached > 0;
       EXPECT_TRUE(r.complete) << r.unplaced_points.size() << " points unplaced";
       MeshCheck mc;
       EXPECT_TRUE(validate_mesh3(p, r.mesh, &mc).is_ok()) << mc.reason;
@@ -241,7 +242,7 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
       }
     }
     std::cout << "[ lock-stats ] " << name(fam) << ": runs " << runs << ", locked " << locks
-              << ", stuck points " << stuck << ", cavities " << cavities << ", growth complete " << grown << "\n";
+              << ", stuck points " << stuck << ", cavities " << cavities << ", growth complete " << grown << ", growth failed " << grow_failed << "\n";
   }
 }
 
