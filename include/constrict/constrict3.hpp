@@ -114,10 +114,13 @@ struct Constrict3Options {
   /// Growth (Criterion::Gamma; docs/reconstruction-3d.md §4.7): before any constriction, grow
   /// the body from the inside along the inside/outside labels, adding Delaunay tetrahedra only by
   /// the mirror images of the removal rules (a triangulated ball with every point on its
-  /// surface), then fill the inside regions it left out. When every point is reached this is the
-  /// result (then the flips and the variants are not run); otherwise the constriction from the
-  /// convex hull runs as without it. Default on: the best GT recovery and distances measured on
-  /// every shared model it completes.
+  /// surface), then fill the inside regions it left out; points it cannot reach get a star cavity
+  /// mirrored to the outside of the body. When every point is reached this is the result (then
+  /// the γ pass, the carve, the flips and the variants are not run; Mesh3Result::method "grow");
+  /// otherwise (Mesh3Result::grow_unreached > 0) the constriction from the convex hull runs as
+  /// without it. Not used when every point is on the convex hull (the hull is the result), with
+  /// stop_after, with a sculpting post-pass or another criterion. Default on: the best GT
+  /// recovery and distances measured on every shared model.
   bool grow = true;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
