@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "unit/test_fixtures.hpp"
 #include "constrict/constrict3.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
@@ -152,18 +153,6 @@ bool coplanar(const PointSet& p) {
   return true;
 }
 
-double tets_volume(const PointSet& p, const std::vector<std::array<int, 4>>& tets) {
-  double v = 0;
-  for (const auto& t : tets) {
-    const double* a = p[static_cast<std::size_t>(t[0])];
-    double m[3][3];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] = p[static_cast<std::size_t>(t[static_cast<std::size_t>(r + 1)])][c] - a[c];
-    v += (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / 6;
-  }
-  return v;
-}
 
 #ifdef NDEBUG
 constexpr int kSeedsPerFamily = 60;
@@ -213,7 +202,7 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
       EXPECT_TRUE(r.complete) << r.unplaced_points.size() << " points unplaced";
       MeshCheck mc;
       EXPECT_TRUE(validate_mesh3(p, r.mesh, &mc).is_ok()) << mc.reason;
-      EXPECT_NEAR(tets_volume(p, r.tets), r.volume, 1e-9 * std::max(1.0, std::abs(r.volume)));
+      EXPECT_NEAR(test::tets_volume(p, r.tets), r.volume, 1e-9 * std::max(1.0, std::abs(r.volume)));
       // Sculpting keeps validity too.
       if (s % 4 == 0) {
         o.sculpt = Sculpt3::TwoFace;

@@ -358,16 +358,7 @@ TEST(Constrict3Unit, GrowthLocksArePlacedByMirroredCavities) {
     expect_valid(p, r);
     grown += r.method == "grow";
     with_cavities += r.grow_cavities > 0;
-    double vol = 0;
-    for (const auto& t : r.tets) {
-      const double* a = p[static_cast<std::size_t>(t[0])];
-      double e[3][3];
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c) e[k][c] = p[static_cast<std::size_t>(t[static_cast<std::size_t>(k + 1)])][c] - a[c];
-      vol += (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-              e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
-    }
-    EXPECT_NEAR(vol, r.volume, 1e-9);
+    EXPECT_NEAR(test::tets_volume(p, r.tets), r.volume, 1e-9);
   }
   std::cout << "[ grow ] clouds: growth complete " << grown << "/40, with mirrored cavities " << with_cavities << "\n";
   EXPECT_GT(grown, 20);

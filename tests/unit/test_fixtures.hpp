@@ -28,4 +28,18 @@ inline PointSet make3(const std::vector<std::array<double, 3>>& xyz) {
   return p;
 }
 
+// Signed volume of a set of tetrahedra over the points (double arithmetic).
+inline double tets_volume(const PointSet& p, const std::vector<std::array<int, 4>>& tets) {
+  double v = 0;
+  for (const auto& t : tets) {
+    const double* a = p[static_cast<std::size_t>(t[0])];
+    double m[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = p[static_cast<std::size_t>(t[static_cast<std::size_t>(r + 1)])][c] - a[c];
+    v += (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / 6;
+  }
+  return v;
+}
+
 }  // namespace constrict::test
