@@ -718,6 +718,7 @@ struct Constrictor3::Impl {
     for (int t : created)
       if (!mirror_cavity && boundary_face(t, 3)) try_push(t);
     last_created.swap(created);
+    last_target = tg.ids;
     // Alive tets outside U keep their faces; their removability is unchanged.
     ++cavities;
     if (visitor) {
@@ -732,6 +733,7 @@ struct Constrictor3::Impl {
   }
 
   std::vector<int> last_created;  // the cone tetrahedra of the last successful try_cavity
+  std::array<int, 3> last_target{};  // its target face (sorted ids)
   bool place_by_cavity(int p) {
     std::vector<int> star;
     if (!star_of(p, star)) return false;
@@ -925,9 +927,11 @@ struct Constrictor3::Impl {
   // Grows the body; true when every point is on its surface. The caller restores the hull state
   // otherwise (reset_to_hull).
   bool grow() {
-    int seed = -1;
+    int seed = -1;  // largest circumradius, ties -> smallest sorted vertex ids (not the index)
     for (std::size_t t = 0; t < T0; ++t)
-      if ((*label)[t] < 0 && lrad[t] > -1e300 && (seed < 0 || lrad[t] > lrad[uz(seed)])) seed = static_cast<int>(t);
+      if ((*label)[t] < 0 && lrad[t] > -1e300 &&
+          (seed < 0 || lrad[t] > lrad[uz(seed)] || (lrad[t] == lrad[uz(seed)] && sorted4(tets[t]) < sorted4(tets[uz(seed)]))))
+        seed = static_cast<int>(t);
     if (seed < 0) return false;
     state.assign(T0, kOutside);
     for (auto& v : ver) ++v;
@@ -948,7 +952,7 @@ struct Constrictor3::Impl {
     }
     heap.clear();
     std::vector<char>().swap(queued);
-    if (n_onb < n) place_unreached();
+    if (n_onb < n && opt.fallback != Fallback3::None) place_unreached();
     return n_onb == n;
   }
   // Growth lock: a point that no Delaunay tetrahedron can bring into the body (its star is cut
@@ -974,10 +978,14 @@ struct Constrictor3::Impl {
         const bool ok = place_by_cavity(static_cast<int>(p));
         mirror_cavity = false;
         if (!ok) continue;
+        // The cone over the target face (the best-ranked body face p sees) joins the body.
         int cone = -1;
-        for (int t : last_created)
-          if (alive(nbr[uz(t)][3])) { cone = t; break; }
-        CONSTRICT_CHECK(cone >= 0, "growth cavity without a cone over the body");
+        for (int t : last_created) {
+          std::array<int, 3> base{{tets[uz(t)][0], tets[uz(t)][1], tets[uz(t)][2]}};
+          std::sort(base.begin(), base.end());
+          if (base == last_target) { cone = t; break; }
+        }
+        CONSTRICT_CHECK(cone >= 0 && alive(nbr[uz(cone)][3]), "growth cavity without a cone over its target face");
         state[uz(cone)] = kAlive;
         ++ver[uz(cone)];
         ++grown;
@@ -1011,14 +1019,15 @@ struct Constrictor3::Impl {
             const int x = tets[t][uz(kFaceOut[i][k])];
             if (!onb[uz(x)]) { onb[uz(x)] = 1; ++n_onb; }
           }
-    grown = grown_outside = grow_cavities = 0;
+    grown = grown_outside = grow_cavities = filled = 0;
+    grew = false;
     heap.clear();
     hull_ready = false;
   }
   // The constriction from the hull needs the face terms, the spacing / bridge ratios (size bias)
   // and its initial heap; they are made on first use, so a growth that reaches every point does
   // not pay for them.
-  bool need_size = false, hull_ready = false, stepped = false, grow_only = false;
+  bool need_size = false, hull_ready = false, stepped = false, grow_only = false, grew = false;
   bool can_grow() const {
     // (every point on the convex hull: the hull itself is the answer, nothing to grow)
     return opt.grow && label && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None &&
@@ -1468,22 +1477,20 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
   // (1) Delaunay constriction (the caller may have stepped already).
   auto t0 = Clock::now();
   // (0) Growth from the inside (§4.7), only from the untouched initial state.
-  bool grown = false;
-  if (s.can_grow() && !s.stepped) {
+  // Once per state: a second finish() returns the grown body again (the growth and the fill
+  // assume the Delaunay tetrahedralization they start from).
+  bool grown = s.grew;
+  if (!grown && s.can_grow() && !s.stepped) {
     stage_event("grow");
     grown = s.grow();
+    s.stepped = true;
     r.ms_grow = ms_since(t0);
     if (grown) {
-      r.grown = s.grown;
-      r.grow_cavities = s.grow_cavities;
-      r.grown_outside = s.grown_outside;
-      r.stages.push_back({"grow", s.n - s.n_hull, 0});
+      s.grew = true;
       stage_event("fill");
       t0 = Clock::now();
       s.carve(s.opt.carve_confidence <= 1 ? s.opt.carve_confidence : 0.5, true);
-      r.filled = s.filled;
       r.ms_fill = ms_since(t0);
-      r.stages.push_back({"fill", 0, 0});
     } else {
       r.grow_unreached = s.n - s.n_onb;
       s.reset_to_hull();
@@ -1493,6 +1500,14 @@ Status Constrictor3::finish_impl(Impl& s, Mesh3Result& r, bool validate) {
       }
     }
     t0 = Clock::now();
+  }
+  if (grown) {
+    r.grown = s.grown;
+    r.grow_cavities = s.grow_cavities;
+    r.grown_outside = s.grown_outside;
+    r.filled = s.filled;
+    r.stages.push_back({"grow", s.n - s.n_hull, 0});
+    r.stages.push_back({"fill", 0, 0});
   }
   while (!grown && s.step()) {
   }

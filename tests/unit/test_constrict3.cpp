@@ -359,6 +359,26 @@ TEST(Constrict3Unit, GrowthLocksArePlacedByMirroredCavities) {
     grown += r.method == "grow";
     with_cavities += r.grow_cavities > 0;
     EXPECT_NEAR(test::tets_volume(p, r.tets), r.volume, 1e-9);
+    // A second finish() returns the same grown body (no second growth over the cavities; after a
+    // constriction a second finish() runs the post-passes again, a different but valid state).
+    Constrict3Options one;
+    one.variants.clear();
+    Constrictor3 c;
+    ASSERT_TRUE(c.init(p, one).is_ok());
+    Mesh3Result f1, f2;
+    ASSERT_TRUE(c.finish(f1).is_ok());
+    ASSERT_TRUE(c.finish(f2).is_ok());
+    EXPECT_EQ(f1.method, f2.method);
+    if (f1.method == "grow") {
+      EXPECT_EQ(f1.mesh.triangles, f2.mesh.triangles);
+    }
+    // Fallback3::None: no cavity of either kind, so only Delaunay tetrahedra.
+    Constrict3Options none;
+    none.fallback = Fallback3::None;
+    Mesh3Result rn;
+    ASSERT_TRUE(reconstruct3(p, none, rn).is_ok());
+    EXPECT_EQ(rn.non_delaunay_tets, 0u);
+    EXPECT_EQ(rn.grow_cavities, 0u);
   }
   std::cout << "[ grow ] clouds: growth complete " << grown << "/40, with mirrored cavities " << with_cavities << "\n";
   EXPECT_GT(grown, 20);
