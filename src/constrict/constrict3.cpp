@@ -1445,7 +1445,9 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.heap.reserve(s.T0 / 4 + 16);
   s.reset_to_hull();
   s.n_hull = s.n_onb;
-  if (!s.can_grow()) s.ensure_hull_start();
+  // (Every point on the hull after a DT-only build: nothing will be removed, so no γ pass and
+  // no second tetrahedralization; the post-passes do not read γ.)
+  if (!s.can_grow() && (s.dgp || s.n_onb < s.n)) s.ensure_hull_start();
   s.ready = true;
   return Status::ok();
 }
@@ -1685,6 +1687,15 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     }
     impl_->opt.grow = false;  // the variants below start from the hull (reset by finish_impl)
     grow_unreached = rg.grow_unreached;
+  }
+  if (!impl_->dgp && impl_->n_onb == impl_->n) {
+    // Every point on the convex hull: the variants would only differ in keys nothing uses.
+    impl_->visitor = visitor;
+    const Status sh = finish_impl(*impl_, result, false);
+    impl_->visitor = nullptr;
+    if (!sh) return sh;
+    if (options.validate) validate_result(*impl_, result);
+    return Status::ok();
   }
   if (visitor) {
     Constrict3Event e;
