@@ -1327,13 +1327,13 @@ struct Constrictor3::Impl {
     if (fill) {
       // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void
       // would also have 2N-4 faces in total: excluded here (then the whole pass is undone).
-      if (!outside_connected()) {
-        state = state0;
-        return;
-      }
       filled = 0;
       for (std::size_t t = 0; t < state0.size(); ++t)
         if (state0[t] != kAlive && state[t] == kAlive) ++filled;
+      if (filled > 0 && !outside_connected()) {  // (nothing kept: the state is the start state)
+        state = state0;
+        filled = 0;
+      }
       return;
     }
     // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
