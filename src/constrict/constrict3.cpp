@@ -276,8 +276,13 @@ struct Constrictor3::Impl {
     };
     std::vector<std::vector<Item>> bucket(kBuckets + 1);
     int top = -1;
+    // A push into a lower bucket than a pending entry of the same tetrahedron could only pop after
+    // that entry has labelled it (then it is skipped as done): not pushed, same labels.
+    std::vector<std::int16_t> best_b(T0, -1);
     const auto qpush = [&](const Item& it) {
       const int b = static_cast<int>(it.conf * kBuckets);
+      if (b < best_b[uz(it.tet)]) return;
+      best_b[uz(it.tet)] = static_cast<std::int16_t>(b);
       bucket[uz(b)].push_back(it);
       top = std::max(top, b);
     };
