@@ -200,6 +200,23 @@ struct Constrictor3::Impl {
     return on;
   }
 
+  // Is the edge (tets[t][i], tets[t][j]) an edge of some alive tetrahedron other than t? (The
+  // walk goes both ways when the ring is open at the convex hull.)
+  bool edge_touches_body(int t, int i, int j) const {
+    bool hit = false, hull = false;
+    walk_edge(t, i, j, 0, [&](int nx) {
+      if (nx < 0) { hull = true; return true; }
+      hit = alive(nx);
+      return hit;
+    });
+    if (!hit && hull)  // the ring is open at the hull: walk the other way too
+      walk_edge(t, i, j, 1, [&](int nx) {
+        if (nx < 0) return true;
+        hit = alive(nx);
+        return hit;
+      });
+    return hit;
+  }
   // Bridge ratio of the triangle abc: its longest edge over the largest nearest-neighbour
   // distance of its vertices (size bias, Sculpt3::Bridges).
   double bridge_ratio(int a, int b, int c) const {
@@ -815,16 +832,12 @@ struct Constrictor3::Impl {
     if (!(gain > 1e-9 * e_old)) return -1;  // relative margin: no flip-back cycles by rounding
     if (a) {
       if (edge_on_boundary(t, si[0], si[1])) return -1;
-    } else {
-      std::vector<int>& ring = ring_buf;
-      edge_ring(t, si[0], si[1], ring);
-      for (int x : ring)
-        if (alive(x)) return -1;
+    } else if (edge_touches_body(t, si[0], si[1])) {
+      return -1;
     }
     return gain;
   }
 
-  mutable std::vector<int> ring_buf;
   std::size_t refine_added = 0, refine_removed = 0;
   Refine3 energy = Refine3::Area;
 
@@ -884,21 +897,6 @@ struct Constrictor3::Impl {
   std::vector<double> lrad;  // ln circumradius per Delaunay tetrahedron (labels), -1e300 if flat
   std::vector<char> queued;  // growth: in the heap (its key is static: one entry is enough)
   std::size_t grown = 0, grown_outside = 0;
-  bool edge_in_body(int t, int i, int j) const {
-    bool hit = false, hull = false;
-    walk_edge(t, i, j, 0, [&](int nx) {
-      if (nx < 0) { hull = true; return true; }
-      hit = alive(nx);
-      return hit;
-    });
-    if (!hit && hull)  // the ring is open at the hull: walk the other way too
-      walk_edge(t, i, j, 1, [&](int nx) {
-        if (nx < 0) return true;
-        hit = alive(nx);
-        return hit;
-      });
-    return hit;
-  }
   // 1 / 2: t can join the body glued along one / two faces; 0: it cannot.
   // one_face_only: only the one-face rule counts (no edge walk for the two-face rule).
   int addable(int t, bool one_face_only = false) const {
@@ -906,7 +904,7 @@ struct Constrictor3::Impl {
     for (int i = 0; i < 4; ++i)
       if (alive(nbr[uz(t)][uz(i)])) g[ng++] = i;
     if (ng == 1) return onb[uz(tets[uz(t)][uz(g[0])])] ? 0 : 1;
-    if (ng == 2 && !one_face_only) return edge_in_body(t, g[0], g[1]) ? 0 : 2;
+    if (ng == 2 && !one_face_only) return edge_touches_body(t, g[0], g[1]) ? 0 : 2;
     return 0;
   }
   // Inside: 1000 + ln r (above every outside key); outside: 1 - confidence, in [0, 1].
@@ -1033,11 +1031,13 @@ struct Constrictor3::Impl {
   // and its initial heap; they are made on first use, so a growth that reaches every point does
   // not pay for them.
   bool need_size = false, hull_ready = false, stepped = false, grow_only = false, grew = false;
-  bool can_grow() const {
-    // (every point on the convex hull: the hull itself is the answer, nothing to grow)
-    return opt.grow && label && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None &&
-           n_hull < n;
+  // The options ask for the growth (decided before the tetrahedralization: init builds the DT
+  // alone then); it runs when the labels exist and some point is inside the hull (else the hull
+  // itself is the answer).
+  bool grow_planned() const {
+    return opt.grow && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None;
   }
+  bool can_grow() const { return grow_planned() && label && n_hull < n; }
   void ensure_hull_start() {
     if (hull_ready) return;
     auto t0 = Clock::now();
@@ -1131,25 +1131,6 @@ struct Constrictor3::Impl {
     for (int i = 0; i < 4; ++i) k += boundary_face(t, i) ? 1 : 0;
     return k;
   }
-  bool body_connected() const {
-    std::vector<char> seen(tets.size(), 0);
-    std::vector<int> st;
-    std::size_t total = 0, reached = 0;
-    int start = -1;
-    for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kAlive) { ++total; if (start < 0) start = static_cast<int>(t); }
-    if (start < 0) return false;
-    st.push_back(start);
-    seen[uz(start)] = 1;
-    while (!st.empty()) {
-      const int t = st.back();
-      st.pop_back();
-      ++reached;
-      for (int m : nbr[uz(t)])
-        if (alive(m) && !seen[uz(m)]) { seen[uz(m)] = 1; st.push_back(m); }
-    }
-    return reached == total;
-  }
   // Keeps vertex x's "not manifold" flag and the count of such vertices up to date.
   void update_bad(int x, std::vector<char>& bad_of, std::size_t& nbad, std::vector<std::array<int, 2>>& link) const {
     const char b = vertex_manifold(x, link) ? 0 : 1;
@@ -1158,24 +1139,31 @@ struct Constrictor3::Impl {
       bad_of[uz(x)] = b;
     }
   }
-  // Does every tetrahedron outside the body reach the convex hull through tetrahedra outside the
-  // body (no enclosed void)?
-  bool outside_connected() const {
+  // Body (side = kAlive): is it one face-connected piece? Outside (side = kOutside): does every
+  // tetrahedron outside the body reach the convex hull through outside tetrahedra (no enclosed
+  // void)? One breadth-first search from the first body tetrahedron / from the hull.
+  bool side_connected(std::uint8_t side) const {
     std::vector<char> seen(tets.size(), 0);
     std::vector<int> st;
     for (std::size_t t = 0; t < tets.size(); ++t) {
-      if (state[t] != kOutside) continue;
-      for (int m : nbr[t])
-        if (m < 0) { seen[t] = 1; st.push_back(static_cast<int>(t)); break; }
+      if (state[t] != side) continue;
+      bool start = side == kAlive;
+      for (int m : nbr[t]) start = start || m < 0;
+      if (start) {
+        seen[t] = 1;
+        st.push_back(static_cast<int>(t));
+        if (side == kAlive) break;
+      }
     }
+    if (side == kAlive && st.empty()) return false;
     while (!st.empty()) {
       const int t = st.back();
       st.pop_back();
       for (int m : nbr[uz(t)])
-        if (m >= 0 && state[uz(m)] == kOutside && !seen[uz(m)]) { seen[uz(m)] = 1; st.push_back(m); }
+        if (m >= 0 && state[uz(m)] == side && !seen[uz(m)]) { seen[uz(m)] = 1; st.push_back(m); }
     }
     for (std::size_t t = 0; t < tets.size(); ++t)
-      if (state[t] == kOutside && !seen[t]) return false;
+      if (state[t] == side && !seen[t]) return false;
     return true;
   }
   // Carve (fill = false): remove the surface-connected regions of tetrahedra labelled outside
@@ -1206,11 +1194,12 @@ struct Constrictor3::Impl {
     // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss)
     // keeps one of them, its anchor: the one with the shortest longest edge.
     const auto outside = [&](std::size_t t) { return t < T0 && (*label)[t] >= min_conf; };
-    std::vector<char> keep_v(n, fill ? 0 : 1), anchor(tets.size(), 0);
-    for (std::size_t t = 0; t < tets.size() && !fill; ++t)
-      if (state[t] == kAlive && !outside(t))
-        for (int x : tets[t]) keep_v[uz(x)] = 0;
-    {
+    std::vector<char> anchor(tets.size(), 0);
+    if (!fill) {
+      std::vector<char> keep_v(n, 1);
+      for (std::size_t t = 0; t < tets.size(); ++t)
+        if (state[t] == kAlive && !outside(t))
+          for (int x : tets[t]) keep_v[uz(x)] = 0;
       std::vector<double> best(n, HUGE_VAL);
       std::vector<int> arg(n, -1);
       for (std::size_t t = 0; t < tets.size(); ++t) {
@@ -1335,7 +1324,7 @@ struct Constrictor3::Impl {
       filled = 0;
       for (std::size_t t = 0; t < state0.size(); ++t)
         if (state0[t] != kAlive && state[t] == kAlive) ++filled;
-      if (filled > 0 && !outside_connected()) {  // (nothing kept: the state is the start state)
+      if (filled > 0 && !side_connected(kOutside)) {  // (nothing kept: the state is the start state)
         state = state0;
         filled = 0;
       }
@@ -1343,7 +1332,7 @@ struct Constrictor3::Impl {
     }
     // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
     // also have 2N-4 faces: excluded here (then the whole pass is undone).
-    if (!body_connected()) {
+    if (!side_connected(kAlive)) {
       state = state0;
       carved = 0;
       return;
@@ -1416,7 +1405,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.visitor = visitor;
   s.n = points.size();
   const auto t0 = Clock::now();
-  if (s.opt.grow && s.opt.criterion == Criterion::Gamma && s.opt.stop_after == SIZE_MAX && s.opt.sculpt == Sculpt3::None) {
+  if (s.grow_planned()) {
     // The growth reads the tetrahedralization and the labels only: the γ-values are computed
     // when the constriction from the hull needs them (ensure_hull_start).
     Delaunay3 dt;
@@ -1437,7 +1426,8 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   s.T0 = s.tets.size();
   const auto t_setup = Clock::now();
   bool need_size = s.opt.size_bias > 0 || s.opt.sculpt == Sculpt3::Bridges,
-       need_label = s.opt.label_weight > 0 || ((s.opt.carve_confidence <= 1 || s.opt.grow) && s.opt.criterion == Criterion::Gamma);
+       need_label = s.opt.label_weight > 0 || (s.opt.carve_confidence <= 1 && s.opt.criterion == Criterion::Gamma) ||
+                    s.grow_planned();
   for (const Constrict3Variant& v : s.opt.variants) {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
