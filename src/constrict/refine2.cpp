@@ -169,15 +169,19 @@ class Refiner {
         queue.push_back(a);
       }
     };
+    // Moves from the queued vertices until none has one (deep: also a Lin–Kernighan step).
+    const auto drain = [&](bool deep) {
+      while (!queue.empty() && !st_.budget_hit) {
+        const int a = queue.front();
+        queue.pop_front();
+        queued[U(a)] = 0;
+        touched_.clear();
+        if (!try_two_opt<false>(a) && !try_or_opt<false>(a) && !(deep && try_lin_kernighan(a))) continue;
+        requeue(a);
+      }
+    };
     // Phase 1: 2-opt and Or-opt until no vertex has an applicable move.
-    while (!queue.empty() && !st_.budget_hit) {
-      const int a = queue.front();
-      queue.pop_front();
-      queued[U(a)] = 0;
-      touched_.clear();
-      if (!try_two_opt<false>(a) && !try_or_opt<false>(a)) continue;
-      requeue(a);
-    }
+    drain(false);
     // Phase 2 (deep moves), only in the region of phase 1: from every vertex of the region, the
     // phase-1 moves and then a bounded Lin–Kernighan step; when no vertex has one, a double
     // bridge. Stops at a local optimum of all three or at a work bound.
@@ -188,14 +192,7 @@ class Refiner {
         queue.push_back(v);
       }
     while (!st_.budget_hit) {
-      while (!queue.empty() && !st_.budget_hit) {
-        const int a = queue.front();
-        queue.pop_front();
-        queued[U(a)] = 0;
-        touched_.clear();
-        if (!try_two_opt<false>(a) && !try_or_opt<false>(a) && !try_lin_kernighan(a)) continue;
-        requeue(a);
-      }
+      drain(true);
       touched_.clear();
       if (st_.budget_hit || !try_double_bridge()) break;
       requeue(-1);
@@ -544,13 +541,17 @@ class Refiner {
       rem[j] = {lk_[2 * j], lk_[2 * j + 1]};
       add[j] = {lk_[2 * j + 1], j + 1 < U(k) ? lk_[2 * j + 2] : lk_[0]};
     }
-    if (!exchange(rem.data(), add.data(), U(k), false)) return false;
-    if (!valid(rem.data(), U(k), add.data(), U(k))) {
+    return apply_deep(rem.data(), add.data(), U(k));
+  }
+  // A deep move: applied when it gives one cycle and keeps the polygon simple.
+  bool apply_deep(const Edge* rem, const Edge* add, std::size_t k) {
+    if (!exchange(rem, add, k, false)) return false;
+    if (!valid(rem, k, add, k)) {
       ++st_.rejected;
       return false;
     }
-    commit_edges(rem.data(), U(k), add.data(), U(k));
-    exchange(rem.data(), add.data(), U(k), true);
+    commit_edges(rem, k, add, k);
+    exchange(rem, add, k, true);
     ++st_.moves_deep;
     return true;
   }
@@ -620,15 +621,7 @@ class Refiner {
         for (std::size_t p = 0; p < 4; ++p)
           for (std::size_t q = 0; q < 4; ++q)
             distinct = distinct && !add[p].same(rem[q].u, rem[q].v) && (q <= p || !add[p].same(add[q].u, add[q].v));
-        if (!distinct || !exchange(rem.data(), add.data(), 4, false)) continue;
-        if (!valid(rem, add)) {
-          ++st_.rejected;
-          continue;
-        }
-        commit_edges(rem, add);
-        exchange(rem.data(), add.data(), 4, true);
-        ++st_.moves_deep;
-        return true;
+        if (distinct && apply_deep(rem.data(), add.data(), 4)) return true;
       }
     }
     return false;
