@@ -42,6 +42,11 @@ void BM_Reconstruct2(benchmark::State& state) {
     if (!reconstruct2(pts, Constrict2Options{}, r) || !r.complete) state.SkipWithError("reconstruct2 failed");
     stuck = r.stuck_points.size();
     benchmark::DoNotOptimize(r.boundary.data());
+    // Phases (the Delaunay time includes the input check and the export to index arrays).
+    state.counters["ms_dt"] = r.ms_delaunay;
+    state.counters["ms_constrict"] = r.ms_constrict;
+    state.counters["ms_refine"] = r.ms_refine;
+    state.counters["ms_validate"] = r.ms_validate;
   }
   state.counters["stuck"] = static_cast<double>(stuck);
   state.SetLabel(kind_name(static_cast<int>(state.range(1))));

@@ -12,6 +12,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/task_group.h>
+
 #include "constrict/constrict.hpp"
 #include "constrict/criterion.hpp"
 #include "constrict/delaunay.hpp"
@@ -20,6 +22,8 @@
 #include "constrict/detail/refine2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/check_points.hpp"
+#include "gamma/detail/delaunay_local.hpp"
 
 namespace constrict {
 namespace {
@@ -59,6 +63,29 @@ struct EntryLess {
   }
 };
 using Heap = std::priority_queue<Entry, std::vector<Entry>, EntryLess>;
+
+// Entry of the Delaunay-stage heap, 16 bytes (the heap is the constriction's main memory
+// traffic): triangle t, its boundary edge index and the triangle's version at the push. The
+// order is that of Entry: larger key, then the smaller sorted vertex triple (read from the
+// triangle only on equal keys).
+struct TriEntry {
+  double key;
+  std::uint32_t t;
+  std::uint32_t version_edge;  // version << 2 | boundary edge index
+};
+struct TriEntryLess {
+  const std::vector<std::array<int, 3>>* tris;
+  const std::vector<int>* gid;  // ranked id -> input id (the tie-break is on input ids)
+  bool operator()(const TriEntry& l, const TriEntry& r) const {
+    if (l.key != r.key) return l.key < r.key;
+    const auto& a = (*tris)[l.t];
+    const auto& b = (*tris)[r.t];
+    const auto& g = *gid;
+    return sorted3(g[U(a[0])], g[U(a[1])], g[U(a[2])]) > sorted3(g[U(b[0])], g[U(b[1])], g[U(b[2])]);
+  }
+  static std::size_t U(int i) { return static_cast<std::size_t>(i); }
+};
+using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLess>;
 
 
 // Uniform bucket grid over the bounding box. Cell indices are monotone in the coordinates, so a
@@ -116,8 +143,16 @@ class Grid {
 
 }  // namespace
 
+// Vertex ids inside the engine are *ranked* ids: the order of CGAL's spatially sorted insertion
+// (build_delaunay2_ranked), so that the triangle loops, the heap and the walks along the polygon
+// touch nearby memory (input ids are in arbitrary, often shuffled order). Every order-sensitive
+// decision (heap ties, the degree-4 cascade, where the polygon starts) compares input ids
+// through gid, and every result leaves in input ids: the output is the same as with input ids.
 struct Constrictor2::Impl {
-  const PointSet* pts = nullptr;
+  const PointSet* pts = nullptr;  // the ranked points (== &rpts)
+  const PointSet* input = nullptr;
+  PointSet rpts;
+  std::vector<int> gid;           // ranked id -> input id
   Constrict2Options opt;
   Constrict2Visitor* visitor = nullptr;
   bool ready = false;
@@ -127,7 +162,7 @@ struct Constrictor2::Impl {
   std::vector<int> nxt, prv;
   std::vector<unsigned> ver;
   std::size_t n_onb = 0, removed = 0;
-  Heap heap;
+  TriHeap heap{TriEntryLess{&dt.triangles, &gid}};
   bool locked = false, stopped = false;
   double ms_delaunay = 0, ms_constrict = 0;
 
@@ -147,11 +182,14 @@ struct Constrictor2::Impl {
   const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
 
+  int G(int v) const { return v < 0 ? v : gid[U(v)]; }
+  std::array<int, 3> sorted_gid3(int a, int b, int c) const { return sorted3(G(a), G(b), G(c)); }
+
   void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const std::string& stage) {
     if (!visitor) return;
     Constrict2Event ev;
     ev.kind = k;
-    ev.triangle = {{a, b, y}};
+    ev.triangle = {{G(a), G(b), G(y)}};
     ev.criterion = crit;
     ev.stage = stage;
     visitor->on_event(ev);
@@ -186,25 +224,39 @@ struct Constrictor2::Impl {
     const int y = tr[U(i)], a = tr[U((i + 1) % 3)], b = tr[U((i + 2) % 3)];
     // The boundary runs a->b with the body on its left; γ(ab; y) is the inner side value (§3.2).
     const double key = criterion_key(a, b, y);
-    heap.push(Entry{key, sorted3(a, b, y), a, b, y, t, ++ver[U(t)]});
+    heap.push(TriEntry{key, static_cast<std::uint32_t>(t), (++ver[U(t)] << 2) | static_cast<unsigned>(i)});
   }
 
   Status init(const PointSet& points) {
-    pts = &points;
+    input = &points;
+    pts = &rpts;
     if (points.dim != 2) return {StatusCode::InvalidArgument, "reconstruct2: points must be 2D"};
-    Status st = check_points(points);
+    // Duplicates are found by the triangulation (fewer vertices than points); check_points then
+    // names them.
+    Status st = detail::check_points_deferred(points);
     if (!st) return st;
     const auto t0 = Clock::now();
-    st = build_delaunay2(points, dt);
+    n = points.size();
+    {
+      // The state arrays are zero-filled on the other core during the (sequential) insertion, at
+      // their upper bound (at most 2n - 5 triangles), and shrunk after.
+      tbb::task_group side;
+      side.run([&] {
+        alive.assign(2 * n, 1);
+        ver.assign(2 * n, 0);
+        onb.assign(n, 0);
+        nxt.assign(n, -1);
+        prv.assign(n, -1);
+      });
+      st = detail::build_delaunay2_ranked(points, dt, rpts, gid);
+      side.wait();
+    }
+    if (st.code() == StatusCode::Duplicate) return check_points(points);
     if (!st) return st;
     ms_delaunay = ms_since(t0);
-    n = points.size();
     const std::size_t nt = dt.triangles.size();
-    alive.assign(nt, 1);
-    ver.assign(nt, 0);
-    onb.assign(n, 0);
-    nxt.assign(n, -1);
-    prv.assign(n, -1);
+    alive.resize(nt);
+    ver.resize(nt);
     // Convex hull: DT edges without a neighbour; collinear hull points are hull vertices.
     for (std::size_t t = 0; t < nt; ++t)
       for (int i = 0; i < 3; ++i)
@@ -222,33 +274,48 @@ struct Constrictor2::Impl {
     return Status::ok();
   }
 
-  bool step() {
+  // One removal (or the lock); the caller keeps the time (one clock read per removal would be
+  // a tenth of the constriction).
+  bool step_untimed() {
     if (!ready || n_onb == n || locked || stopped) return false;
     if (removed >= opt.stop_after) { stopped = true; return false; }
-    const auto t0 = Clock::now();
     while (!heap.empty()) {
-      const Entry e = heap.top();
+      const TriEntry e = heap.top();
       heap.pop();
-      if (e.version != ver[U(e.t)] || removable_edge(e.t) < 0) continue;  // stale (lazy deletion)
-      alive[U(e.t)] = 0;
-      ++ver[U(e.t)];
-      nxt[U(e.a)] = e.y; prv[U(e.y)] = e.a;
-      nxt[U(e.y)] = e.b; prv[U(e.b)] = e.y;
-      onb[U(e.y)] = 1;
+      const int t = static_cast<int>(e.t);
+      if ((e.version_edge >> 2) != (ver[U(t)] & 0x3fffffffu) || removable_edge(t) < 0) continue;  // stale (lazy deletion)
+      const auto& tr = dt.triangles[U(t)];
+      const unsigned i = e.version_edge & 3u;
+      const int y = tr[i], a = tr[(i + 1) % 3], b = tr[(i + 2) % 3];
+      alive[U(t)] = 0;
+      ++ver[U(t)];
+      nxt[U(a)] = y; prv[U(y)] = a;
+      nxt[U(y)] = b; prv[U(b)] = y;
+      onb[U(y)] = 1;
       ++n_onb;
       ++removed;
-      emit(Constrict2Event::Kind::RemoveTriangle, e.a, e.b, e.y, e.key, "gamma");
+      emit(Constrict2Event::Kind::RemoveTriangle, a, b, y, e.key, "gamma");
       for (int j = 0; j < 3; ++j) {
-        const int nb = dt.neighbors[U(e.t)][U(j)];
+        const int nb = dt.neighbors[U(t)][U(j)];
         if (nb >= 0 && alive[U(nb)]) push_triangle(nb);
       }
-      ms_constrict += ms_since(t0);
       return n_onb < n;
     }
     locked = true;
-    ms_constrict += ms_since(t0);
     emit(Constrict2Event::Kind::Lock, -1, -1, -1, 0, "gamma");
     return false;
+  }
+  bool step() {
+    const auto t0 = Clock::now();
+    const bool more = step_untimed();
+    ms_constrict += ms_since(t0);
+    return more;
+  }
+  void run_all() {
+    const auto t0 = Clock::now();
+    while (step_untimed()) {
+    }
+    ms_constrict += ms_since(t0);
   }
 
   // ---------------------------------------------------------------- fallback infrastructure
@@ -523,7 +590,7 @@ struct Constrictor2::Impl {
     // The geometric test is cheaper than the side-value searches of in_graph().
     if (!valid_insert(a, b, z)) return;
     if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
-    h.push(Entry{criterion_key(a, b, z), sorted3(a, b, z), a, b, z, -1, 0});
+    h.push(Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0});
   }
 
   // Candidate boundary edges for apex z: those with an endpoint within k hops of z.
@@ -569,7 +636,7 @@ struct Constrictor2::Impl {
     for (std::size_t v = 0; v < n; ++v)
       if (!onb[v]) stuck.push_back(static_cast<int>(v));
     std::vector<int> verts = neighbourhood(stuck, 2);
-    std::sort(verts.begin(), verts.end());
+    std::sort(verts.begin(), verts.end(), [&](int l, int r) { return G(l) < G(r); });
     std::unordered_map<int, int> extra;  // added degree
     auto degree = [&](int v) { return adj_off[U(v) + 1] - adj_off[U(v)] + extra[v]; };
     auto apex_across = [&](int t, int a, int b) -> int {  // apex of the triangle across edge ab of t
@@ -614,8 +681,8 @@ struct Constrictor2::Impl {
       for (int w : cand)
         if (w != v && !is_dt_edge(v, w) && !aug.count(pair_key(v, w)))
           ranked.emplace_back(delta(v, w), w);
-      std::sort(ranked.begin(), ranked.end(), [](const auto& l, const auto& r) {
-        return l.first != r.first ? l.first > r.first : l.second < r.second;
+      std::sort(ranked.begin(), ranked.end(), [&](const auto& l, const auto& r) {
+        return l.first != r.first ? l.first > r.first : G(l.second) < G(r.second);
       });
       for (std::size_t r = 0; r < ranked.size() && static_cast<int>(r) < 4 - d; ++r) {
         if (ranked[r].first == -HUGE_VAL) break;  // blocked pair: in no graph
@@ -662,11 +729,12 @@ struct Constrictor2::Impl {
     n_onb = n;
   }
 
+  // The polygon in ranked ids, from the boundary vertex with the smallest input id.
   std::vector<int> boundary_list() const {
     std::vector<int> out;
     int s = -1;
     for (std::size_t v = 0; v < n; ++v)
-      if (onb[v]) { s = static_cast<int>(v); break; }
+      if (onb[v] && (s < 0 || gid[v] < gid[U(s)])) s = static_cast<int>(v);
     if (s < 0) return out;
     int v = s;
     do {
@@ -678,13 +746,11 @@ struct Constrictor2::Impl {
 
   Status finish(Polygon2Result& r) {
     if (!ready) return {StatusCode::Internal, "Constrictor2::finish called without a successful init"};
-    while (step()) {
-    }
+    run_all();
     r = Polygon2Result{};
     r.removed_simplices = removed;
     r.locked_at_gamma0 = locked;
-    for (std::size_t v = 0; v < n; ++v)
-      if (!onb[v]) r.stuck_points.push_back(static_cast<int>(v));
+    r.stuck_points = inside_input_ids();
     r.stages.push_back({"gamma", removed});
     r.method = "gamma";
     const auto t0 = Clock::now();
@@ -728,13 +794,13 @@ struct Constrictor2::Impl {
     }
     r.ms_fallback = ms_since(t0);
     r.complete = n_onb == n;
-    r.boundary = boundary_list();
+    std::vector<int> poly = boundary_list();  // ranked ids until the end
     r.ms_delaunay = ms_delaunay;
     r.ms_constrict = ms_constrict;
     if (r.complete && opt.refine == Refine2::LocalSearch) {
       const auto tr = Clock::now();
       Refine2Stats rs;
-      detail::refine_polygon2(*pts, dt, r.boundary, opt.refine_work_per_point * n, rs);
+      detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid);
       r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;
@@ -742,24 +808,41 @@ struct Constrictor2::Impl {
       r.ms_refine = ms_since(tr);
     }
     if (!fb_ready && (r.method != "gamma" || r.refine_moves > 0)) build_fallback();
-    const std::size_t m = r.boundary.size();
+    const std::size_t m = poly.size();
     for (std::size_t i = 0; i < m; ++i) {
-      const int a = r.boundary[i], b = r.boundary[(i + 1) % m];
+      const int a = poly[i], b = poly[(i + 1) % m];
       const double* pa = P(a);
       const double* pb = P(b);
       r.area += 0.5 * (pa[0] * pb[1] - pa[1] * pb[0]);
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
-      if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(a, b), std::max(a, b)}});
+      if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
     }
     if (r.perimeter_before_refine == 0) r.perimeter_before_refine = r.perimeter;
+    r.boundary.resize(m);
+    for (std::size_t i = 0; i < m; ++i) r.boundary[i] = G(poly[i]);
     if (opt.validate) {
       const auto tv = Clock::now();
-      const Status vs = validate_polygon_in_triangulation(*pts, r.boundary, dt.triangles, &r.check);
+      Status vs = validate_polygon_in_triangulation(*pts, poly, dt.triangles, &r.check);
+      if (!vs) {
+        // The diagnostics name points and positions: redo the check in input ids.
+        std::vector<std::array<int, 3>> tris(dt.triangles.size());
+        for (std::size_t t = 0; t < tris.size(); ++t)
+          for (int k = 0; k < 3; ++k) tris[t][U(k)] = G(dt.triangles[t][U(k)]);
+        vs = validate_polygon_in_triangulation(*input, r.boundary, tris, &r.check);
+      }
       r.validated = true;
       r.ms_validate = ms_since(tv);
       CONSTRICT_CHECK(vs.is_ok() || !r.complete, "reconstruct2 produced an invalid polygon: " + vs.message());
     }
     return Status::ok();
+  }
+
+  std::vector<int> inside_input_ids() const {
+    std::vector<int> out;
+    for (std::size_t v = 0; v < n; ++v)
+      if (!onb[v]) out.push_back(gid[v]);
+    std::sort(out.begin(), out.end());
+    return out;
   }
 };
 
@@ -774,13 +857,12 @@ Status Constrictor2::init(const PointSet& points, const Constrict2Options& optio
   return impl_->init(points);
 }
 bool Constrictor2::step() { return impl_->step(); }
-std::vector<int> Constrictor2::boundary() const { return impl_->boundary_list(); }
-std::vector<int> Constrictor2::inside_points() const {
-  std::vector<int> out;
-  for (std::size_t v = 0; v < impl_->n; ++v)
-    if (!impl_->onb[v]) out.push_back(static_cast<int>(v));
-  return out;
+std::vector<int> Constrictor2::boundary() const {
+  std::vector<int> b = impl_->boundary_list();
+  for (int& v : b) v = impl_->G(v);
+  return b;
 }
+std::vector<int> Constrictor2::inside_points() const { return impl_->inside_input_ids(); }
 Status Constrictor2::finish(Polygon2Result& result) { return impl_->finish(result); }
 
 Status reconstruct2(const PointSet& points, const Constrict2Options& options,
@@ -789,9 +871,7 @@ Status reconstruct2(const PointSet& points, const Constrict2Options& options,
   Constrictor2 c;
   Status st = c.init(points, options, visitor);
   if (!st) return st;
-  while (c.step()) {
-  }
-  return c.finish(result);
+  return c.finish(result);  // runs the constriction to its end
 }
 
 }  // namespace constrict

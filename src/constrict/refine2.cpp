@@ -116,12 +116,20 @@ class EdgeGrid {
   std::vector<std::vector<std::uint64_t>> cells_;
 };
 
+// Starts the polygon at its vertex with the smallest stable id (order[v], or v itself).
+void rotate_to_smallest(std::vector<int>& poly, const std::vector<int>* order) {
+  const auto first = order ? std::min_element(poly.begin(), poly.end(),
+                                              [order](int a, int b) { return (*order)[U(a)] < (*order)[U(b)]; })
+                           : std::min_element(poly.begin(), poly.end());
+  std::rotate(poly.begin(), first, poly.end());
+}
+
 class Refiner {
  public:
   // xy: the coordinates in polygon order (polygon_coordinates()).
   Refiner(std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour, std::size_t budget,
-          Refine2Stats& st)
-      : poly_(tour), budget_(budget), st_(st), n_(tour.size()) {
+          Refine2Stats& st, const std::vector<int>* order)
+      : poly_(tour), order_(order), budget_(budget), st_(st), n_(tour.size()) {
     // Local ids = positions in the input polygon: the hot loops walk along the polygon, and the
     // input order of the points is arbitrary (often shuffled), so this relabelling turns random
     // memory accesses into nearly sequential ones.
@@ -712,7 +720,7 @@ class Refiner {
     const int v = tour_[lo];
     const bool cw = orient2(P(pred(v)), P(v), P(succ(v))) < 0;
     for (std::size_t i = 0; i < n_; ++i) poly_[i] = id_[U(tour_[cw ? n_ - 1 - i : i])];
-    std::rotate(poly_.begin(), std::min_element(poly_.begin(), poly_.end()), poly_.end());
+    rotate_to_smallest(poly_, order_);
   }
   double length() const {
     double s = 0;
@@ -721,6 +729,7 @@ class Refiner {
   }
 
   std::vector<int>& poly_;        // the caller's polygon (input ids), written by normalise()
+  const std::vector<int>* order_; // stable id of an input id (null: itself)
   std::vector<int> id_;           // local id -> input id
   std::vector<double> xy_;        // coordinates by local id
   std::vector<int> tour_;         // the polygon as local ids
@@ -861,7 +870,7 @@ std::vector<double> polygon_coordinates(const PointSet& pts, const std::vector<i
 }
 
 // CCW (exact turn at the lexicographically smallest vertex), starting at the smallest index.
-void normalise_polygon(const PointSet& pts, std::vector<int>& poly) {
+void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::vector<int>* order) {
   const std::size_t n = poly.size();
   std::size_t lo = 0;
   for (std::size_t i = 1; i < n; ++i) {
@@ -871,23 +880,23 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly) {
   }
   if (orient2(pts[U(poly[(lo + n - 1) % n])], pts[U(poly[lo])], pts[U(poly[(lo + 1) % n])]) < 0)
     std::reverse(poly.begin(), poly.end());
-  std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end()), poly.end());
+  rotate_to_smallest(poly, order);
 }
 
 }  // namespace
 
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats) {
+                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order) {
   stats = Refine2Stats{};
   if (polygon.size() < 4 || polygon.size() != points.size()) return;
   std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
   if (!may_improve(xy, dt, polygon, len)) {
-    normalise_polygon(points, polygon);
+    normalise_polygon(points, polygon, order);
     stats.length_before = stats.length_after = len;
     return;
   }
-  Refiner r(std::move(xy), dt, polygon, work_budget, stats);
+  Refiner r(std::move(xy), dt, polygon, work_budget, stats, order);
   r.run();
 }
 

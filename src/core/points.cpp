@@ -3,6 +3,7 @@
 // position. The reconstruction needs all of them: spec gamma-graph.md §3.8 rejects duplicate
 // points, and a Delaunay triangulation of a collinear (2D) or coplanar (3D) set has no faces.
 #include "constrict/points.hpp"
+#include "core/detail/check_points.hpp"
 
 #include <algorithm>
 #include <array>
@@ -225,7 +226,8 @@ PointSet merge_duplicates(const PointSet& points, std::vector<std::size_t>* kept
   return merged;
 }
 
-Status check_points(const PointSet& points, PointCheck* report) {
+namespace {
+Status check_points_impl(const PointSet& points, PointCheck* report, bool duplicates) {
   if (report != nullptr) report->duplicates.clear();
   const int dim = points.dim;
   if (dim != 2 && dim != 3)
@@ -251,7 +253,8 @@ Status check_points(const PointSet& points, PointCheck* report) {
     }
   }
 
-  std::vector<DuplicatePair> dups = find_duplicates(points);
+  std::vector<DuplicatePair> dups;
+  if (duplicates) dups = find_duplicates(points);
   if (!dups.empty()) {
     std::string msg = duplicate_message(dups);
     if (report != nullptr) report->duplicates = std::move(dups);
@@ -266,5 +269,22 @@ Status check_points(const PointSet& points, PointCheck* report) {
 
   return check_affine_span(points);
 }
+}  // namespace
+
+Status check_points(const PointSet& points, PointCheck* report) {
+  return check_points_impl(points, report, true);
+}
+
+namespace detail {
+Status check_points_deferred(const PointSet& points) {
+  Status st = check_points_impl(points, nullptr, false);
+  // Too few or collinear/coplanar: a duplicate check first, so that the status is check_points'
+  // (duplicates are reported before the other defects).
+  if (!st && (st.code() == StatusCode::TooFewPoints || st.code() == StatusCode::Collinear ||
+              st.code() == StatusCode::Coplanar))
+    return check_points(points);
+  return st;
+}
+}  // namespace detail
 
 }  // namespace constrict

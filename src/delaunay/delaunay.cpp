@@ -30,6 +30,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include <string>
 #include <utility>
@@ -70,7 +71,7 @@ void par_for(std::size_t n, const F& f) {
 // neighbour indices (the handles' info), and optionally the local mesh (vertex ranks, opposite
 // vertex, mirror index, ownership of each face). Shared by 2D and 3D.
 template <int K, class Handle, class LocalMesh>
-void export_simplices(const std::vector<Handle>& hs, const detail::BigArray<int>& id,
+void export_simplices(const std::vector<Handle>& hs, const detail::BigArray<int>* id,
                       std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
                       LocalMesh& lm, bool local) {
   par_for(hs.size(), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -91,7 +92,7 @@ void export_simplices(const std::vector<Handle>& hs, const detail::BigArray<int>
       for (int i = 0; i < K; ++i) {
         const std::size_t k = static_cast<std::size_t>(i);
         loc[k] = f->vertex(i)->info();
-        sim[k] = id[static_cast<std::size_t>(loc[k])];
+        sim[k] = id ? (*id)[static_cast<std::size_t>(loc[k])] : loc[k];
         const Handle g = f->neighbor(i);
         nb[k] = g->info();
         opp[k] = -1;
@@ -131,8 +132,9 @@ constexpr std::ptrdiff_t kParallelSort = std::ptrdiff_t{1} << 15;
 
 // Numbers the finite simplices in CGAL's container order (info() = index, -1 for the infinite
 // ones, which are also collected in *infinite when given), then exports them (2D and 3D).
+// id == nullptr: the simplices are written in local ids (build_delaunay2_ranked).
 template <int K, class Handle, class It, class VertexHandle, class LocalMesh>
-void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, const detail::BigArray<int>& id,
+void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, const detail::BigArray<int>* id,
                    std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
                    LocalMesh& lm, bool local, std::vector<Handle>* infinite) {
   std::vector<Handle> hs;
@@ -149,6 +151,7 @@ void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, con
     }
   }
   const std::size_t T = hs.size();
+  // (A caller may have sized the arrays beforehand, off the critical path; shrinking keeps them.)
   detail::resize_big(simplices, T);
   detail::resize_big(neighbors, T);
   if (local) {
@@ -312,8 +315,51 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
 
   // Finite faces in CGAL's finite_faces order (= all faces, infinite ones skipped).
   out.n_vertices = n;
-  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, id,
+  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, &id,
                                      out.triangles, out.neighbors, lm, local != nullptr, nullptr);
+  return Status::ok();
+}
+
+Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id) {
+  if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
+  const std::size_t n = points.size();
+  const auto items = sorted_input<2, K::Point_2>(points);
+  // CGAL's insertion is sequential: the second core meanwhile writes the ranked points and
+  // zero-fills the output arrays (at their upper bound 2n; the export shrinks them), which would
+  // otherwise be page faults on the critical path.
+  tbb::task_group side;
+  side.run([&] {
+    ranked.dim = 2;
+    detail::resize_big(ranked.coords, 2 * n);
+    detail::resize_big(id, n);
+    for (std::size_t k = 0; k < n; ++k) {
+      ranked.coords[2 * k] = items[k].first.x();
+      ranked.coords[2 * k + 1] = items[k].first.y();
+      id[k] = items[k].second;
+    }
+    detail::resize_big(out.triangles, 2 * n);
+    detail::resize_big(out.neighbors, 2 * n);
+  });
+  DT2 dt;
+  {
+    DT2::Face_handle hint;
+    int rank = 0;
+    for (const auto& it : items) {
+      const DT2::Vertex_handle v = dt.insert(it.first, hint);
+      if (v != DT2::Vertex_handle()) {
+        v->info() = rank;
+        hint = v->face();
+      }
+      ++rank;
+    }
+  }
+  side.wait();
+  if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
+  if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
+  detail::LocalMesh<2> unused;
+  out.n_vertices = n;
+  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, nullptr,
+                                     out.triangles, out.neighbors, unused, false, nullptr);
   return Status::ok();
 }
 
@@ -344,7 +390,7 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   std::vector<DT3::Cell_handle> inf_cells;
   if (local) inf_cells.reserve(dt.number_of_cells() - dt.number_of_finite_cells());
   out.n_vertices = n;
-  export_finite<4, DT3::Cell_handle>(dt.all_cells_begin(), dt.all_cells_end(), inf, dt.number_of_finite_cells(), id,
+  export_finite<4, DT3::Cell_handle>(dt.all_cells_begin(), dt.all_cells_end(), inf, dt.number_of_finite_cells(), &id,
                                      out.tets, out.neighbors, lm, local != nullptr, local ? &inf_cells : nullptr);
   if (local) {
     // Hull facets and their adjacency, from the infinite cells (one per hull facet; two hull

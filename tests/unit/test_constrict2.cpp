@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <vector>
 
 #include "constrict/constrict.hpp"
@@ -163,6 +165,20 @@ TEST(Constrict2Unit, BadInput) {
   EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}}), {}, r).code(), StatusCode::TooFewPoints);
   EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}, {2, 2}}), {}, r).code(), StatusCode::Collinear);
   EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 0}, {0, 1}, {1, 0}}), {}, r).code(), StatusCode::Duplicate);
+  // The duplicates are found by the triangulation, then named by index; they take precedence
+  // over the other defects, as in check_points().
+  const Status dup = reconstruct2(make2({{0, 0}, {1, 0}, {0, 1}, {1, 0}}), {}, r);
+  EXPECT_NE(dup.message().find("points 1 and 3"), std::string::npos) << dup.message();
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}, {1, 1}}), {}, r).code(), StatusCode::Duplicate);
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {0, 0}}), {}, r).code(), StatusCode::Duplicate);
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 1}, {2, 2}, {1, 1}}), {}, r).code(), StatusCode::Duplicate);
+  std::vector<std::array<double, 2>> many;
+  for (int i = 0; i < 5000; ++i) many.push_back({{std::cos(i * 0.37) * (1 + i % 7), std::sin(i * 0.37) * (1 + i % 11)}});
+  many[4321] = many[17];
+  const Status big = reconstruct2(make2(many), {}, r);
+  EXPECT_EQ(big.code(), StatusCode::Duplicate);
+  EXPECT_NE(big.message().find("points 17 and 4321"), std::string::npos) << big.message();
+  EXPECT_EQ(reconstruct2(make2({{0, 0}, {1, 0}, {std::nan(""), 1}}), {}, r).code(), StatusCode::NonFinite);
 }
 
 TEST(Constrict2Unit, CollinearHullPoints) {

@@ -23,9 +23,12 @@ namespace constrict::detail {
 /// @param[in,out] polygon a simple polygon through all points; stays simple and through all points
 /// @param[in] work_budget maximal number of array elements moved by reversals and segment copies
 ///   (bounds the worst case)
+/// @param[in] order optional: the ids of points, dt and polygon are a relabelling and order[v] is
+///   the stable id of v; every tie and the start of the output polygon then follow order[], so
+///   the result is the relabelling of what the stable ids give (null: the ids are the stable ids)
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
 ///   2^20 candidate nodes). Deterministic.
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats);
+                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr);
 
 }  // namespace constrict::detail

@@ -43,4 +43,10 @@ struct LocalMesh {
 Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local);
 Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local);
 
+/// The 2D Delaunay triangulation in *ranked* vertex ids: vertex k is the k-th point of CGAL's
+/// insertion order (its spatial sort), ranked.coords holds its coordinates (the input doubles)
+/// and id[k] its input index. Same triangles, same order and same neighbours as build_delaunay2,
+/// only relabelled, so that loops over triangles and along a curve touch nearby memory.
+Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id);
+
 }  // namespace constrict::detail
