@@ -855,6 +855,52 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
   return any.load();
 }
 
+// Multi-start (small inputs): kStarts runs from evenly spaced starts, the shortest result kept.
+constexpr std::size_t kStarts = 8;
+constexpr std::size_t kMultiStartMaxPoints = 5000;
+
+// Where the search starts: the position of the point farthest from the centre of the bounding
+// box (xy: coordinates in polygon order). Both are computed exactly the same way however the
+// input is numbered, and after an exact rotation by 90° (min/max and negation are
+// exact, dx² + dy² is commutative); ties go to the smallest stable id.
+std::size_t start_position(const std::vector<double>& xy, const std::vector<int>& poly, const std::vector<int>* order) {
+  const std::size_t n = poly.size();
+  double x0 = xy[0], x1 = xy[0], y0 = xy[1], y1 = xy[1];
+  for (std::size_t i = 1; i < n; ++i) {
+    x0 = std::min(x0, xy[2 * i]); x1 = std::max(x1, xy[2 * i]);
+    y0 = std::min(y0, xy[2 * i + 1]); y1 = std::max(y1, xy[2 * i + 1]);
+  }
+  const double cx = 0.5 * x0 + 0.5 * x1, cy = 0.5 * y0 + 0.5 * y1;
+  const auto stable = [&](std::size_t i) { return order ? (*order)[U(poly[i])] : poly[i]; };
+  std::size_t best = 0;
+  double best_d = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
+    const double d = dx * dx + dy * dy;
+    if (d > best_d || (d == best_d && stable(i) < stable(best))) { best = i; best_d = d; }
+  }
+  return best;
+}
+
+// Perimeter summed in CCW order from the start_position() point: the same double for the same
+// polygon, however it is numbered or rotated by 90°.
+double geometric_length(const PointSet& pts, const std::vector<int>& poly, const std::vector<int>* order) {
+  const std::size_t n = poly.size();
+  std::vector<double> xy(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    xy[2 * i] = pts[U(poly[i])][0];
+    xy[2 * i + 1] = pts[U(poly[i])][1];
+  }
+  const std::size_t lo = start_position(xy, poly, order);
+  double s = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double* a = pts[U(poly[(lo + k) % n])];
+    const double* b = pts[U(poly[(lo + k + 1) % n])];
+    s += std::hypot(b[0] - a[0], b[1] - a[1]);
+  }
+  return s;
+}
+
 // The coordinates in polygon order (one pass of random reads, in parallel): both the pre-test and
 // the search work on them.
 std::vector<double> polygon_coordinates(const PointSet& pts, const std::vector<int>& poly) {
@@ -896,8 +942,35 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
     stats.length_before = stats.length_after = len;
     return;
   }
-  Refiner r(std::move(xy), dt, polygon, work_budget, stats, order);
-  r.run();
+  // The search visits the vertices in polygon order from the first one, and that order decides
+  // which local optimum it reaches. So the starts are geometric (start_position(), then evenly
+  // spaced positions after it: the result does not depend on how the input is numbered), and on
+  // small inputs several starts run and the shortest result is kept.
+  const std::size_t n = polygon.size();
+  const std::size_t lo = start_position(xy, polygon, order);
+  const std::size_t starts = n <= kMultiStartMaxPoints ? kStarts : 1;
+  std::vector<int> best;
+  double best_len = 0;
+  for (std::size_t k = 0; k < starts; ++k) {
+    const std::size_t first = (lo + k * n / starts) % n;
+    std::vector<int> poly(polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
+    poly.insert(poly.end(), polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first));
+    std::vector<double> pxy(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
+    pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
+    Refine2Stats st;
+    Refiner r(std::move(pxy), dt, poly, work_budget, st, order);
+    r.run();
+    const double l = geometric_length(points, poly, order);
+    if (k == 0 || l < best_len) {
+      best.swap(poly);
+      best_len = l;
+      stats = st;
+    }
+    // No move from the first start: the polygon is a local optimum of every move, whatever the
+    // start (the order only chooses among applicable moves).
+    if (k == 0 && st.moves_2opt + st.moves_oropt + st.moves_deep == 0) break;
+  }
+  polygon.swap(best);
 }
 
 }  // namespace constrict::detail

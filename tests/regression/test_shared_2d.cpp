@@ -86,6 +86,14 @@ TEST(Shared2D, EveryFileGivesAValidPolygonAndGroundTruthDoesNotRegress) {
     expected_exact += it->second.exact;
     if (it->second.exact) {
       EXPECT_TRUE(c.exact_match) << "lost the exact ground-truth match";
+      // The match must not depend on the file order: the same points listed backwards.
+      PointSet rev;
+      rev.dim = 2;
+      for (std::size_t i = pts.size(); i-- > 0;) rev.coords.insert(rev.coords.end(), pts[i], pts[i] + 2);
+      Polygon2Result rr;
+      ASSERT_TRUE(reconstruct2(rev, Constrict2Options{}, rr).is_ok());
+      for (int& v : rr.boundary) v = static_cast<int>(pts.size()) - 1 - v;
+      EXPECT_TRUE(compare_polygon2(rr.boundary, ref).exact_match) << "the match depends on the input order";
     }
     EXPECT_GE(c.edge_recall, it->second.recall - 5e-5) << "fewer ground-truth edges recovered";
   }
