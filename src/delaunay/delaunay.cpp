@@ -323,7 +323,7 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
 Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
   const std::size_t n = points.size();
-  const auto items = sorted_input<2, K::Point_2>(points);
+  auto items = sorted_input<2, K::Point_2>(points);
   // CGAL's insertion is sequential: the second core meanwhile writes the ranked points and
   // zero-fills the output arrays (at their upper bound 2n; the export shrinks them), which would
   // otherwise be page faults on the critical path.
@@ -354,6 +354,7 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
     }
   }
   side.wait();
+  std::vector<std::pair<K::Point_2, int>>().swap(items);  // lower peak memory during the export
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
   if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
   detail::LocalMesh<2> unused;
