@@ -12,6 +12,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include "constrict/constrict.hpp"
@@ -73,17 +75,35 @@ struct TriEntry {
   std::uint32_t t;
   std::uint32_t version_edge;  // version << 2 | boundary edge index
 };
-struct TriEntryLess {
-  const std::vector<std::array<int, 3>>* tris;
-  const std::vector<int>* gid;  // ranked id -> input id (the tie-break is on input ids)
-  bool operator()(const TriEntry& l, const TriEntry& r) const {
-    if (l.key != r.key) return l.key < r.key;
-    const auto& a = (*tris)[l.t];
-    const auto& b = (*tris)[r.t];
-    const auto& g = *gid;
-    return sorted3(g[U(a[0])], g[U(a[1])], g[U(a[2])]) > sorted3(g[U(b[0])], g[U(b[1])], g[U(b[2])]);
+// The tie-break triples (sorted input ids of each triangle), made at the first tie: inputs with
+// many equal keys (grids, rasters: right angles everywhere) compare them at almost every heap
+// step, and reading them through the id map is a random access per vertex.
+struct TieKeys {
+  const std::vector<std::array<int, 3>>* tris = nullptr;
+  const std::vector<int>* gid = nullptr;  // ranked id -> input id (the tie-break is on input ids)
+  std::vector<std::array<int, 3>> sorted;
+  const std::array<int, 3>& of(std::uint32_t t) {
+    if (sorted.empty()) {
+      sorted.resize(tris->size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sorted.size(), 8192),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          const auto& g = *gid;
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                            const auto& a = (*tris)[k];
+                            sorted[k] = sorted3(g[U(a[0])], g[U(a[1])], g[U(a[2])]);
+                          }
+                        });
+    }
+    return sorted[t];
   }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
+};
+struct TriEntryLess {
+  TieKeys* ties;
+  bool operator()(const TriEntry& l, const TriEntry& r) const {
+    if (l.key != r.key) return l.key < r.key;
+    return ties->of(l.t) > ties->of(r.t);
+  }
 };
 using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLess>;
 
@@ -162,7 +182,8 @@ struct Constrictor2::Impl {
   std::vector<int> nxt, prv;
   std::vector<unsigned> ver;
   std::size_t n_onb = 0, removed = 0;
-  TriHeap heap{TriEntryLess{&dt.triangles, &gid}};
+  TieKeys ties{&dt.triangles, &gid, {}};
+  TriHeap heap{TriEntryLess{&ties}};
   bool locked = false, stopped = false;
   double ms_delaunay = 0, ms_constrict = 0;
 
