@@ -458,7 +458,8 @@ struct Constrictor2::Impl {
   // Side values of pair (i, j), i < j (spec §2.1; exact signs), restricted to the points within
   // distance `radius` of the midpoint (ring search on the grid; the true minimum on a side is
   // found whenever it is attained inside the radius). Points with apex value below g lie within
-  // |ij| / (1 - |g|) of the midpoint (they see ij under a wider angle), which bounds the searches.
+  // below_bound(|ij|, g) of the midpoint (they see ij under a wider angle), which bounds the
+  // searches.
   void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
     double searched = 0;
     search_sides(i, j, radius, ga, gb, blocked, searched);
@@ -495,10 +496,7 @@ struct Constrictor2::Impl {
       if (o > 0) ga = std::min(ga, g); else gb = std::min(gb, g);
     };
     const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-    auto cut = [&](double g) {
-      const double sn = 1.0 - std::fabs(g);
-      return sn <= 0 ? HUGE_VAL : 1.001 * len / sn + cs;
-    };
+    auto cut = [&](double g) { return below_bound(len, g) + cs; };
     bool exhaustive = true;
     for (int k = 0; k <= kmax && !blocked; ++k) {
       if (k >= 2) {
@@ -518,10 +516,19 @@ struct Constrictor2::Impl {
     }
     searched = exhaustive ? HUGE_VAL : radius;
   }
+  // Every point whose apex value for a segment of length len is below g lies within this distance
+  // of the segment's midpoint (1.001: margin for the rounding of len and of the distances): for
+  // g <= 0 inside the diametral disk (a negative value is an obtuse angle at the point, Thales),
+  // for 0 < g < 1 within len / (1 - g) (the angle exceeds arcsin(1 - g): inside the two arcs of
+  // that inscribed angle, whose points are at most 2R = len / sin of it from the midpoint).
+  static double below_bound(double len, double g) {
+    if (g <= 0) return 0.5005 * len;
+    const double s = 1.0 - g;
+    return s <= 0 ? HUGE_VAL : 1.001 * len / s;
+  }
   double reach(int i, int j, double g) const {
-    const double s = 1.0 - std::fabs(g);
     const double len = std::hypot(P(j)[0] - P(i)[0], P(j)[1] - P(i)[1]);
-    return s <= 0 ? HUGE_VAL : 1.001 * len / s + grid.cell_size();
+    return below_bound(len, g) + grid.cell_size();
   }
 
   // Δ(u, v) = filtration value (spec §2.2); -inf for a blocked pair. Exhaustive when a side is
