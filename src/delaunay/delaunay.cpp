@@ -284,6 +284,20 @@ void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMe
   });
 }
 
+// CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
+void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
+  DT2::Face_handle hint;
+  int rank = 0;
+  for (const auto& it : items) {
+    const DT2::Vertex_handle v = dt.insert(it.first, hint);
+    if (v != DT2::Vertex_handle()) {
+      v->info() = rank;
+      hint = v->face();
+    }
+    ++rank;
+  }
+}
+
 }  // namespace
 
 namespace detail {
@@ -293,18 +307,7 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
   const std::size_t n = points.size();
   const auto items = sorted_input<2, K::Point_2>(points);
   DT2 dt;
-  {
-    DT2::Face_handle hint;
-    int rank = 0;
-    for (const auto& it : items) {
-      const DT2::Vertex_handle v = dt.insert(it.first, hint);
-      if (v != DT2::Vertex_handle()) {
-        v->info() = rank;
-        hint = v->face();
-      }
-      ++rank;
-    }
-  }
+  insert_sorted(dt, items);
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
   if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
 
@@ -341,18 +344,7 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
     detail::resize_big(out.neighbors, 2 * n);
   });
   DT2 dt;
-  {
-    DT2::Face_handle hint;
-    int rank = 0;
-    for (const auto& it : items) {
-      const DT2::Vertex_handle v = dt.insert(it.first, hint);
-      if (v != DT2::Vertex_handle()) {
-        v->info() = rank;
-        hint = v->face();
-      }
-      ++rank;
-    }
-  }
+  insert_sorted(dt, items);
   side.wait();
   std::vector<std::pair<K::Point_2, int>>().swap(items);  // lower peak memory during the export
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
