@@ -188,7 +188,7 @@ struct Constrictor2::Impl {
   double ms_delaunay = 0, ms_constrict = 0;
 
   // Fallback state (built on lock).
-  bool fb_ready = false;
+  bool fb_ready = false, adj_ready = false;
   std::vector<int> adj_off, adj;          // DT adjacency (CSR)
   std::vector<int> vt_off, vt;            // vertex -> incident triangles (CSR)
   Grid grid;
@@ -343,33 +343,49 @@ struct Constrictor2::Impl {
   void build_fallback() {
     if (fb_ready) return;
     fb_ready = true;
-    std::vector<std::vector<int>> nb(n);
-    adj_off.assign(n + 1, 0);
-    vt_off.assign(n + 1, 0);
-    for (const auto& tr : dt.triangles)
-      for (int i = 0; i < 3; ++i) {
-        const int u = tr[U(i)], v = tr[U((i + 1) % 3)];
-        nb[U(u)].push_back(v);
-        nb[U(v)].push_back(u);
-        ++vt_off[U(u) + 1];
-      }
-    for (std::size_t v = 0; v < n; ++v) {
-      std::sort(nb[v].begin(), nb[v].end());
-      nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
-      adj_off[v + 1] = adj_off[v] + static_cast<int>(nb[v].size());
-      vt_off[v + 1] += vt_off[v];
-    }
-    adj.reserve(U(adj_off[n]));
-    for (std::size_t v = 0; v < n; ++v) adj.insert(adj.end(), nb[v].begin(), nb[v].end());
-    vt.assign(U(vt_off[n]), 0);
-    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
-    for (std::size_t t = 0; t < dt.triangles.size(); ++t)
-      for (int i = 0; i < 3; ++i) vt[U(fill[U(dt.triangles[t][U(i)])]++)] = static_cast<int>(t);
+    build_adjacency();
     grid.build(*pts);
     out_edge.assign(n, -1);
     for (std::size_t v = 0; v < n; ++v)
       if (onb[v]) out_edge[v] = add_edge(static_cast<int>(v), nxt[v]);
     mark.assign(n, 0);
+  }
+  void build_adjacency() {
+    if (adj_ready) return;
+    adj_ready = true;
+    // Adjacency by counting sort: the counter-clockwise edge u->v of a triangle gives u its
+    // neighbour v (the reverse comes from the triangle across), and a hull edge also gives v its
+    // neighbour u; so every neighbour comes exactly once. Lists sorted for is_dt_edge().
+    adj_off.assign(n + 1, 0);
+    vt_off.assign(n + 1, 0);
+    const std::size_t nt = dt.triangles.size();
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 3; ++i) {
+        const auto& tr = dt.triangles[t];
+        ++adj_off[U(tr[U((i + 1) % 3)]) + 1];
+        if (dt.neighbors[t][U(i)] < 0) ++adj_off[U(tr[U((i + 2) % 3)]) + 1];
+        ++vt_off[U(tr[U(i)]) + 1];
+      }
+    for (std::size_t v = 0; v < n; ++v) {
+      adj_off[v + 1] += adj_off[v];
+      vt_off[v + 1] += vt_off[v];
+    }
+    adj.assign(U(adj_off[n]), 0);
+    {
+      std::vector<int> at(adj_off.begin(), adj_off.end() - 1);
+      for (std::size_t t = 0; t < nt; ++t)
+        for (int i = 0; i < 3; ++i) {
+          const auto& tr = dt.triangles[t];
+          const int u = tr[U((i + 1) % 3)], v = tr[U((i + 2) % 3)];
+          adj[U(at[U(u)]++)] = v;
+          if (dt.neighbors[t][U(i)] < 0) adj[U(at[U(v)]++)] = u;
+        }
+      for (std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
+    }
+    vt.assign(U(vt_off[n]), 0);
+    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
+    for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i) vt[U(fill[U(dt.triangles[t][U(i)])]++)] = static_cast<int>(t);
   }
   bool is_dt_edge(int u, int v) const {
     return std::binary_search(adj.begin() + adj_off[U(u)], adj.begin() + adj_off[U(u) + 1], v);
@@ -835,7 +851,7 @@ struct Constrictor2::Impl {
       r.stages.push_back({"refine", 0});
       r.ms_refine = ms_since(tr);
     }
-    if (!fb_ready && (r.method != "gamma" || r.refine_moves > 0)) build_fallback();
+    if (r.method != "gamma" || r.refine_moves > 0) build_adjacency();  // for fallback_edges
     const std::size_t m = poly.size();
     for (std::size_t i = 0; i < m; ++i) {
       const int a = poly[i], b = poly[(i + 1) % m];
@@ -843,7 +859,7 @@ struct Constrictor2::Impl {
       const double* pb = P(b);
       r.area += 0.5 * (pa[0] * pb[1] - pa[1] * pb[0]);
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
-      if (fb_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
+      if (adj_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
     }
     if (r.perimeter_before_refine == 0) r.perimeter_before_refine = r.perimeter;
     r.boundary.resize(m);
