@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Exact polygon validation: indices, every point once, simplicity (Shamos–Hoey sweep), CCW.
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <vector>
@@ -102,11 +103,15 @@ class Sweep {
     }
   }
 
-  // Returns true and the pair if two edges conflict.
-  bool run(std::size_t& e_out, std::size_t& f_out) {
+  // Returns true and the pair if two edges conflict. only (optional): the edges to sweep (a pair
+  // of edges outside it is known not to conflict).
+  bool run(std::size_t& e_out, std::size_t& f_out, const std::vector<char>* only = nullptr) {
     const std::size_t n = P_.n;
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    const auto in = [&](std::size_t e) { return !only || (*only)[e] != 0; };
+    std::vector<std::size_t> order;
+    order.reserve(only ? 0 : n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (in(i) || in(i == 0 ? n - 1 : i - 1)) order.push_back(i);
     std::sort(order.begin(), order.end(),
               [&](std::size_t i, std::size_t j) { return lex_less(P_.vtx(i), P_.vtx(j)); });
     Cmp cmp{this};
@@ -118,7 +123,7 @@ class Sweep {
       const std::size_t inc[2] = {e_in, e_out_edge};
       // Deletions first (edges whose right endpoint is v).
       for (std::size_t e : inc) {
-        if (right_[e] != v || where[e] == active.end()) continue;
+        if (!in(e) || right_[e] != v || where[e] == active.end()) continue;
         auto it = where[e];
         auto above = std::next(it);
         if (it != active.begin() && above != active.end()) {
@@ -129,7 +134,7 @@ class Sweep {
         where[e] = active.end();
       }
       for (std::size_t e : inc) {
-        if (left_[e] != v) continue;
+        if (!in(e) || left_[e] != v) continue;
         if (e == e_in && e_in == e_out_edge) continue;
         auto res = active.insert(e);
         if (bad_) { e_out = bad_e_; f_out = bad_f_; return true; }
@@ -179,6 +184,86 @@ class Sweep {
   mutable std::size_t bad_e_ = 0, bad_f_ = 0;
 };
 
+// The edges a conflict could involve when every edge with dt[e] set is an edge of one
+// triangulation: two such edges never conflict (they meet only at a shared endpoint, and
+// consecutive ones cannot fold back), so a conflict involves an edge without the flag and an
+// edge whose bounding box meets its box. Those are found with a uniform grid of the unflagged
+// edges' boxes (exact closed-box comparisons). Returns false when the subset would not be much
+// smaller than the polygon (then the whole polygon is swept).
+bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector<char>& only) {
+  const std::size_t n = P.n;
+  std::vector<std::size_t> odd;  // edges that are not triangulation edges
+  for (std::size_t e = 0; e < n; ++e)
+    if (!dt[e]) odd.push_back(e);
+  if (odd.size() * 8 > n) return false;
+  struct Box { double x0, x1, y0, y1; };
+  const auto box = [&](std::size_t e) {
+    const double* a = P.vtx(e);
+    const double* b = P.vtx(P.nxt(e));
+    return Box{std::min(a[0], b[0]), std::max(a[0], b[0]), std::min(a[1], b[1]), std::max(a[1], b[1])};
+  };
+  const auto meet = [](const Box& p, const Box& q) {
+    return p.x0 <= q.x1 && q.x0 <= p.x1 && p.y0 <= q.y1 && q.y0 <= p.y1;
+  };
+  double X0 = P.vtx(0)[0], X1 = X0, Y0 = P.vtx(0)[1], Y1 = Y0;
+  for (std::size_t i = 1; i < n; ++i) {
+    X0 = std::min(X0, P.vtx(i)[0]); X1 = std::max(X1, P.vtx(i)[0]);
+    Y0 = std::min(Y0, P.vtx(i)[1]); Y1 = std::max(Y1, P.vtx(i)[1]);
+  }
+  const int G = static_cast<int>(std::min<std::size_t>(1024, 4 + 4 * static_cast<std::size_t>(std::sqrt(static_cast<double>(odd.size())))));
+  const double cw = std::max(X1 - X0, 1e-300) / G, ch = std::max(Y1 - Y0, 1e-300) / G;
+  const auto cx = [&](double x) { return std::clamp(static_cast<int>(std::floor((x - X0) / cw)), 0, G - 1); };
+  const auto cy = [&](double y) { return std::clamp(static_cast<int>(std::floor((y - Y0) / ch)), 0, G - 1); };
+  constexpr long long kBig = 4096;  // boxes over more cells are compared with every edge
+  const auto cells_of = [&](const Box& b, int& i0, int& i1, int& j0, int& j1) {
+    i0 = cx(b.x0); i1 = cx(b.x1); j0 = cy(b.y0); j1 = cy(b.y1);
+    return static_cast<long long>(i1 - i0 + 1) * (j1 - j0 + 1);
+  };
+  // CSR of the unflagged edges by cell; the big ones in a list.
+  std::vector<std::size_t> start(static_cast<std::size_t>(G) * static_cast<std::size_t>(G) + 1, 0), big;
+  const auto cell = [&](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(G) + static_cast<std::size_t>(i); };
+  std::vector<std::size_t> items;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::size_t> fill;
+    if (pass == 1) {
+      for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+      fill.assign(start.begin(), start.end() - 1);
+    }
+    if (pass == 1) items.assign(start.back(), 0);
+    for (std::size_t e : odd) {
+      int i0, i1, j0, j1;
+      if (cells_of(box(e), i0, i1, j0, j1) > kBig) {
+        if (pass == 0) big.push_back(e);
+        continue;
+      }
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          if (pass == 0) ++start[cell(i, j) + 1];
+          else items[fill[cell(i, j)]++] = e;
+        }
+    }
+    if (pass == 1) {
+      if (big.size() > 64) return false;
+      only.assign(n, 0);
+      for (std::size_t e : odd) only[e] = 1;
+      for (std::size_t f = 0; f < n; ++f) {
+        if (only[f]) continue;
+        const Box bf = box(f);
+        bool hit = false;
+        for (std::size_t g : big) hit = hit || meet(bf, box(g));
+        int i0, i1, j0, j1;
+        if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
+        for (int j = j0; j <= j1 && !hit; ++j)
+          for (int i = i0; i <= i1 && !hit; ++i)
+            for (std::size_t k = start[cell(i, j)]; k < start[cell(i, j) + 1] && !hit; ++k)
+              hit = meet(bf, box(items[k]));
+        only[f] = hit ? 1 : 0;
+      }
+    }
+  }
+  return true;
+}
+
 Status report_crossing(const Poly& P, std::size_t e, std::size_t f, PolygonCheck* d) {
   if (e > f) std::swap(e, f);
   if (d) d->crossing_edges = {{static_cast<int>(e), static_cast<int>(f)}};
@@ -225,7 +310,7 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
   std::vector<int> succ(n, -1);
   for (std::size_t k = 0; k < boundary.size(); ++k)
     succ[static_cast<std::size_t>(boundary[k])] = boundary[(k + 1) % boundary.size()];
-  std::vector<char> found(n, 0);
+  std::vector<char> found(n, 0);  // found[u]: the polygon edge from u is a triangle edge
   bool all_edges_in = true;
   for (const auto& t : triangles) {
     for (int v : t)
@@ -237,12 +322,22 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
       if (succ[static_cast<std::size_t>(v)] == u) found[static_cast<std::size_t>(v)] = 1;
     }
   }
+  const bool indices_in = all_edges_in;
   for (std::size_t u = 0; u < n && all_edges_in; ++u) all_edges_in = found[u] != 0;
   Poly P{points, boundary, boundary.size()};
-  if (!all_edges_in) {  // some edge is not a triangulation edge: the general sweep decides
+  if (!all_edges_in) {
+    // Some edge is not a triangulation edge: the sweep decides, over the edges near those when
+    // there are few of them.
     Sweep sweep(P);
     std::size_t e = 0, f = 0;
-    if (sweep.run(e, f)) return report_crossing(P, e, f, details);
+    std::vector<char> dt_edge, only;
+    bool subset = false;
+    if (indices_in) {
+      dt_edge.resize(P.n);
+      for (std::size_t k = 0; k < P.n; ++k) dt_edge[k] = found[static_cast<std::size_t>(boundary[k])];
+      subset = conflict_candidates(P, dt_edge, only);
+    }
+    if (sweep.run(e, f, subset ? &only : nullptr)) return report_crossing(P, e, f, details);
   }
   // Edges of one triangulation meet only at common endpoints, and the cycle visits every vertex
   // once: a simple polygon (two edges at a vertex cannot overlap, so no fold-back either).

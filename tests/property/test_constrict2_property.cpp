@@ -224,6 +224,37 @@ TEST(Constrict2Property, ValidatorMatchesBruteForce) {
   std::printf("[ Constrict2Property ] validator: %d valid polygons of 3000\n", valid);
 }
 
+// validate_polygon_in_triangulation with a few non-Delaunay edges sweeps only the edges near
+// them: local defects (a short reversal or a swap of nearby vertices) in large valid polygons,
+// against the brute-force validator.
+TEST(Constrict2Property, TriangulationValidatorFindsLocalDefects) {
+  int valid = 0, invalid = 0;
+  for (std::uint64_t seed = 1; seed <= 250; ++seed) {
+    std::mt19937_64 rng(seed);
+    const PointSet p = make_points(seed % 2 ? 2 : 0, 200 + rng() % 300, rng);
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(p, {}, r).is_ok()) << "seed " << seed;
+    std::vector<int> b = r.boundary;
+    const std::size_t m = b.size(), i = rng() % m, len = 1 + rng() % 4;
+    if (seed % 3 == 0) {
+      std::swap(b[i], b[(i + 2 + rng() % 4) % m]);
+    } else {
+      for (std::size_t k = 0; k < (len + 1) / 2; ++k) std::swap(b[(i + k) % m], b[(i + len - k) % m]);
+    }
+    Delaunay2 dt;
+    ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
+    const bool slow = validate_polygon_brute_force(p, b).is_ok();
+    ASSERT_EQ(validate_polygon_in_triangulation(p, b, dt.triangles).is_ok(), slow) << "seed " << seed;
+    std::vector<int> rev(b.rbegin(), b.rend());
+    ASSERT_EQ(validate_polygon_in_triangulation(p, rev, dt.triangles).is_ok(),
+              validate_polygon_brute_force(p, rev).is_ok()) << "seed " << seed;
+    (slow ? valid : invalid)++;
+  }
+  std::printf("[ Constrict2Property ] local defects: %d valid, %d invalid\n", valid, invalid);
+  EXPECT_GT(valid, 20);
+  EXPECT_GT(invalid, 40);
+}
+
 // The engine works on ranked vertex ids (CGAL's spatial insertion order) and maps every tie and
 // every output back to input ids, and the refinement starts at a geometric vertex. In general
 // position (no ties) a permuted (and rotated) input must therefore give exactly the permuted
