@@ -77,12 +77,13 @@ Fallback parse_fallback(const std::string& s) {
   raise({StatusCode::InvalidArgument, "fallback must be auto, gamma0, degree4 or none, got '" + s + "'"});
 }
 
+py::tuple verdict(const Status& st, const std::string& reason) { return py::make_tuple(st.is_ok(), reason); }
+
 struct Polygon {
   Polygon2Result r;
 };
 struct Surface {
-  Mesh3Result r;
-  MeshCheck check;
+  Mesh3Result r;  // validated by reconstruct3 (closed, manifold, oriented, genus 0) when complete
 };
 
 Polygon reconstruct2_py(const py::handle& points, const std::string& fallback, bool refine) {
@@ -109,12 +110,7 @@ Surface reconstruct3_py(const py::handle& points, bool grow) {
   Surface out;
   {
     py::gil_scoped_release nogil;
-    Status st = reconstruct3(p, o, out.r);
-    if (st && out.r.complete) {
-      MeshCheckOptions mo;
-      st = validate_mesh3(p, out.r.mesh, &out.check, mo);
-      if (!st) st = Status(StatusCode::Internal, "reconstruct3 returned an invalid surface: " + st.message());
-    }
+    const Status st = reconstruct3(p, o, out.r);
     if (!st) {
       py::gil_scoped_acquire gil;
       raise(st);
@@ -211,9 +207,10 @@ PYBIND11_MODULE(constrict, m) {
                              "(F, 3) vertex indices, oriented outward")
       .def_property_readonly("tetrahedra", [](const Surface& s) { return ids(s.r.tets); },
                              "(T, 4) the body bounded by the surface, positively oriented")
-      .def_property_readonly("valid", [](const Surface& s) { return s.r.complete && s.check.reason.empty() && s.check.genus == 0; })
+      .def_property_readonly("valid", [](const Surface& s) { return s.r.complete; })
       .def_property_readonly("complete", [](const Surface& s) { return s.r.complete; })
-      .def_property_readonly("genus", [](const Surface& s) { return s.check.genus; })
+      .def_property_readonly("genus", [](const Surface& s) { return s.r.complete ? 0 : -1; },
+                             "0: the library validated a closed genus-0 surface through every point")
       .def_property_readonly("method", [](const Surface& s) { return s.r.method; })
       .def_property_readonly("volume", [](const Surface& s) { return s.r.volume; })
       .def_property_readonly("area", [](const Surface& s) { return s.r.surface_area; })
@@ -246,8 +243,7 @@ PYBIND11_MODULE(constrict, m) {
         const PointSet p = to_points(points, 2);
         const auto b = boundary.cast<std::vector<int>>();
         PolygonCheck c;
-        const Status st = validate_polygon(p, b, &c);
-        return py::make_tuple(st.is_ok(), c.reason);
+        return verdict(validate_polygon(p, b, &c), c.reason);
       },
       py::arg("points"), py::arg("boundary"),
       "(ok, reason): is boundary a simple counter-clockwise polygon through every point exactly "
@@ -262,8 +258,7 @@ PYBIND11_MODULE(constrict, m) {
         for (py::ssize_t i = 0; i < t.shape(0); ++i)
           mesh.triangles.push_back({{static_cast<int>(t.at(i, 0)), static_cast<int>(t.at(i, 1)), static_cast<int>(t.at(i, 2))}});
         MeshCheck c;
-        const Status st = validate_mesh3(p, mesh, &c);
-        return py::make_tuple(st.is_ok(), c.reason);
+        return verdict(validate_mesh3(p, mesh, &c), c.reason);
       },
       py::arg("points"), py::arg("triangles"),
       "(ok, reason): is the mesh closed, manifold, outward oriented, connected, genus 0 and "

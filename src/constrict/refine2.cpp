@@ -860,22 +860,23 @@ constexpr std::size_t kStarts = 8;
 constexpr std::size_t kMultiStartMaxPoints = 5000;
 
 // Where the search starts: the position of the point farthest from the centre of the bounding
-// box (xy: coordinates in polygon order). Both are computed exactly the same way however the
-// input is numbered, and after an exact rotation by 90° (min/max and negation are
+// box (pt(i): the coordinates of polygon position i). Both are computed exactly the same way
+// however the input is numbered, and after an exact rotation by 90° (min/max and negation are
 // exact, dx² + dy² is commutative); ties go to the smallest stable id.
-std::size_t start_position(const std::vector<double>& xy, const std::vector<int>& poly, const std::vector<int>* order) {
+template <class Pt>
+std::size_t start_position(const Pt& pt, const std::vector<int>& poly, const std::vector<int>* order) {
   const std::size_t n = poly.size();
-  double x0 = xy[0], x1 = xy[0], y0 = xy[1], y1 = xy[1];
+  double x0 = pt(0)[0], x1 = x0, y0 = pt(0)[1], y1 = y0;
   for (std::size_t i = 1; i < n; ++i) {
-    x0 = std::min(x0, xy[2 * i]); x1 = std::max(x1, xy[2 * i]);
-    y0 = std::min(y0, xy[2 * i + 1]); y1 = std::max(y1, xy[2 * i + 1]);
+    x0 = std::min(x0, pt(i)[0]); x1 = std::max(x1, pt(i)[0]);
+    y0 = std::min(y0, pt(i)[1]); y1 = std::max(y1, pt(i)[1]);
   }
   const double cx = 0.5 * x0 + 0.5 * x1, cy = 0.5 * y0 + 0.5 * y1;
   const auto stable = [&](std::size_t i) { return order ? (*order)[U(poly[i])] : poly[i]; };
   std::size_t best = 0;
   double best_d = -1;
   for (std::size_t i = 0; i < n; ++i) {
-    const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
+    const double dx = pt(i)[0] - cx, dy = pt(i)[1] - cy;
     const double d = dx * dx + dy * dy;
     if (d > best_d || (d == best_d && stable(i) < stable(best))) { best = i; best_d = d; }
   }
@@ -886,12 +887,7 @@ std::size_t start_position(const std::vector<double>& xy, const std::vector<int>
 // polygon, however it is numbered or rotated by 90°.
 double geometric_length(const PointSet& pts, const std::vector<int>& poly, const std::vector<int>* order) {
   const std::size_t n = poly.size();
-  std::vector<double> xy(2 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    xy[2 * i] = pts[U(poly[i])][0];
-    xy[2 * i + 1] = pts[U(poly[i])][1];
-  }
-  const std::size_t lo = start_position(xy, poly, order);
+  const std::size_t lo = start_position([&](std::size_t i) { return pts[U(poly[i])]; }, poly, order);
   double s = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const double* a = pts[U(poly[(lo + k) % n])];
@@ -947,7 +943,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   // spaced positions after it: the result does not depend on how the input is numbered), and on
   // small inputs several starts run and the shortest result is kept.
   const std::size_t n = polygon.size();
-  const std::size_t lo = start_position(xy, polygon, order);
+  const std::size_t lo = start_position([&](std::size_t i) { return &xy[2 * i]; }, polygon, order);
   const std::size_t starts = n <= kMultiStartMaxPoints ? kStarts : 1;
   std::vector<int> best;
   double best_len = 0;

@@ -219,47 +219,37 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
     i0 = cx(b.x0); i1 = cx(b.x1); j0 = cy(b.y0); j1 = cy(b.y1);
     return static_cast<long long>(i1 - i0 + 1) * (j1 - j0 + 1);
   };
-  // CSR of the unflagged edges by cell; the big ones in a list.
-  std::vector<std::size_t> start(static_cast<std::size_t>(G) * static_cast<std::size_t>(G) + 1, 0), big;
+  // CSR of the unflagged edges by cell (a counting pass, then a filling pass); the big ones in a
+  // list.
   const auto cell = [&](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(G) + static_cast<std::size_t>(i); };
-  std::vector<std::size_t> items;
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<std::size_t> fill;
-    if (pass == 1) {
-      for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
-      fill.assign(start.begin(), start.end() - 1);
-    }
-    if (pass == 1) items.assign(start.back(), 0);
-    for (std::size_t e : odd) {
-      int i0, i1, j0, j1;
-      if (cells_of(box(e), i0, i1, j0, j1) > kBig) {
-        if (pass == 0) big.push_back(e);
-        continue;
-      }
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          if (pass == 0) ++start[cell(i, j) + 1];
-          else items[fill[cell(i, j)]++] = e;
-        }
-    }
-    if (pass == 1) {
-      if (big.size() > 64) return false;
-      only.assign(n, 0);
-      for (std::size_t e : odd) only[e] = 1;
-      for (std::size_t f = 0; f < n; ++f) {
-        if (only[f]) continue;
-        const Box bf = box(f);
-        bool hit = false;
-        for (std::size_t g : big) hit = hit || meet(bf, box(g));
-        int i0, i1, j0, j1;
-        if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
-        for (int j = j0; j <= j1 && !hit; ++j)
-          for (int i = i0; i <= i1 && !hit; ++i)
-            for (std::size_t k = start[cell(i, j)]; k < start[cell(i, j) + 1] && !hit; ++k)
-              hit = meet(bf, box(items[k]));
-        only[f] = hit ? 1 : 0;
-      }
-    }
+  const auto for_cells = [&](std::size_t e, const auto& f) {
+    int i0, i1, j0, j1;
+    if (cells_of(box(e), i0, i1, j0, j1) > kBig) return false;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(cell(i, j));
+    return true;
+  };
+  std::vector<std::size_t> start(static_cast<std::size_t>(G) * static_cast<std::size_t>(G) + 1, 0), big;
+  for (std::size_t e : odd)
+    if (!for_cells(e, [&](std::size_t c) { ++start[c + 1]; })) big.push_back(e);
+  if (big.size() > 64) return false;
+  for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+  std::vector<std::size_t> items(start.back()), at(start.begin(), start.end() - 1);
+  for (std::size_t e : odd) for_cells(e, [&](std::size_t c) { items[at[c]++] = e; });
+  // The candidates: the unflagged edges, and every edge whose box meets one of theirs.
+  only.assign(n, 0);
+  for (std::size_t e : odd) only[e] = 1;
+  for (std::size_t f = 0; f < n; ++f) {
+    if (only[f]) continue;
+    const Box bf = box(f);
+    bool hit = false;
+    for (std::size_t g : big) hit = hit || meet(bf, box(g));
+    int i0, i1, j0, j1;
+    if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
+    for (int j = j0; j <= j1 && !hit; ++j)
+      for (int i = i0; i <= i1 && !hit; ++i)
+        for (std::size_t k = start[cell(i, j)]; k < start[cell(i, j) + 1] && !hit; ++k) hit = meet(bf, box(items[k]));
+    only[f] = hit ? 1 : 0;
   }
   return true;
 }
