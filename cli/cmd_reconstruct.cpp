@@ -216,11 +216,11 @@ class ProgressVisitor3 final : public Constrict3Visitor {
       if ((++removed_ & 4095u) == 0) progress_.count(removed_, 6 * n_);
     } else if (e.kind == Constrict3Event::Kind::Lock) {
       progress_.phase("lock: fallback");
-    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "grow") {
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == Stage3::Grow) {
       progress_.phase("growing the body from the inside (labels)");
-    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "fill") {
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == Stage3::Fill) {
       progress_.phase("filling the pockets of the grown body");
-    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == "candidates") {
+    } else if (e.kind == Constrict3Event::Kind::StageBegin && e.stage == Stage3::Candidates) {
       // The variant runs are parallel and report no events (docs/reconstruction-3d.md §4.5).
       progress_.phase("constricting: variant runs in parallel, then the smallest-area surface");
     }
@@ -242,16 +242,12 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     return fail({StatusCode::InvalidArgument, a.body + ": the body is written as VTK legacy (.vtk)"});
   if (a.fallback == "gamma0" || a.fallback == "degree4")
     return fail({StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback; 3D has auto (star cavities) or none"});
+  // --refine none: the paper's algorithm (Constrict3Options::paper()); --fast: one variant run.
   Constrict3Options opt;
-  opt.fallback = a.fallback == "none" ? Fallback3::None : Fallback3::Auto;
+  (void)Constrict3Options::from_preset(a.refine == "none" ? "paper" : a.fast ? "fast" : "default", opt);
+  (void)fallback3_from_name(a.fallback, opt.fallback);
   opt.stop_after = a.stop_after;
-  if (a.refine == "none") {
-    opt.refine = Refine3::None;
-    opt.carve_confidence = 2;  // the paper's algorithm: no post-pass at all
-    opt.grow = false;
-  }
   if (a.no_grow) opt.grow = false;
-  if (a.fast) opt.variants = {{1.0, 1.0}};
   opt.validate = false;  // the surface is validated below (validate_mesh3) and reported
   (void)criterion_from_name(a.method, opt.criterion);
   progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay tetrahedralization, labels");
@@ -268,7 +264,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     r.tets = std::move(v.tets);
     r.complete = v.complete;
     r.unplaced_points = v.unplaced_points;
-    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
+    r.method = v.complete ? Method3::VoronoiSkeleton : Method3::Incomplete;
     r.volume = v.volume;
     r.surface_area = v.surface_area;
     r.ms_delaunay = v.stats.ms_delaunay;
@@ -326,7 +322,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["components"] = chk.components;
     j["faces"] = r.mesh.triangles.size();
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
-    j["method"] = r.method;
+    j["method"] = to_string(r.method);
     add_method_json(a, skel, j);
     j["fallback_mode"] = a.fallback;
     j["fallback"] = r.cavities > 0 ? nlohmann::json("cavity") : nlohmann::json(nullptr);
@@ -334,7 +330,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["stuck_points"] = r.stuck_points;
     j["unplaced_points"] = r.unplaced_points;
     nlohmann::json stages = nlohmann::json::array();
-    for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}, {"removed", s.removed}});
+    for (const auto& s : r.stages) stages.push_back({{"name", to_string(s.name)}, {"placed", s.placed}, {"removed", s.removed}});
     j["stages"] = stages;
     j["removed_one_face"] = r.removed_one_face;
     j["removed_two_face"] = r.removed_two_face;
@@ -365,15 +361,15 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
-    const char* why = is_skeleton(a) ? incomplete_why(a, r.method)
-                      : r.method == "stopped" ? "stopped early (--stop-after)" : "constriction locked";
+    const char* why = is_skeleton(a) ? incomplete_why(a, to_string(r.method))
+                      : r.method == Method3::Stopped ? "stopped early (--stop-after)" : "constriction locked";
     return fail({StatusCode::Incomplete, std::string(why) + ": " + std::to_string(n - nb) + " of " + std::to_string(n) +
                                              " points left inside; the surface in " + a.out + " passes through " +
                                              std::to_string(nb) + " points"});
   }
   if (!a.quiet) {
     std::printf("surface through %zu/%zu points: valid (closed, manifold, outward, genus %d, %zu triangles); method %s",
-                nb, n, chk.genus, r.mesh.triangles.size(), r.method.c_str());
+                nb, n, chk.genus, r.mesh.triangles.size(), to_string(r.method));
     if (a.method != "gamma" && !is_skeleton(a)) std::printf(" (criterion %s)", a.method.c_str());
     if (r.locked) std::printf(" (gamma locked with %zu inside)", r.stuck_points.size());
     std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));

@@ -271,7 +271,7 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
   std::vector<Panel3> panels;
   for (const auto& m : shots) panels.push_back({&m, views[0]});
   if (Status s = write_picture3(a, pts, panels); !s) return fail(s);
-  if (!a.quiet) print_stages(total, targets, r.method, a.out);
+  if (!a.quiet) print_stages(total, targets, to_string(r.method), a.out);
   return 0;
 }
 

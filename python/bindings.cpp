@@ -207,17 +207,17 @@ PYBIND11_MODULE(constrict, m) {
                              "(F, 3) vertex indices, oriented outward")
       .def_property_readonly("tetrahedra", [](const Surface& s) { return ids(s.r.tets); },
                              "(T, 4) the body bounded by the surface, positively oriented")
-      .def_property_readonly("valid", [](const Surface& s) { return s.r.complete; })
+      .def_property_readonly("valid", [](const Surface& s) { return s.r.valid(); })
       .def_property_readonly("complete", [](const Surface& s) { return s.r.complete; })
       .def_property_readonly("genus", [](const Surface& s) { return s.r.complete ? 0 : -1; },
                              "0: the library validated a closed genus-0 surface through every point")
-      .def_property_readonly("method", [](const Surface& s) { return s.r.method; })
+      .def_property_readonly("method", [](const Surface& s) { return std::string(to_string(s.r.method)); })
       .def_property_readonly("volume", [](const Surface& s) { return s.r.volume; })
       .def_property_readonly("area", [](const Surface& s) { return s.r.surface_area; })
       .def_property_readonly("unplaced_points", [](const Surface& s) { return ids(s.r.unplaced_points); })
       .def("__repr__", [](const Surface& s) {
         return "<constrict.Surface " + std::to_string(s.r.mesh.triangles.size()) + " triangles, method=" +
-               s.r.method + (s.r.complete ? ", valid" : ", incomplete") + ">";
+               std::string(to_string(s.r.method)) + (s.r.complete ? ", valid" : ", incomplete") + ">";
       });
 
   m.def("reconstruct2", &reconstruct2_py, py::arg("points"), py::arg("fallback") = "auto",

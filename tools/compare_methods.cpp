@@ -212,7 +212,7 @@ void run3(const Input& in, const PointSet& p, const std::string& method, std::si
     row.ms_method = r.ms_grow + r.ms_fill + r.ms_constrict + r.ms_fallback + r.ms_sculpt + r.ms_carve + r.ms_refine;
     row.on_boundary = p.size() - r.unplaced_points.size();
     mesh = std::move(r.mesh);
-    row.note = r.method + (r.cavities ? ", " + std::to_string(r.cavities) + " cavities" : "");
+    row.note = std::string(to_string(r.method)) + (r.cavities ? ", " + std::to_string(r.cavities) + " cavities" : "");
   }
   if (in.gt.empty()) return;
   // The GT mesh with its own vertex list (GT vertex i = point i in the shared data, but neither the

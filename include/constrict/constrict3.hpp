@@ -68,17 +68,32 @@ struct Constrict3Variant {
 /// docs/reconstruction-3d.md §4.2, §4.5). paper() selects the paper's plain behaviour (spec §5.3
 /// golden tests).
 struct Constrict3Options {
-  /// The paper's algorithm: TwoFaceKey::Sum, no post-pass (plus the lock fallback).
+  /// The paper's algorithm (seed paper §4.2, §4.3; spec gamma-graph.md §5.3 golden tests):
+  /// TwoFaceKey::Sum, one run with neither size bias nor labels, no growth, no carve, no
+  /// post-pass; the lock fallback stays. `constrict reconstruct --refine none` in 3D.
   static Constrict3Options paper() {
     Constrict3Options o;
     o.two_face_key = TwoFaceKey::Sum;
     o.refine = Refine3::None;
     o.variants.clear();
     o.size_bias = 0;
-    o.carve_confidence = 2;  // no carve pass
+    o.label_weight = 0;
+    o.carve_confidence = kCarveOff;
     o.grow = false;
     return o;
   }
+  /// One constriction run (size bias and labels) instead of the default two variants, when the
+  /// growth does not reach every point (CLI --fast).
+  static Constrict3Options fast() {
+    Constrict3Options o;
+    o.variants = {{1.0, 1.0}};
+    return o;
+  }
+  /// Options by preset name: "default", "paper", "fast".
+  /// @return Ok, or InvalidArgument naming the presets
+  static Status from_preset(const std::string& name, Constrict3Options& out);
+  /// carve_confidence above 1: no carve pass.
+  static constexpr double kCarveOff = 2.0;
   Fallback3 fallback = Fallback3::Auto;  ///< behaviour on lock
   Sculpt3 sculpt = Sculpt3::None;        ///< post-pass (measured in docs/reconstruction-3d.md)
   TwoFaceKey two_face_key = TwoFaceKey::Max;  ///< criterion of two-face tetrahedra
@@ -135,9 +150,40 @@ struct Constrict3Options {
   bool validate_self_intersections = false;
 };
 
+/// The stages of the 3D engine, in pipeline order (docs/architecture.md).
+enum class Stage3 {
+  Hull,        ///< the start: the convex hull (the points on it)
+  Grow,        ///< growth from the inside (docs/reconstruction-3d.md §4.7)
+  Fill,        ///< fill pass after the growth
+  Gamma,       ///< the γ-constriction from the convex hull (seed paper §4.2)
+  Cavity,      ///< star cavities after a lock (seed paper §4.3)
+  Carve,       ///< carve pass (docs/reconstruction-3d.md §4.6)
+  Sculpt,      ///< sculpting post-pass (Sculpt3)
+  Refine,      ///< Refine3 edge flips
+  Candidates,  ///< the variant runs (Constrict3Options::variants)
+};
+/// "hull", "grow", "fill", "gamma", "cavity", "carve", "sculpt", "refine", "candidates".
+const char* to_string(Stage3 stage) noexcept;
+
+/// How a 3D result was reached (Mesh3Result::method).
+enum class Method3 {
+  Gamma,            ///< "gamma": the constriction from the hull, no fallback needed
+  Grow,             ///< "grow": the growth from the inside reached every point
+  Cavity,           ///< "cavity": the lock fallback placed points
+  Locked,           ///< "locked": Fallback3::None, or the fallback exhausted (incomplete)
+  Stopped,          ///< "stopped": stop_after (incomplete)
+  VoronoiSkeleton,  ///< "voronoi-skeleton": the comparison method (voronoi_skeleton.hpp)
+  Incomplete,       ///< "incomplete": a comparison method that did not reach every point
+};
+const char* to_string(Method3 method) noexcept;
+
+/// Fallback3 by name: "auto", "none". @return false for another name
+bool fallback3_from_name(const std::string& name, Fallback3& out) noexcept;
+const char* to_string(Fallback3 fallback) noexcept;
+
 /// One stage and how many points it placed on the boundary.
 struct Constrict3Stage {
-  std::string name;          ///< "hull", "gamma", "cavity", "sculpt", "refine"
+  Stage3 name = Stage3::Hull;
   std::size_t placed = 0;    ///< points that joined the boundary in this stage
   std::size_t removed = 0;   ///< tetrahedra removed in this stage
 };
@@ -160,9 +206,11 @@ struct Mesh3Result {
   bool locked = false;                    ///< the Delaunay constriction locked
   std::vector<int> stuck_points;          ///< points inside when it locked (ascending)
   std::vector<int> unplaced_points;       ///< points still inside at the end (empty if complete)
-  /// "gamma" (no fallback needed), "cavity" (fallback placed points), "locked" (Fallback3::None
-  /// or fallback exhausted), "stopped" (stop_after).
-  std::string method;
+  Method3 method = Method3::Gamma;        ///< how it was reached
+  bool validated = false;                 ///< checked by the library (Constrict3Options::validate)
+  /// Complete (every point on the surface) and validated: a closed genus-0 2-manifold through
+  /// every point, the boundary of the body.
+  bool valid() const noexcept { return complete && validated; }
   std::vector<Constrict3Stage> stages;    ///< every stage run, in order
   std::size_t removed_one_face = 0;       ///< tetrahedra removed by the one-face rule
   std::size_t removed_two_face = 0;       ///< ... by the two-face rule (sculpting included)
@@ -200,7 +248,7 @@ struct Constrict3Event {
   double criterion = 0;                      ///< the key (Gamma: 1 - γ per two_face_key)
   int point = -1;                            ///< Cavity: the stuck point it is built around
   std::size_t cavity_size = 0;               ///< Cavity: tetrahedra replaced
-  std::string stage;                         ///< stage name
+  Stage3 stage = Stage3::Gamma;              ///< the stage it belongs to / begins
 };
 
 /// Observer of the constriction (figures, debugging, tests). Called synchronously.
@@ -240,7 +288,7 @@ class Constrictor3 {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  static Status finish_impl(Impl& s, Mesh3Result& r, bool validate);
+  static Status finish_impl(Impl& s, Mesh3Result& r, bool validate, bool growth_only = false);
   static void validate_result(Impl& s, Mesh3Result& r);
   Status run_candidates(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
                         Constrict3Visitor* visitor);

@@ -197,7 +197,7 @@ TEST(Constrict3Property, RandomFamiliesAreValidAndComplete) {
       locks += r.locked;
       stuck += static_cast<int>(r.stuck_points.size());
       cavities += static_cast<int>(r.cavities);
-      grown += r.method == "grow";
+      grown += to_string(r.method) == std::string("grow");
       grow_failed += r.grow_unreached > 0;
       EXPECT_TRUE(r.complete) << r.unplaced_points.size() << " points unplaced";
       MeshCheck mc;

@@ -257,7 +257,7 @@ TEST(Constrict3Models, GrowthRemovesTheHorseBridges) {
   Mesh3Result a, b;
   ASSERT_TRUE(reconstruct3(p, grow, a).is_ok());
   ASSERT_TRUE(reconstruct3(p, hull, b).is_ok());
-  EXPECT_EQ(a.method, "grow");
+  EXPECT_STREQ(to_string(a.method), "grow");
   EXPECT_TRUE(a.complete);
   EXPECT_GT(a.grown, 0u);
   EXPECT_EQ(b.grown, 0u);

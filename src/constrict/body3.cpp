@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Body3: the shared state of the 3D stages (detail/body3.hpp, docs/architecture.md).
+#include "constrict/detail/body3.hpp"
+
+#include "constrict/predicates.hpp"
+
+namespace constrict::detail {
+
+int Body3::surface_faces_of(int t) const {
+  int k = 0;
+  for (int i = 0; i < 4; ++i) k += boundary_face(t, i) ? 1 : 0;
+  return k;
+}
+
+int Body3::local_index(int t, int vertex) const {
+  const auto& v = tets[uz(t)];
+  for (int l = 0; l < 4; ++l)
+    if (v[uz(l)] == vertex) return l;
+  return -1;
+}
+
+bool Body3::edge_on_boundary(int t, int i, int j) const {
+  bool on = false;
+  walk_edge(t, i, j, 0, [&](int nx) {
+    on = !alive(nx);
+    return on;
+  });
+  return on;
+}
+
+bool Body3::edge_touches_body(int t, int i, int j) const {
+  bool hit = false, hull = false;
+  walk_edge(t, i, j, 0, [&](int nx) {
+    if (nx < 0) {
+      hull = true;
+      return true;
+    }
+    hit = alive(nx);
+    return hit;
+  });
+  if (!hit && hull)  // the ring is open at the hull: walk the other way too
+    walk_edge(t, i, j, 1, [&](int nx) {
+      if (nx < 0) return true;
+      hit = alive(nx);
+      return hit;
+    });
+  return hit;
+}
+
+void Body3::edge_ring(int t, int i, int j, std::vector<int>& out) const {
+  out.clear();
+  out.push_back(t);
+  bool closed = false;
+  for (int dir = 0; dir < 2 && !closed; ++dir)
+    walk_edge(t, i, j, dir, [&](int nx) {
+      if (nx < 0) return true;  // open ring: walk the other way
+      if (nx == t) {
+        closed = true;
+        return true;
+      }
+      out.push_back(nx);
+      return false;
+    });
+}
+
+bool Body3::side_connected(std::uint8_t side) const {
+  std::vector<char> seen(tets.size(), 0);
+  std::vector<int> st;
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (state[t] != side) continue;
+    bool start = side == kAlive;
+    for (int m : nbr[t]) start = start || m < 0;
+    if (start) {
+      seen[t] = 1;
+      st.push_back(static_cast<int>(t));
+      if (side == kAlive) break;
+    }
+  }
+  if (side == kAlive && st.empty()) return false;
+  while (!st.empty()) {
+    const int t = st.back();
+    st.pop_back();
+    for (int m : nbr[uz(t)])
+      if (m >= 0 && state[uz(m)] == side && !seen[uz(m)]) {
+        seen[uz(m)] = 1;
+        st.push_back(m);
+      }
+  }
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    if (state[t] == side && !seen[t]) return false;
+  return true;
+}
+
+int Body3::new_tet(const std::array<int, 4>& v) {
+  tets.push_back(v);
+  nbr.push_back({{-1, -1, -1, -1}});
+  state.push_back(kAlive);
+  ver.push_back(0);
+  mark.push_back(0);
+  return static_cast<int>(tets.size() - 1);
+}
+
+void Body3::reset_to_hull(Tets& nbr_delaunay) {
+  if (tets.size() > T0) {  // undo the cavities: the Delaunay tetrahedra again
+    tets.resize(T0);
+    nbr.swap(nbr_delaunay);
+    nbr.resize(T0);
+    ver.resize(T0);
+    mark.resize(T0);
+  }
+  Tets().swap(nbr_delaunay);
+  state.assign(T0, kAlive);
+  for (auto& v : ver) ++v;
+  onb.assign(n, 0);
+  n_onb = 0;
+  for (std::size_t t = 0; t < T0; ++t)
+    for (int i = 0; i < 4; ++i)
+      if (nbr[t][uz(i)] < 0)
+        for (int k = 0; k < 3; ++k) {
+          const int x = tets[t][uz(kFaceOut[i][k])];
+          if (!onb[uz(x)]) {
+            onb[uz(x)] = 1;
+            ++n_onb;
+          }
+        }
+}
+
+TriMesh3 Body3::surface() const {
+  TriMesh3 m;
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (state[t] != kAlive) continue;
+    for (int i = 0; i < 4; ++i)
+      if (boundary_face(static_cast<int>(t), i)) {
+        const auto& v = tets[t];
+        m.triangles.push_back({{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}});
+      }
+  }
+  return m;
+}
+
+std::vector<int> Body3::inside() const {
+  std::vector<int> r;
+  for (std::size_t v = 0; v < n; ++v)
+    if (!onb[v]) r.push_back(static_cast<int>(v));
+  return r;
+}
+
+void Body3::check_body() const {
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (state[t] != kAlive) continue;
+    const auto& v = tets[t];
+    CONSTRICT_CHECK(orient3(P(v[0]), P(v[1]), P(v[2]), P(v[3])) > 0, "body tetrahedron not positive");
+    for (int i = 0; i < 4; ++i) {
+      const int m = nbr[t][uz(i)];
+      if (!alive(m)) continue;
+      int j = -1;
+      for (int l = 0; l < 4; ++l)
+        if (nbr[uz(m)][uz(l)] == static_cast<int>(t)) j = l;
+      CONSTRICT_CHECK(j >= 0, "body adjacency not symmetric");
+      std::array<int, 3> f1{}, f2{};
+      int k1 = 0, k2 = 0;
+      for (int l = 0; l < 4; ++l) {
+        if (l != i) f1[uz(k1++)] = v[uz(l)];
+        if (l != j) f2[uz(k2++)] = tets[uz(m)][uz(l)];
+      }
+      std::sort(f1.begin(), f1.end());
+      std::sort(f2.begin(), f2.end());
+      CONSTRICT_CHECK(f1 == f2, "body neighbours do not share the face");
+    }
+  }
+}
+
+}  // namespace constrict::detail

@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Stages "carve" and "fill" of the 3D engine (docs/reconstruction-3d.md §4.6, §4.7).
+// The constriction rules keep the surface a 2-manifold at every single removal, which blocks the
+// "bridges": regions labelled outside whose vertices are all on the surface already (removing
+// any of their tetrahedra pinches a vertex). The carve takes each connected region of outside
+// tetrahedra from the surface inwards, through non-manifold intermediate states, and keeps the
+// state only where it is valid again: every vertex touched has a single-cycle surface link
+// (vertex- and edge-manifold, still in the body) and the surface has 2N-4 faces (Euler
+// characteristic 2). The region's removals after its last valid state are undone. Connectivity
+// is checked once at the end. The fill is the mirror image after the growth: it adds the regions
+// of inside tetrahedra the body left out.
+#include <cmath>
+#include <queue>
+#include <utility>
+
+#include "constrict/detail/stages3.hpp"
+
+namespace constrict::detail {
+namespace {
+
+// Rounds of putting back the removals at non-manifold vertices before a region is undone.
+constexpr int kRepairRounds = 16;
+
+enum class Toggle { Remove, Add };  // carve: take tetrahedra out of the body; fill: put them in
+
+class Regions {
+ public:
+  Regions(Body3& b, const Labels3& l, double min_conf, Toggle dir, Carve3Stats& st)
+      : b_(b), l_(l), min_conf_(min_conf), add_(dir == Toggle::Add), s_(st) {}
+
+  // Runs the pass; returns false when the start state is not a valid surface (nothing done).
+  bool run() {
+    index_vertex_tets();
+    F_ = 0;
+    alive_at_.assign(b_.n, 0);
+    for (std::size_t t = 0; t < b_.tets.size(); ++t)
+      if (b_.state[t] == kAlive) {
+        F_ += uz(b_.surface_faces_of(static_cast<int>(t)));
+        for (int x : b_.tets[t]) ++alive_at_[uz(x)];
+      }
+    targetF_ = 2 * b_.n - 4;
+    if (F_ != targetF_) return false;
+    anchor_.assign(b_.tets.size(), 0);
+    if (!add_) choose_anchors();
+    seen_.assign(b_.tets.size(), 0);
+    bad_of_.assign(b_.n, 0);
+    dirty_.assign(b_.n, 0);
+    for (std::size_t s0 = 0; s0 < b_.T0; ++s0) {
+      if (seen_[s0] || !cand(static_cast<int>(s0))) continue;
+      if (!collect_region(static_cast<int>(s0))) continue;
+      ++s_.regions;
+      peel_region();
+      repair_and_settle();
+    }
+    return true;
+  }
+
+ private:
+  bool outside_label(std::size_t t) const { return t < b_.T0 && l_.label[t] >= min_conf_; }
+  bool cand(int t) const {
+    if (add_) return uz(t) < b_.T0 && b_.state[uz(t)] == kOutside && l_.label[uz(t)] <= -min_conf_;
+    return b_.alive(t) && outside_label(uz(t)) && !anchor_[uz(t)];
+  }
+  // Label order: most confident first (outside: largest label; inside: smallest).
+  float prio(int t) const { return add_ ? -l_.label[uz(t)] : l_.label[uz(t)]; }
+  // Carve: a body tetrahedron with a surface face; fill: an outside one glued to the body (it has
+  // fewer than 4 surface faces).
+  bool at_front(int t) const {
+    return add_ ? !b_.alive(t) && b_.surface_faces_of(t) < 4 : b_.alive(t) && b_.surface_faces_of(t) > 0;
+  }
+
+  // Tetrahedra per vertex at the start (CSR): every one that can be in the body (fill), or the
+  // body's (carve).
+  void index_vertex_tets() {
+    const auto in = [&](std::size_t t) { return add_ ? b_.state[t] != kReplaced : b_.state[t] == kAlive; };
+    vt_off_.assign(b_.n + 1, 0);
+    for (std::size_t t = 0; t < b_.tets.size(); ++t)
+      if (in(t))
+        for (int x : b_.tets[t]) ++vt_off_[uz(x) + 1];
+    for (std::size_t v = 0; v < b_.n; ++v) vt_off_[v + 1] += vt_off_[v];
+    vt_idx_.assign(uz(vt_off_[b_.n]), 0);
+    std::vector<int> fill(vt_off_.begin(), vt_off_.end() - 1);
+    for (std::size_t t = 0; t < b_.tets.size(); ++t)
+      if (in(t))
+        for (int x : b_.tets[t]) vt_idx_[uz(fill[uz(x)]++)] = static_cast<int>(t);
+  }
+
+  // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss) keeps
+  // one of them, its anchor: the one with the shortest longest edge.
+  void choose_anchors() {
+    std::vector<char> keep_v(b_.n, 1);
+    for (std::size_t t = 0; t < b_.tets.size(); ++t)
+      if (b_.state[t] == kAlive && !outside_label(t))
+        for (int x : b_.tets[t]) keep_v[uz(x)] = 0;
+    std::vector<double> best(b_.n, HUGE_VAL);
+    std::vector<int> arg(b_.n, -1);
+    for (std::size_t t = 0; t < b_.tets.size(); ++t) {
+      if (b_.state[t] != kAlive) continue;
+      const auto& v = b_.tets[t];
+      double le = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const double* a = b_.P(v[uz(i)]);
+          const double* c = b_.P(v[uz(j)]);
+          le = std::max(le, (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
+        }
+      for (int x : v)
+        if (keep_v[uz(x)] && le < best[uz(x)]) {
+          best[uz(x)] = le;
+          arg[uz(x)] = static_cast<int>(t);
+        }
+    }
+    for (std::size_t v = 0; v < b_.n; ++v)
+      if (arg[v] >= 0) anchor_[uz(arg[v])] = 1;
+  }
+
+  // Is the surface around v a single disk (the link of v one simple cycle)?
+  bool vertex_manifold(int v) {
+    link_.clear();
+    for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
+      const int t = vt_idx_[uz(k)];
+      if (!b_.alive(t)) continue;
+      const int li = b_.local_index(t, v);
+      for (int i = 0; i < 4; ++i) {
+        if (i == li || b_.alive(b_.nbr[uz(t)][uz(i)])) continue;
+        std::array<int, 2> e{};
+        int c = 0;
+        for (int l = 0; l < 4; ++l)
+          if (l != i && l != li) e[uz(c++)] = b_.tets[uz(t)][uz(l)];
+        link_.push_back(e);
+      }
+    }
+    if (link_.size() < 3) return false;
+    // Every link vertex of degree 2, and one cycle through all link edges.
+    std::size_t steps = 0, cur_e = 0;
+    int cur = link_[0][1];
+    for (;;) {
+      std::size_t next_e = SIZE_MAX;
+      int deg = 0;
+      for (std::size_t j = 0; j < link_.size(); ++j)
+        if (link_[j][0] == cur || link_[j][1] == cur) {
+          ++deg;
+          if (j != cur_e) next_e = j;
+        }
+      if (deg != 2) return false;
+      ++steps;
+      cur = link_[next_e][0] == cur ? link_[next_e][1] : link_[next_e][0];
+      cur_e = next_e;
+      if (cur_e == 0) break;
+      if (steps > link_.size()) return false;
+    }
+    return steps == link_.size();
+  }
+
+  void toggle(int t, bool make_alive) {
+    if (make_alive) {
+      for (int x : b_.tets[uz(t)]) ++alive_at_[uz(x)];
+      b_.state[uz(t)] = kAlive;
+      F_ = F_ - 4 + 2 * uz(b_.surface_faces_of(t));
+    } else {
+      F_ = F_ + 4 - 2 * uz(b_.surface_faces_of(t));
+      for (int x : b_.tets[uz(t)]) --alive_at_[uz(x)];
+      b_.state[uz(t)] = kOutside;
+    }
+    ++b_.ver[uz(t)];
+    for (int x : b_.tets[uz(t)])
+      if (!dirty_[uz(x)]) {
+        dirty_[uz(x)] = 1;
+        dirty_list_.push_back(x);
+      }
+  }
+  // The manifold flags of the vertices touched since the last flush are evaluated lazily: a valid
+  // state needs F == 2N-4 first (O(1)), so long invalid runs (a genus-1 hole carved through,
+  // high-degree vertices) do not pay a link evaluation per toggle.
+  void flush() {
+    for (int x : dirty_list_) {
+      dirty_[uz(x)] = 0;
+      const char bad = vertex_manifold(x) ? 0 : 1;
+      if (bad != bad_of_[uz(x)]) {
+        nbad_ = bad ? nbad_ + 1 : nbad_ - 1;
+        bad_of_[uz(x)] = bad;
+      }
+    }
+    dirty_list_.clear();
+  }
+  bool valid_now() {
+    if (F_ != targetF_) return false;
+    flush();
+    return nbad_ == 0;
+  }
+
+  // The face-connected region of candidates around s0; false if it does not touch the surface.
+  bool collect_region(int s0) {
+    region_.clear();
+    region_.push_back(s0);
+    seen_[uz(s0)] = 1;
+    bool touches_surface = false;
+    for (std::size_t q = 0; q < region_.size(); ++q)
+      for (int m : b_.nbr[uz(region_[q])]) {
+        if (add_ ? b_.alive(m) : !b_.alive(m)) {
+          touches_surface = true;
+        } else if (m >= 0 && !seen_[uz(m)] && cand(m)) {
+          seen_[uz(m)] = 1;
+          region_.push_back(m);
+        }
+      }
+    return touches_surface;
+  }
+
+  // Most confident first, ties -> smaller id; a tetrahedron is toggled once it is at the front
+  // (no cavities) and (carve) is not the last body tetrahedron of a vertex.
+  void peel_region() {
+    std::priority_queue<std::pair<float, int>> pq;
+    for (int t : region_)
+      if (at_front(t)) pq.push({prio(t), -t});
+    pending_.clear();
+    while (!pq.empty()) {
+      const int t = -pq.top().second;
+      pq.pop();
+      if (!at_front(t)) continue;
+      bool last = false;
+      for (int x : b_.tets[uz(t)]) last = last || (!add_ && alive_at_[uz(x)] == 1);
+      if (last) continue;
+      toggle(t, add_);
+      pending_.push_back(t);
+      for (int m : b_.nbr[uz(t)])
+        if (m >= 0 && cand(m)) pq.push({prio(m), -m});
+      if (valid_now()) pending_.clear();  // a valid state: keep it
+    }
+    flush();
+  }
+
+  // Repair: put back toggled tetrahedra at the vertices that are not manifold, latest first, a
+  // few rounds; keep the state if it is valid then, else undo back to the last valid state.
+  void repair_and_settle() {
+    for (int round = 0; round < kRepairRounds && nbad_ > 0 && !pending_.empty(); ++round)
+      for (std::size_t j = pending_.size(); j-- > 0 && nbad_ > 0;) {
+        const int t = pending_[j];
+        if (b_.alive(t) != add_) continue;
+        bool at_bad = false;
+        for (int x : b_.tets[uz(t)]) at_bad = at_bad || bad_of_[uz(x)];
+        if (at_bad) {
+          toggle(t, !add_);
+          flush();
+        }
+      }
+    std::vector<int> still;
+    for (int t : pending_)
+      if (b_.alive(t) == add_) still.push_back(t);
+    if (nbad_ == 0 && F_ == targetF_) still.clear();
+    s_.undone += still.size();
+    // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
+    for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, !add_);
+    flush();
+    CONSTRICT_CHECK(F_ == targetF_ && nbad_ == 0, "carve undo did not restore the surface");
+  }
+
+  Body3& b_;
+  const Labels3& l_;
+  const double min_conf_;
+  const bool add_;
+  Carve3Stats& s_;
+  std::vector<int> vt_off_, vt_idx_;
+  std::size_t F_ = 0, targetF_ = 0, nbad_ = 0;
+  std::vector<int> alive_at_;  // body tetrahedra per vertex
+  std::vector<char> anchor_, seen_, bad_of_, dirty_;
+  std::vector<int> dirty_list_, region_, pending_;
+  std::vector<std::array<int, 2>> link_;
+};
+
+std::size_t count_changed(const std::vector<std::uint8_t>& before, const std::vector<std::uint8_t>& after, bool to_alive) {
+  std::size_t k = 0;
+  for (std::size_t t = 0; t < before.size(); ++t)
+    k += to_alive ? (before[t] != kAlive && after[t] == kAlive) : (before[t] == kAlive && after[t] != kAlive);
+  return k;
+}
+
+}  // namespace
+
+std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats) {
+  const std::vector<std::uint8_t> state0 = body.state;
+  if (!Regions(body, labels, min_conf, Toggle::Remove, stats).run()) return 0;
+  // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
+  // also have 2N-4 faces: excluded here (then the whole pass is undone).
+  if (!body.side_connected(kAlive)) {
+    body.state = state0;
+    return 0;
+  }
+  stats.changed = count_changed(state0, body.state, false);
+  return stats.changed;
+}
+
+std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats) {
+  // Nothing to fill (the usual case): no left-out inside tetrahedron touches the body.
+  bool any = false;
+  for (std::size_t t = 0; t < body.T0 && !any; ++t) {
+    if (body.state[t] != kOutside || !(labels.label[t] <= -min_conf)) continue;
+    for (int m : body.nbr[t]) any = any || body.alive(m);
+  }
+  if (!any) return 0;
+  const std::vector<std::uint8_t> state0 = body.state;
+  if (!Regions(body, labels, min_conf, Toggle::Add, stats).run()) return 0;
+  // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void would
+  // also have 2N-4 faces in total: excluded here (then the whole pass is undone).
+  stats.changed = count_changed(state0, body.state, true);
+  if (stats.changed > 0 && !body.side_connected(kOutside)) {
+    body.state = state0;
+    stats.changed = 0;
+  }
+  return stats.changed;
+}
+
+}  // namespace constrict::detail

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Constrictor3::Impl: the state of one 3D run (docs/architecture.md) — the body, the read-only
+// key inputs shared by the variant runs, and each stage's own small state — and the pipeline's
+// stage steps (constrict3.cpp) and the variant selection (variants3.cpp).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+
+#include "constrict/constrict3.hpp"
+#include "constrict/detail/stages3.hpp"
+
+namespace constrict {
+
+using Clock = std::chrono::steady_clock;
+inline double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Constrictor3::Impl {
+  // Below every key: pop whatever is best.
+  static constexpr double kAnyKey = -1e300;
+  // Label confidence of the fill when the carve is off (carve_confidence > 1).
+  static constexpr double kFillConfidence = 0.5;
+
+  // Inputs.
+  std::shared_ptr<const PointSet> scaled;  // power-of-two scaled copy of the input (init), or null
+  int scale_exp = 0;                       // body.pts = input * 2^-scale_exp
+  Constrict3Options opt;
+  Constrict3Visitor* visitor = nullptr;
+
+  // State.
+  detail::Body3 body;                 // tetrahedra, adjacency, body, surface points
+  detail::Keys3 keys;                 // labels, γ face terms, bridge ratios (shared, read-only)
+  detail::Constriction3State hull;    // heap and removal counts of the constriction
+  detail::CavityState3 cavity;        // the lock fallback's cavities
+  detail::Tets nbr_delaunay;          // adjacency before the growth's cavities (for a reset)
+  detail::Growth3Stats growth;
+  detail::Carve3Stats carve;
+  detail::Flips3Stats flips;
+  std::size_t filled = 0, removed_sculpt = 0, n_hull = 0;
+  double ms_delaunay = 0, ms_setup = 0;
+  bool ready = false;
+  bool need_size = false;   // size bias or bridge sculpting: spacing and bridge ratios
+  bool hull_ready = false;  // the constriction's keys and initial heap are made
+  bool stepped = false;     // the state has left the start (growth or constriction)
+  bool grew = false;        // the growth reached every point
+
+  // The options ask for the growth (decided before the tetrahedralization: init builds the DT
+  // alone then); it runs when the labels exist and some point is inside the hull (else the hull
+  // itself is the answer).
+  bool grow_planned() const {
+    return opt.grow && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None;
+  }
+  bool can_grow() const { return grow_planned() && keys.labels && n_hull < body.n; }
+  detail::HullConstriction3 constriction() { return {body, hull, keys, opt, visitor}; }
+
+  Status build_tetrahedralization();
+  // The state of init(): the whole tetrahedralization, the hull points on the surface.
+  void reset_to_hull();
+  // The constriction from the hull needs the face terms, the spacing / bridge ratios (size bias)
+  // and its initial heap; they are made on first use, so a growth that reaches every point does
+  // not pay for them.
+  void ensure_hull_start();
+  bool step();
+  void stage_event(Stage3 stage) const;
+
+  enum class Growth { NotRun, Grown, Failed };
+  Growth grow_stage(Mesh3Result& r);
+  void constriction_stage(Mesh3Result& r);
+  void lock_fallback_stage(Mesh3Result& r);
+  void carve_stage(Mesh3Result& r);
+  void sculpt_stage(Mesh3Result& r);
+  void refine_stage(Mesh3Result& r);
+  void bridge_stage(Mesh3Result& r);
+  void collect(Mesh3Result& r) const;
+};
+
+}  // namespace constrict

@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The stages of the 3D engine (docs/architecture.md). Each works on the shared Body3 and reads
+// the inputs it needs (labels, γ face terms); each has its own small state. The pipeline in
+// constrict3.cpp calls them in order:
+//   labels (labels3.cpp) -> growth + its lock cavities (grow3.cpp, cavity3.cpp) -> fill
+//   (carve3.cpp) | constriction from the hull (hull3.cpp) -> lock cavities (cavity3.cpp) ->
+//   carve (carve3.cpp) -> sculpt (hull3.cpp) -> flips (flips3.cpp) -> variant selection
+//   (variants3.cpp).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "constrict/constrict3.hpp"
+#include "constrict/delaunay.hpp"
+#include "constrict/detail/body3.hpp"
+#include "constrict/gamma_graph.hpp"
+
+namespace constrict::detail {
+
+// ---- labels (labels3.cpp) ----------------------------------------------------------------------
+
+// Below every ln circumradius: the value of a flat tetrahedron.
+constexpr double kFlatLogRadius = -1e300;
+
+// Inside/outside labels of the Delaunay tetrahedra (docs/reconstruction-3d.md §4.6).
+struct Labels3 {
+  std::vector<float> label;  // +confidence outside / -confidence inside, per Delaunay tetrahedron
+  std::vector<double> lrad;  // ln circumradius (kFlatLogRadius if flat)
+};
+// Circumball propagation from the convex hull (power-crust style). Deterministic: sequential
+// bucket queue. Reads the Delaunay tetrahedra of the body (tets[0, T0), nbr).
+std::shared_ptr<const Labels3> compute_labels3(const Body3& body);
+// Nearest-neighbour distance per point along the Delaunay edges.
+std::vector<double> nearest_spacing3(const Body3& body);
+
+// ---- keys of the constriction (hull3.cpp) ------------------------------------------------------
+
+// What the constriction keys read besides the body: shared by the variant runs, read-only.
+struct Keys3 {
+  std::shared_ptr<const DelaunayGamma3> dg;                          // γ-values (lazy)
+  std::shared_ptr<const std::vector<std::array<double, 4>>> terms;  // 1 - γ per Delaunay tet face
+  std::shared_ptr<const std::vector<double>> spacing;               // nearest_spacing3 (size bias)
+  std::shared_ptr<const std::vector<double>> face_log;              // ln bridge ratio per γ face
+  std::shared_ptr<const Labels3> labels;
+};
+std::shared_ptr<const std::vector<std::array<double, 4>>> compute_face_terms3(const Body3& body, const DelaunayGamma3& dg);
+std::shared_ptr<const std::vector<double>> compute_face_log3(const Body3& body, const DelaunayGamma3& dg,
+                                                             const std::vector<double>& spacing);
+
+// ---- the constriction from the convex hull and the sculpting (hull3.cpp) -----------------------
+
+struct Constriction3State {
+  TetHeap heap;
+  std::size_t removed = 0, removed1 = 0, removed2 = 0;  // all, by the one-face / two-face rule
+  bool stopped = false;  // stop_after reached
+};
+// Which tetrahedra are removable and by which key: the paper's rules with the option's
+// criterion, or (Sculpt3::Bridges) two-face tetrahedra by their larger surface face's bridge ratio.
+enum class RemovalKey { Criterion, Bridge };
+
+// A view over the body and the constriction's state: the removal rules (spec gamma-graph.md
+// §3.3) and keys (spec §3.4) of the paper's constriction (seed paper §4.2, §5).
+class HullConstriction3 {
+ public:
+  HullConstriction3(Body3& body, Constriction3State& st, const Keys3& keys, const Constrict3Options& opt,
+                    Constrict3Visitor* visitor, RemovalKey rule = RemovalKey::Criterion)
+      : b_(body), s_(st), k_(keys), opt_(opt), visitor_(visitor), rule_(rule) {}
+  // The initial heap: the tetrahedra on the convex hull.
+  void start_heap();
+  // The heap from every body tetrahedron (the bridge sculpting).
+  void push_all_alive();
+  void try_push(int t);
+  // Pops until one removal is done; false when the heap is empty or its best key < min_key.
+  bool pop_and_remove(double min_key, Stage3 stage);
+
+ private:
+  int removable(int t, double* key) const;
+  double criterion_key(int t, const int* bi, int nb) const;
+  double face_term(int t, int i) const;
+  double face_log_ratio(int t, int i) const;
+  double face_bridge(int t, int i) const;
+  void remove(int t, int kind, double key, Stage3 stage);
+
+  Body3& b_;
+  Constriction3State& s_;
+  const Keys3& k_;
+  const Constrict3Options& opt_;
+  Constrict3Visitor* visitor_;
+  RemovalKey rule_;
+};
+// Bridge ratio of the triangle abc: its longest edge over the largest spacing of its vertices.
+double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, int a, int b, int c);
+
+// ---- star cavities (cavity3.cpp; docs/reconstruction-3d.md §3) ---------------------------------
+
+// Where a cavity is made: in the body (the constriction's stuck points are inside it) or,
+// mirrored for the growth (§4.7), among the Delaunay tetrahedra outside the body (the growth's
+// unreached points are there; the convex hull then bounds that side).
+enum class CavitySide { Body, Outside };
+
+struct CavityState3 {
+  std::vector<int> vert_tet;  // a tetrahedron of the side incident to each point
+  std::size_t made = 0, attempts = 0;
+};
+// What a successful cavity made.
+struct CavityMade {
+  std::vector<int> created;      // the cone tetrahedra (in the body for CavitySide::Body)
+  std::array<int, 3> target{};   // the surface face it was made through (sorted ids)
+  std::size_t replaced = 0;      // tetrahedra it replaced
+};
+
+class Cavity3 {
+ public:
+  Cavity3(Body3& body, CavityState3& st, const Constrict3Options& opt, CavitySide side, Constrict3Visitor* visitor)
+      : b_(body), s_(st), opt_(opt), side_(side), visitor_(visitor) {}
+  // vert_tet from the tetrahedra of the side.
+  void index_vertices();
+  // Re-tetrahedralizes a star-shaped region around p (exact orient3 tests) so that a cone
+  // tetrahedron over a surface face p sees brings p to the surface side; false (nothing changed)
+  // when no ranked target face works.
+  bool place(int p, CavityMade& made);
+
+ private:
+  struct Target {
+    double key;
+    int t, i;
+    std::array<int, 3> ids;
+  };
+  bool in_side(int m) const;
+  bool star_of(int p, std::vector<int>& out);
+  double target_key(int a, int b, int c, int p) const;
+  void targets_of(int p, const std::vector<int>& star, int depth, std::vector<Target>& out);
+  bool grow_visible(int p, std::vector<int>& U, std::uint32_t in_u);
+  bool try_cavity(int p, const std::vector<int>& star, const Target& tg, CavityMade& made);
+
+  Body3& b_;
+  CavityState3& s_;
+  const Constrict3Options& opt_;
+  CavitySide side_;
+  Constrict3Visitor* visitor_;
+};
+
+// ---- growth from the inside (grow3.cpp; docs/reconstruction-3d.md §4.7) ------------------------
+
+struct Growth3Stats {
+  std::size_t grown = 0, grown_outside = 0, cavities = 0;
+};
+// Grows the body from the inside tetrahedron of the largest circumradius by the mirror images of
+// the removal rules; points it cannot reach get a mirrored star cavity (unless Fallback3::None).
+// Starts from any state (it sets the body to empty). True when every point is on the surface;
+// otherwise the caller restores the start (Body3::reset_to_hull with nbr_delaunay, the
+// adjacency before the first cavity, saved here).
+bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
+                Growth3Stats& stats, Tets& nbr_delaunay);
+
+// ---- carve and fill (carve3.cpp; docs/reconstruction-3d.md §4.6, §4.7) -------------------------
+
+struct Carve3Stats {
+  std::size_t changed = 0, regions = 0, undone = 0;  // tetrahedra kept removed / added; ...
+};
+// Removes the surface-connected regions of body tetrahedra labelled outside (confidence >=
+// min_conf), keeping each region's removals up to its last valid state (closed 2-manifold of
+// genus 0 through every point). Returns the tetrahedra removed.
+std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
+// The mirror image after the growth: adds the regions of Delaunay tetrahedra labelled inside that
+// the body left out, under the same validity rule and with no enclosed void.
+std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
+
+// ---- edge flips (flips3.cpp; docs/reconstruction-3d.md §4) -------------------------------------
+
+struct Flips3Stats {
+  std::size_t added = 0, removed = 0;
+};
+// Energy-decreasing surface edge flips through Delaunay tetrahedra, best first, for one energy
+// (Refine3::Area or Refine3::Circumradius).
+void flip_pass3(Body3& body, Refine3 energy, Flips3Stats& stats);
+
+}  // namespace constrict::detail

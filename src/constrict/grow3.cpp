@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Stage "grow" of the 3D engine (docs/reconstruction-3d.md §4.7). The body grows from the inside
+// instead of shrinking from the hull: it starts with the inside tetrahedron of the largest
+// circumradius and adds Delaunay tetrahedra only by the mirror images of the removal rules (seed
+// paper §4.2), so it stays a triangulated ball: a tetrahedron glued along one face whose fourth
+// vertex is not yet in the body, or glued along two faces whose free edge is not yet in the body
+// (never three faces: that would bury a vertex). Every vertex in the body is therefore on its
+// surface. Order: tetrahedra labelled inside by the largest circumradius first (from the medial
+// axis outwards, which keeps the growth front from wrapping around pockets); when none is left, a
+// tetrahedron labelled outside only if it brings a new point into the body (one-face rule), least
+// confident first (thin parts the labels miss).
+#include <algorithm>
+
+#include "constrict/detail/stages3.hpp"
+
+namespace constrict::detail {
+namespace {
+
+// Keys: inside tetrahedra kInsideKeyBase + ln r (ln r clamped below at kMinLogRadius, so every
+// inside key is above every outside key); outside tetrahedra 1 - confidence, in [0, 1].
+constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
+
+class Growth3 {
+ public:
+  Growth3(Body3& b, const Labels3& l, Growth3Stats& st) : b_(b), l_(l), s_(st), queued_(b.T0, 0) {}
+
+  // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids.
+  int seed() const {
+    int seed = -1;
+    for (std::size_t t = 0; t < b_.T0; ++t)
+      if (l_.label[t] < 0 && l_.lrad[t] > kFlatLogRadius &&
+          (seed < 0 || l_.lrad[t] > l_.lrad[uz(seed)] ||
+           (l_.lrad[t] == l_.lrad[uz(seed)] && sorted4(b_.tets[t]) < sorted4(b_.tets[uz(seed)]))))
+        seed = static_cast<int>(t);
+    return seed;
+  }
+  void run(int seed) {
+    b_.state.assign(b_.T0, kOutside);
+    for (auto& v : b_.ver) ++v;
+    b_.onb.assign(b_.n, 0);
+    b_.n_onb = 0;
+    add(seed);
+    while (!heap_.empty()) {
+      const HeapEntry e = heap_.pop(b_.tets);
+      queued_[uz(e.tet)] = 0;
+      if (b_.alive(e.tet)) continue;
+      // Outside: the one-face rule only (its fourth vertex is a new point).
+      const bool outside = !(l_.label[uz(e.tet)] < 0);
+      if (!addable(e.tet, outside)) continue;
+      if (outside) ++s_.grown_outside;
+      add(e.tet);
+    }
+  }
+
+ private:
+  // 1 / 2: t can join the body glued along one / two faces; 0: it cannot. one_face_only: only
+  // the one-face rule counts (no edge walk for the two-face rule).
+  int addable(int t, bool one_face_only) const {
+    int g[4], ng = 0;
+    for (int i = 0; i < 4; ++i)
+      if (b_.alive(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
+    if (ng == 1) return b_.onb[uz(b_.tets[uz(t)][uz(g[0])])] ? 0 : 1;
+    if (ng == 2 && !one_face_only) return b_.edge_touches_body(t, g[0], g[1]) ? 0 : 2;
+    return 0;
+  }
+  double key(int t) const {
+    const double l = l_.label[uz(t)];
+    if (l < 0) return kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[uz(t)]);
+    return 1.0 - l;
+  }
+  void add(int t) {
+    b_.state[uz(t)] = kAlive;
+    ++b_.ver[uz(t)];
+    ++s_.grown;
+    b_.mark_on_surface(t);
+    // A tetrahedron whose glued faces change is examined again; one heap entry per tetrahedron
+    // suffices (static key), so the pop order is that of a re-push per change.
+    for (int m : b_.nbr[uz(t)])
+      if (m >= 0 && uz(m) < b_.T0 && !b_.alive(m) && !queued_[uz(m)]) {
+        queued_[uz(m)] = 1;
+        heap_.push({key(m), m, 0}, b_.tets);
+      }
+  }
+
+  Body3& b_;
+  const Labels3& l_;
+  Growth3Stats& s_;
+  TetHeap heap_;
+  std::vector<char> queued_;  // in the heap (its key is static: one entry is enough)
+};
+
+// Growth lock: a point that no Delaunay tetrahedron can bring into the body (its star is cut off
+// from the body by tetrahedra whose fourth vertex is already in it) gets a cone over a body face
+// it sees: the star cavity of §3 mirrored to the outside of the body (it re-tetrahedralizes a
+// star-shaped region of outside tetrahedra, exactly, and leaves the body unchanged); the cone
+// tetrahedron over the body face then joins the body by the one-face rule. Points in ascending
+// id, passes while one succeeds.
+void place_unreached(Body3& b, const Constrict3Options& opt, Constrict3Visitor* visitor, Growth3Stats& st) {
+  CavityState3 cs;
+  Cavity3 cavity(b, cs, opt, CavitySide::Outside, visitor);
+  cavity.index_vertices();
+  CavityMade made;
+  for (bool progress = true; progress && b.n_onb < b.n;) {
+    progress = false;
+    for (std::size_t p = 0; p < b.n; ++p) {
+      if (b.onb[p] || !cavity.place(static_cast<int>(p), made)) continue;
+      // The cone over the target face (the best-ranked body face p sees) joins the body.
+      int cone = -1;
+      for (int t : made.created) {
+        std::array<int, 3> base{{b.tets[uz(t)][0], b.tets[uz(t)][1], b.tets[uz(t)][2]}};
+        std::sort(base.begin(), base.end());
+        if (base == made.target) {
+          cone = t;
+          break;
+        }
+      }
+      CONSTRICT_CHECK(cone >= 0 && b.alive(b.nbr[uz(cone)][3]), "growth cavity without a cone over its target face");
+      b.state[uz(cone)] = kAlive;
+      ++b.ver[uz(cone)];
+      ++st.grown;
+      b.mark_on_surface(cone);
+      ++st.cavities;
+      progress = true;
+    }
+  }
+}
+
+}  // namespace
+
+bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
+                Growth3Stats& stats, Tets& nbr_delaunay) {
+  Growth3 g(body, labels, stats);
+  const int seed = g.seed();
+  if (seed < 0) return false;
+  g.run(seed);
+  if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
+    nbr_delaunay = body.nbr;
+    place_unreached(body, opt, visitor, stats);
+  }
+  return body.n_onb == body.n;
+}
+
+}  // namespace constrict::detail

@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Stage "labels" of the 3D engine: inside/outside labels of the Delaunay tetrahedra by circumball
+// propagation from the convex hull (docs/reconstruction-3d.md §4.6), and the point spacing.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "constrict/detail/stages3.hpp"
+
+namespace constrict::detail {
+namespace {
+
+// Quantisation of the confidence in [0, 1] for the bucket queue.
+constexpr int kBuckets = 1024;
+constexpr std::size_t kGrain = 4096;
+
+using Ball = std::array<double, 4>;  // centre xyz, radius (radius < 0: flat)
+
+std::vector<Ball> circumballs(const Body3& b) {
+  std::vector<Ball> ball(b.T0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      const auto& v = b.tets[t];
+      const double* a = b.P(v[0]);
+      double e1[3], e2[3], e3[3];
+      for (int k = 0; k < 3; ++k) {
+        e1[k] = b.P(v[1])[k] - a[k];
+        e2[k] = b.P(v[2])[k] - a[k];
+        e3[k] = b.P(v[3])[k] - a[k];
+      }
+      const double cd[3] = {e2[1] * e3[2] - e2[2] * e3[1], e2[2] * e3[0] - e2[0] * e3[2], e2[0] * e3[1] - e2[1] * e3[0]};
+      const double db[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2], e3[0] * e1[1] - e3[1] * e1[0]};
+      const double bc[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+      const double den = 2 * (e1[0] * cd[0] + e1[1] * cd[1] + e1[2] * cd[2]);
+      const double nb = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], nc = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2],
+                   nd = e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2];
+      Ball o{{0, 0, 0, -1}};
+      if (den != 0 && std::isfinite(den)) {
+        double x[3];
+        for (int k = 0; k < 3; ++k) x[k] = (nb * cd[k] + nc * db[k] + nd * bc[k]) / den;
+        const double rr = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (std::isfinite(rr)) o = {{a[0] + x[0], a[1] + x[1], a[2] + x[2], rr}};
+      }
+      ball[t] = o;
+    }
+  });
+  return ball;
+}
+
+// Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
+// circumball: the signed distance of the centre beyond the face over the radius (NaN if flat).
+double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
+  const auto& v = b.tets[t];
+  const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
+  const double* p1 = b.P(v[uz(kFaceOut[i][1])]);
+  const double* p2 = b.P(v[uz(kFaceOut[i][2])]);
+  const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  const double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+  if (!(ln > 0)) return NAN;
+  const double* ap = b.P(v[uz(i)]);
+  const double side = nrm[0] * (ap[0] - p0[0]) + nrm[1] * (ap[1] - p0[1]) + nrm[2] * (ap[2] - p0[2]);
+  const double sgn = side > 0 ? -1.0 : 1.0;  // flip so that nrm points away from the apex
+  const double dist =
+      sgn * (nrm[0] * (ball[0] - p0[0]) + nrm[1] * (ball[1] - p0[1]) + nrm[2] * (ball[2] - p0[2])) / ln;
+  return dist / ball[3];
+}
+
+// Bucket queue over the confidence quantised to 1/kBuckets (a binary heap of the ~4 pushes per
+// tetrahedron costs more than the rest); LIFO inside a bucket, all sequential, so the labels are
+// deterministic.
+class LabelQueue {
+ public:
+  struct Item {
+    int tet;
+    signed char lab;
+    float conf;
+  };
+  explicit LabelQueue(std::size_t T0) : bucket_(kBuckets + 1), best_b_(T0, -1) {}
+  // A label passed on with cosine cosv from a tetrahedron labelled lab_from.
+  void push(int t, double cosv, int lab_from) {
+    if (!(cosv == cosv)) return;
+    const double c = std::max(-1.0, std::min(1.0, cosv));
+    const Item it{t, static_cast<signed char>(c >= 0 ? lab_from : -lab_from), static_cast<float>(std::abs(c))};
+    const int bk = static_cast<int>(it.conf * kBuckets);
+    // A push into a lower bucket than a pending entry of the same tetrahedron could only pop
+    // after that entry has labelled it (then it is skipped as done): not pushed, same labels.
+    if (bk < best_b_[uz(it.tet)]) return;
+    best_b_[uz(it.tet)] = static_cast<std::int16_t>(bk);
+    bucket_[uz(bk)].push_back(it);
+    top_ = std::max(top_, bk);
+  }
+  bool pop(Item& out) {
+    while (top_ >= 0 && bucket_[uz(top_)].empty()) --top_;
+    if (top_ < 0) return false;
+    out = bucket_[uz(top_)].back();
+    bucket_[uz(top_)].pop_back();
+    return true;
+  }
+
+ private:
+  std::vector<std::vector<Item>> bucket_;
+  std::vector<std::int16_t> best_b_;
+  int top_ = -1;
+};
+
+}  // namespace
+
+// The outer half-space of a hull face and the circumball of its tetrahedron meet at an angle
+// whose cosine is hull_face_cos; two adjacent circumballs meet at cos = (r1² + r2² - d²) /
+// (2 r1 r2). A deep intersection (cos > 0) passes the label on, a shallow one (cos < 0) the
+// opposite label, with confidence |cos|; the most confident assignments are made first, each
+// tetrahedron once.
+std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
+  const std::size_t T0 = b.T0;
+  const std::vector<Ball> ball = circumballs(b);
+  LabelQueue q(T0);
+  for (std::size_t t = 0; t < T0; ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (b.nbr[t][uz(i)] >= 0 || ball[t][3] <= 0) continue;
+      q.push(static_cast<int>(t), hull_face_cos(b, t, i, ball[t]), +1);
+    }
+  auto out = std::make_shared<Labels3>();
+  out->label.assign(T0, 0.0f);
+  std::vector<char> done(T0, 0);
+  LabelQueue::Item it{};
+  while (q.pop(it)) {
+    if (done[uz(it.tet)]) continue;
+    done[uz(it.tet)] = 1;
+    out->label[uz(it.tet)] = it.lab * it.conf;
+    const Ball& bt = ball[uz(it.tet)];
+    for (int i = 0; i < 4; ++i) {
+      const int m = b.nbr[uz(it.tet)][uz(i)];
+      if (m < 0 || uz(m) >= T0 || done[uz(m)]) continue;
+      const Ball& bm = ball[uz(m)];
+      if (bt[3] <= 0 || bm[3] <= 0) continue;
+      const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      q.push(m, (bt[3] * bt[3] + bm[3] * bm[3] - d2) / (2 * bt[3] * bm[3]), it.lab);
+    }
+  }
+  out->lrad.resize(T0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, 2 * kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) out->lrad[t] = ball[t][3] > 0 ? std::log(ball[t][3]) : kFlatLogRadius;
+  });
+  return out;
+}
+
+std::vector<double> nearest_spacing3(const Body3& b) {
+  std::vector<double> spacing(b.n, HUGE_VAL);
+  for (std::size_t t = 0; t < b.T0; ++t) {
+    const auto& v = b.tets[t];
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const int x = v[uz(i)], y = v[uz(j)];
+        const double dx = b.P(x)[0] - b.P(y)[0], dy = b.P(x)[1] - b.P(y)[1], dz = b.P(x)[2] - b.P(y)[2];
+        const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+        spacing[uz(x)] = std::min(spacing[uz(x)], l);
+        spacing[uz(y)] = std::min(spacing[uz(y)], l);
+      }
+  }
+  return spacing;
+}
+
+}  // namespace constrict::detail
