@@ -12,6 +12,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
+#include "constrict/report.hpp"
 #include "constrict/validate.hpp"
 #include "constrict/voronoi_skeleton.hpp"
 
@@ -71,6 +72,19 @@ void add_method_json(const ReconstructArgs& a, const VoronoiSkeletonStats& s, nl
   j["voronoi_skeleton"] = skeleton_json(s);
   j["voronoi_skeleton"]["seed_limit"] = a.seed_limit;
 }
+// The CLI's part of a report: what was read and written.
+void add_common_json(const ReconstructArgs& a, const ReadReport& rep, int dim, std::size_t n, std::size_t nb,
+                     nlohmann::json& j) {
+  j["command"] = "reconstruct";
+  j["input"] = a.in.path;
+  j["output"] = a.out;
+  j["dimension"] = dim;
+  j["points"] = n;
+  j["points_read"] = rep.points_read;
+  j["merged_duplicates"] = rep.merged_duplicates;
+  j["boundary_points"] = nb;
+  j["warnings"] = rep.warnings;
+}
 const char* incomplete_why(const ReconstructArgs& a, const std::string& method) {
   if (is_skeleton(a)) return "voronoi skeleton: no tried seed grew through every point";
   return method == "stopped" ? "stopped early (--stop-after)" : "constriction locked (--fallback none)";
@@ -81,13 +95,10 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   const PolygonFormat fmt = polygon_format_from_path(a.out);
   if (fmt == PolygonFormat::Auto)
     return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt or .svg)"});
-  Constrict2Options opt;
-  if (a.fallback == "auto") opt.fallback = Fallback::Auto;
-  else if (a.fallback == "gamma0") opt.fallback = Fallback::Gamma0;
-  else if (a.fallback == "degree4") opt.fallback = Fallback::Degree4;
-  else opt.fallback = Fallback::None;
+  Constrict2Options opt;  // --refine none: the paper's algorithm (Constrict2Options::paper())
+  (void)Constrict2Options::from_preset(a.refine == "none" ? "paper" : "default", opt);
+  (void)fallback_from_name(a.fallback, opt.fallback);
   opt.stop_after = a.stop_after;
-  if (a.refine == "none") opt.refine = Refine2::None;
   (void)criterion_from_name(a.method, opt.criterion);
   progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
   ProgressVisitor visitor(progress, pts.size());
@@ -148,44 +159,15 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   const auto t4 = Clock::now();
 
   const std::size_t n = pts.size(), nb = r.boundary.size();
-  const bool used_fallback = r.method != "gamma" && r.method != "locked" && r.method != "stopped" && !is_skeleton(a);
   if (!a.report.empty()) {
-    nlohmann::json j;
-    j["command"] = "reconstruct";
-    j["input"] = a.in.path;
-    j["output"] = a.out;
-    j["dimension"] = 2;
-    j["points"] = n;
-    j["points_read"] = rep.points_read;
-    j["merged_duplicates"] = rep.merged_duplicates;
-    j["boundary_points"] = nb;
-    j["complete"] = r.complete;
+    nlohmann::json j = nlohmann::json::parse(to_json(r, opt));
+    add_common_json(a, rep, 2, n, nb, j);
     j["valid"] = valid && r.complete;
     j["validation"] = {{"simple", chk.simple}, {"counter_clockwise", chk.ccw}, {"all_points_once", chk.all_points},
                        {"reason", chk.reason}};
-    j["method"] = r.method;
     add_method_json(a, skel, j);
-    j["fallback_mode"] = a.fallback;
-    j["fallback"] = used_fallback ? nlohmann::json(r.method) : nlohmann::json(nullptr);
-    j["locked"] = r.locked_at_gamma0;
-    j["stuck_points"] = r.stuck_points;
-    nlohmann::json stages = nlohmann::json::array();
-    for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}});
-    j["stages"] = stages;
-    j["removed_simplices"] = r.removed_simplices;
-    j["fallback_insertions"] = r.fallback_insertions;
-    j["fallback_edges"] = r.fallback_edges.size();
-    j["area"] = r.area;
-    j["perimeter"] = r.perimeter;
-    j["refine"] = {{"mode", opt.refine == Refine2::None ? "none" : "local-search"},
-                   {"moves", r.refine_moves},
-                   {"budget_hit", r.refine_budget_hit},
-                   {"perimeter_before", r.perimeter_before_refine}};
-    j["timings_ms"] = {{"read", ms(t0, t1)},         {"delaunay", r.ms_delaunay},  {"gamma", 0.0},
-                       {"constrict", r.ms_constrict}, {"fallback", r.ms_fallback}, {"refine", r.ms_refine},
-                       {"validate", ms_validate},
-                       {"write", ms(t3, t4)},        {"total", ms(t0, Clock::now())}};
-    j["warnings"] = rep.warnings;
+    if (is_skeleton(a)) j["fallback"] = nullptr;
+    j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms(t3, t4)}, {"total", ms(t0, Clock::now())}});
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
@@ -303,61 +285,18 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 
   const std::size_t n = pts.size(), nb = n - r.unplaced_points.size();
   if (!a.report.empty()) {
-    nlohmann::json j;
-    j["command"] = "reconstruct";
-    j["input"] = a.in.path;
-    j["output"] = a.out;
+    nlohmann::json j = nlohmann::json::parse(to_json(r, opt));
+    add_common_json(a, rep, 3, n, nb, j);
     if (!a.body.empty()) j["body"] = a.body;
-    j["dimension"] = 3;
-    j["points"] = n;
-    j["points_read"] = rep.points_read;
-    j["merged_duplicates"] = rep.merged_duplicates;
-    j["boundary_points"] = nb;
-    j["complete"] = r.complete;
     j["valid"] = valid && r.complete;
     j["closed"] = chk.closed;
     j["manifold"] = chk.edge_manifold && chk.vertex_manifold;
     j["oriented"] = chk.oriented && chk.outward;
     j["genus"] = chk.genus;
     j["components"] = chk.components;
-    j["faces"] = r.mesh.triangles.size();
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
-    j["method"] = to_string(r.method);
     add_method_json(a, skel, j);
-    j["fallback_mode"] = a.fallback;
-    j["fallback"] = r.cavities > 0 ? nlohmann::json("cavity") : nlohmann::json(nullptr);
-    j["locked"] = r.locked;
-    j["stuck_points"] = r.stuck_points;
-    j["unplaced_points"] = r.unplaced_points;
-    nlohmann::json stages = nlohmann::json::array();
-    for (const auto& s : r.stages) stages.push_back({{"name", to_string(s.name)}, {"placed", s.placed}, {"removed", s.removed}});
-    j["stages"] = stages;
-    j["removed_one_face"] = r.removed_one_face;
-    j["removed_two_face"] = r.removed_two_face;
-    j["cavities"] = r.cavities;
-    j["body_tetrahedra"] = r.tets.size();
-    j["non_delaunay_tetrahedra"] = r.non_delaunay_tets;
-    j["volume"] = r.volume;
-    j["surface_area"] = r.surface_area;
-    j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"},
-                   {"added", r.refine_added},
-                   {"removed", r.refine_removed}};
-    j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
-    j["grow"] = {{"enabled", opt.grow}, {"tetrahedra", r.grown}, {"labelled_outside", r.grown_outside}, {"filled", r.filled}, {"cavities", r.grow_cavities}, {"unreached", r.grow_unreached}};
-    j["size_bias"] = r.size_bias;
-    j["label_weight"] = r.label_weight;
-    nlohmann::json variants = nlohmann::json::array();
-    for (const auto& c : r.candidates)
-      variants.push_back({{"size_bias", c.size_bias}, {"label_weight", c.label_weight},
-                          {"surface_area", c.surface_area}, {"complete", c.complete}, {"ms", c.ms}});
-    j["variants"] = variants;
-    j["timings_ms"] = {{"read", ms(t0, t1)},          {"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict},
-                       {"grow", r.ms_grow},           {"fill", r.ms_fill},
-                       {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},           {"carve", r.ms_carve},
-                       {"refine", r.ms_refine},
-                       {"variants_setup", r.ms_setup}, {"variants_total", r.ms_variants}, {"validate", ms_validate},
-                       {"write", ms_write},           {"total", ms(t0, Clock::now())}};
-    j["warnings"] = rep.warnings;
+    j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms_write}, {"total", ms(t0, Clock::now())}});
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {

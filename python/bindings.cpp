@@ -13,6 +13,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
+#include "constrict/report.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
@@ -81,9 +82,11 @@ py::tuple verdict(const Status& st, const std::string& reason) { return py::make
 
 struct Polygon {
   Polygon2Result r;
+  Constrict2Options o;  // what it was made with (the report)
 };
 struct Surface {
   Mesh3Result r;  // validated by reconstruct3 (closed, manifold, oriented, genus 0) when complete
+  Constrict3Options o;
 };
 
 Polygon reconstruct2_py(const py::handle& points, const std::string& fallback, bool refine) {
@@ -92,6 +95,7 @@ Polygon reconstruct2_py(const py::handle& points, const std::string& fallback, b
   o.fallback = parse_fallback(fallback);
   o.refine = refine ? Refine2::LocalSearch : Refine2::None;
   Polygon out;
+  out.o = o;
   {
     py::gil_scoped_release nogil;
     const Status st = reconstruct2(p, o, out.r);
@@ -108,6 +112,7 @@ Surface reconstruct3_py(const py::handle& points, bool grow) {
   Constrict3Options o;
   o.grow = grow;
   Surface out;
+  out.o = o;
   {
     py::gil_scoped_release nogil;
     const Status st = reconstruct3(p, o, out.r);
@@ -197,6 +202,8 @@ PYBIND11_MODULE(constrict, m) {
         d["validate"] = p.r.ms_validate;
         return d;
       })
+      .def("report", [](const Polygon& p) { return to_json(p.r, p.o); },
+           "the library's JSON report (the same fields as `constrict reconstruct --report`), a str")
       .def("__repr__", [](const Polygon& p) {
         return "<constrict.Polygon " + std::to_string(p.r.boundary.size()) + " vertices, method=" + p.r.method +
                (p.r.complete ? ", valid" : ", incomplete") + ">";
@@ -215,6 +222,8 @@ PYBIND11_MODULE(constrict, m) {
       .def_property_readonly("volume", [](const Surface& s) { return s.r.volume; })
       .def_property_readonly("area", [](const Surface& s) { return s.r.surface_area; })
       .def_property_readonly("unplaced_points", [](const Surface& s) { return ids(s.r.unplaced_points); })
+      .def("report", [](const Surface& s) { return to_json(s.r, s.o); },
+           "the library's JSON report (the same fields as `constrict reconstruct --report`), a str")
       .def("__repr__", [](const Surface& s) {
         return "<constrict.Surface " + std::to_string(s.r.mesh.triangles.size()) + " triangles, method=" +
                std::string(to_string(s.r.method)) + (s.r.complete ? ", valid" : ", incomplete") + ">";

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Tests of the Python module (run by ctest as python.bindings)."""
+import json
 import math
 import unittest
 
@@ -107,6 +108,12 @@ class Reconstruct3(unittest.TestCase):
         self.assertAlmostEqual(body, enclosed, places=9)
         self.assertAlmostEqual(res.volume, enclosed, places=9)
         self.assertLess(res.volume, 4 / 3 * math.pi * 1.05 ** 3)
+        # The library's report: the same writer as the CLI's --report.
+        rep = json.loads(res.report())
+        self.assertTrue(rep["valid"])
+        self.assertEqual(rep["method"], res.method)
+        self.assertEqual(rep["faces"], len(tri))
+        self.assertEqual(rep["stages"][0]["name"], "hull")
 
     def test_coplanar_input_raises(self):
         with self.assertRaises(constrict.Error) as ctx:

@@ -35,8 +35,21 @@ enum class Refine2 {
                 ///< and keep it simple (exact tests); measured on the ground truth: 36 -> 37/43
 };
 
+/// Fallback by name: "auto", "gamma0", "degree4", "none". @return false for another name
+bool fallback_from_name(const std::string& name, Fallback& out) noexcept;
+const char* to_string(Fallback fallback) noexcept;
+
 /// Options of reconstruct2(). Defaults reproduce the paper's algorithm plus the fallbacks.
 struct Constrict2Options {
+  /// The paper's algorithm (seed paper §4.1) with the lock fallbacks: no refinement post-pass.
+  /// `constrict reconstruct --refine none` in 2D.
+  static Constrict2Options paper() {
+    Constrict2Options o;
+    o.refine = Refine2::None;
+    return o;
+  }
+  /// Options by preset name: "default", "paper". @return Ok, or InvalidArgument
+  static Status from_preset(const std::string& name, Constrict2Options& out);
   Fallback fallback = Fallback::Auto;  ///< behaviour on lock
   /// Which removable triangle goes next (criterion.hpp); the fallbacks rank with the same key.
   Criterion criterion = Criterion::Gamma;
@@ -87,6 +100,8 @@ struct Polygon2Result {
   double area = 0, perimeter = 0;       ///< of the final polygon (double arithmetic)
   bool validated = false;  ///< the polygon was validated (Constrict2Options::validate)
   PolygonCheck check;      ///< the validation outcome (an incomplete polygon misses points)
+  /// Complete and validated: a simple counter-clockwise polygon through every point.
+  bool valid() const noexcept { return complete && validated && check.reason.empty(); }
   double ms_delaunay = 0, ms_constrict = 0, ms_fallback = 0, ms_refine = 0, ms_validate = 0;
 };
 

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The JSON reports of reconstruct2 / reconstruct3 (report.hpp): one writer for every caller.
+#include "constrict/report.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace constrict {
+namespace {
+
+nlohmann::json stages_json(const std::vector<Constrict3Stage>& stages) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& s : stages) a.push_back({{"name", to_string(s.name)}, {"placed", s.placed}, {"removed", s.removed}});
+  return a;
+}
+
+nlohmann::json variants_json(const std::vector<Constrict3Candidate>& cand) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& c : cand)
+    a.push_back({{"size_bias", c.size_bias}, {"label_weight", c.label_weight}, {"surface_area", c.surface_area},
+                 {"complete", c.complete}, {"ms", c.ms}});
+  return a;
+}
+
+}  // namespace
+
+std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
+  nlohmann::json j;
+  j["complete"] = r.complete;
+  j["valid"] = r.valid();
+  j["method"] = to_string(r.method);
+  j["fallback_mode"] = to_string(opt.fallback);
+  j["fallback"] = r.cavities > 0 ? nlohmann::json("cavity") : nlohmann::json(nullptr);
+  j["locked"] = r.locked;
+  j["stuck_points"] = r.stuck_points;
+  j["unplaced_points"] = r.unplaced_points;
+  j["stages"] = stages_json(r.stages);
+  j["removed_one_face"] = r.removed_one_face;
+  j["removed_two_face"] = r.removed_two_face;
+  j["cavities"] = r.cavities;
+  j["body_tetrahedra"] = r.tets.size();
+  j["non_delaunay_tetrahedra"] = r.non_delaunay_tets;
+  j["faces"] = r.mesh.triangles.size();
+  j["volume"] = r.volume;
+  j["surface_area"] = r.surface_area;
+  j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"}, {"added", r.refine_added}, {"removed", r.refine_removed}};
+  j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
+  j["grow"] = {{"enabled", opt.grow},           {"tetrahedra", r.grown},        {"labelled_outside", r.grown_outside},
+               {"filled", r.filled},            {"cavities", r.grow_cavities}, {"unreached", r.grow_unreached}};
+  j["size_bias"] = r.size_bias;
+  j["label_weight"] = r.label_weight;
+  j["variants"] = variants_json(r.candidates);
+  j["timings_ms"] = {{"delaunay_gamma", r.ms_delaunay}, {"constrict", r.ms_constrict}, {"grow", r.ms_grow},
+                     {"fill", r.ms_fill},               {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},
+                     {"carve", r.ms_carve},             {"refine", r.ms_refine},       {"variants_setup", r.ms_setup},
+                     {"variants_total", r.ms_variants}, {"validate", r.ms_validate}};
+  return j.dump();
+}
+
+std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
+  nlohmann::json j;
+  const bool used_fallback = r.method != "gamma" && r.method != "locked" && r.method != "stopped";
+  j["complete"] = r.complete;
+  j["valid"] = r.valid();
+  j["validation"] = {{"simple", r.check.simple}, {"counter_clockwise", r.check.ccw},
+                     {"all_points_once", r.check.all_points}, {"reason", r.check.reason}};
+  j["method"] = r.method;
+  j["fallback_mode"] = to_string(opt.fallback);
+  j["fallback"] = used_fallback ? nlohmann::json(r.method) : nlohmann::json(nullptr);
+  j["locked"] = r.locked_at_gamma0;
+  j["stuck_points"] = r.stuck_points;
+  nlohmann::json stages = nlohmann::json::array();
+  for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}});
+  j["stages"] = stages;
+  j["removed_simplices"] = r.removed_simplices;
+  j["fallback_insertions"] = r.fallback_insertions;
+  j["fallback_edges"] = r.fallback_edges.size();
+  j["area"] = r.area;
+  j["perimeter"] = r.perimeter;
+  j["refine"] = {{"mode", opt.refine == Refine2::None ? "none" : "local-search"},
+                 {"moves", r.refine_moves},
+                 {"budget_hit", r.refine_budget_hit},
+                 {"perimeter_before", r.perimeter_before_refine}};
+  j["timings_ms"] = {{"delaunay", r.ms_delaunay}, {"gamma", 0.0},        {"constrict", r.ms_constrict},
+                     {"fallback", r.ms_fallback}, {"refine", r.ms_refine}, {"validate", r.ms_validate}};
+  return j.dump();
+}
+
+}  // namespace constrict
