@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Distances between a reconstruction and a reference (compare.hpp): deterministic grid sampling of
 // one side, exact point-to-primitive distances to the other side through CGAL's AABB tree (Epick),
-// both directions; triangle recovery by exact vertex positions. The only translation unit of the
-// comparison that includes CGAL. Sampling and its accuracy: docs/evaluation.md.
+// both directions; triangle recovery by exact vertex positions. All of compare.hpp is here, inside
+// the CGAL fence (src/cgal/), because the sampling loops query the AABB trees directly. Sampling
+// and its accuracy: docs/evaluation.md.
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
