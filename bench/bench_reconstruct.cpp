@@ -80,7 +80,7 @@ void BM_Reconstruct3(benchmark::State& state) {
     Mesh3Result r;
     if (!reconstruct3(pts, Constrict3Options{}, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
     benchmark::DoNotOptimize(r.mesh.triangles.data());
-    // Which path ran (1: the growth reached every point, §4.7) and its phases.
+    // Which path ran (1: the growth reached every point, docs/reconstruction-3d.md §4.7) and its phases.
     state.counters["grown"] = r.method == "grow" ? 1 : 0;
     state.counters["ms_dt_gamma"] = r.ms_delaunay;
     state.counters["ms_setup"] = r.ms_setup;

@@ -177,9 +177,10 @@ struct Refine2Stats {
 
 /// Shortens a simple polygon through all points by local moves (the Refine2::LocalSearch post-pass
 /// of reconstruct2(), usable on any valid polygon): 2-opt moves and Or-opt moves of segments of 1–8
-/// points, then Lin–Kernighan (k <= 6) and double-bridge moves (docs §4c), built from near Delaunay
-/// neighbours. A move is applied only if it shortens the polygon and the result is simple (exact
-/// orient2 tests against the nearby edges), so the polygon is valid after every move.
+/// points, then Lin–Kernighan (k <= 6) and double-bridge moves (docs/reconstruction-2d.md §4c),
+/// built from near Delaunay neighbours. A move is applied only if it shortens the polygon and the
+/// result is simple (exact orient2 tests against the nearby edges), so the polygon is valid after
+/// every move.
 /// Deterministic; the result is counter-clockwise and starts at its smallest index.
 /// @param[in] points 2D, at least 3 points, not all collinear
 /// @param[in,out] polygon a simple polygon through every point, either orientation

@@ -20,7 +20,7 @@ enum class Criterion {
   /// (Σ area interior faces - Σ area boundary faces) / (Σ area all faces); in 2D the "area" of a
   /// face is the length of the triangle side. Key = -ratio.
   MinAreaChange,
-  /// The criterion of [Boissonnat 84a] as the seed paper describes it (§6): the same as γ for a
+  /// The criterion of [Boissonnat 84a] as seed paper §6 describes it: the same as γ for a
   /// simplex with one boundary segment, but a tetrahedron with two boundary faces is ranked by
   /// one face (the larger 1 - γ) instead of the sum. Identical to Gamma in 2D.
   Boissonnat,

@@ -16,12 +16,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "cgal/detail/delaunay_local.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/big_vector.hpp"
 #include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
-#include "gamma/detail/big_vector.hpp"
-#include "gamma/detail/delaunay_local.hpp"
 #include "gamma/detail/reconcile.hpp"
 
 namespace constrict {

@@ -92,8 +92,8 @@ std::string to_ply(const PointSet& pts, const TriMesh3& m, bool ascii) {
     for (std::size_t i = 0; i < pts.size(); ++i)
       for (int k = 0; k < 3; ++k) put_le(s, pts[i][k]);
     for (const auto& t : m.triangles) {
-      s += static_cast<char>(3);
-      for (int v : t) put_le(s, static_cast<std::int32_t>(v));
+      s += static_cast<char>(t.size());  // the uchar corner count of the PLY face list
+      for (const std::int32_t v : t) put_le(s, v);
     }
   }
   return s;

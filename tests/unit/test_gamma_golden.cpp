@@ -35,11 +35,11 @@ PointSet make_points(int dim, std::initializer_list<double> coords) {
   return p;
 }
 
-// Example A (§5.1): rectangle plus one point.
+// Example A (spec §5.1): rectangle plus one point.
 PointSet example_a() { return make_points(2, {0, 0, 8, 0, 8, 6, 0, 6, 3, 2}); }
-// Example B (§5.2).
+// Example B (spec §5.2).
 PointSet example_b() { return make_points(2, {-8, 13, 12, 13, 20, -3, 15, 20, 8, 6, 9, 11, 4, 17}); }
-// Example N9 (§6.2).
+// Example N9 (spec §6.2).
 PointSet example_n9() {
   return make_points(2, {12, 2, 0, 0, -1, 12, -14, -3, 0, -14, 1, 2, 12, 15, -20, 4, 8, -19});
 }
@@ -125,7 +125,7 @@ std::string lens_note(const GraphSpec& spec) {
                                   : std::string(" [non-Delaunay graph: built by detail::lens_faces]");
 }
 
-// ---- §5.1 Example A ----------------------------------------------------------------------------
+// ---- spec §5.1 Example A -----------------------------------------------------------------------
 
 struct RowA {
   int i, j;
@@ -272,7 +272,7 @@ TEST(GammaGoldenExampleA, IntervalGraphWithNegativeLowerBoundIsTheDt) {
                                                              << lens_note(GraphSpec::interval(-1, 1, -1, 0));
 }
 
-// ---- §5.2 Example B ----------------------------------------------------------------------------
+// ---- spec §5.2 Example B -----------------------------------------------------------------------
 
 std::vector<Row2> table_b() {
   return {
@@ -345,7 +345,7 @@ TEST(GammaGoldenExampleB, SideValuesTable) {
 }
 
 TEST(GammaGoldenExampleB, NewEdgesAtNegativeGamma0) {
-  // §5.2: at γ0 = −0.05 no new edge; at γ0 = −0.1 the edges (0,5) and (2,5) enter.
+  // spec §5.2: at γ0 = −0.05 no new edge; at γ0 = −0.1 the edges (0,5) and (2,5) enter.
   const PointSet p = example_b();
   const EdgeSet dt = edges_of_triangles(
       {{0, 2, 4}, {0, 4, 6}, {1, 2, 3}, {1, 2, 4}, {1, 3, 6}, {1, 4, 5}, {1, 5, 6}, {4, 5, 6}});
@@ -359,7 +359,7 @@ TEST(GammaGoldenExampleB, NewEdgesAtNegativeGamma0) {
   EXPECT_EQ(edge_set(graph_of(p, s10)), plus);
 }
 
-// ---- §6.2 Example N9 ---------------------------------------------------------------------------
+// ---- spec §6.2 Example N9 ----------------------------------------------------------------------
 
 std::vector<Row2> table_n9() {
   return {
@@ -456,7 +456,7 @@ TEST(GammaGoldenApex2, SignAndMagnitudeFromTheApexAngle) {
   EXPECT_DOUBLE_EQ(filtration_value(1, -0.5), 1);
 }
 
-// ---- §5.3 3D -----------------------------------------------------------------------------------
+// ---- spec §5.3 3D ------------------------------------------------------------------------------
 
 struct Row3 {
   Tri ids;

@@ -1,52 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Internal: the Delaunay export plus a cache-friendly "local" copy of the triangulation, for the
-// per-face loops of delaunay_gamma2/3 (defined in src/delaunay/delaunay.cpp, the CGAL TU).
+// Transitional: the ranked/local Delaunay export moved to cgal/detail/delaunay_local.hpp (next to
+// its definition in src/cgal/delaunay.cpp). Kept only for src/constrict/constrict2.cpp, which
+// still includes this path; remove once that file includes the new one.
 #pragma once
-#include <array>
-#include <vector>
-
-#include "constrict/delaunay.hpp"
-#include "gamma/detail/big_vector.hpp"
-
-namespace constrict::detail {
-
-/// A convex hull facet (3D): face i of finite tet t; across its edge k (the edge opposite the
-/// k-th of its vertices in CGAL's infinite cell) the adjacent hull facet is face adj_i[k] of tet
-/// adj_t[k], whose vertex off that edge is the local vertex far[k].
-struct HullFace {
-  int t, i;
-  int adj_t[3], adj_i[3], far[3];
-};
-
-/// Vertices renumbered in CGAL's insertion order (its spatial sort, so neighbouring simplices
-/// have nearby vertex numbers). Local vertex k has coordinates coords[D*k .. D*k+D-1] (the same
-/// doubles as the input) and input index id[k]; simplices[t] are the local ids of simplex t of
-/// the exported Delaunay2/3 (same order, same vertex positions).
-template <int D>
-struct LocalMesh {
-  BigArray<double> coords;
-  BigArray<int> id;
-  BigArray<std::array<int, D + 1>> simplices;
-  /// opposite[t][i]: local id of the vertex of the neighbour across face i that is not on that
-  /// face (-1 on the hull); mirror[t] >> (2 i) & 3: index of t in that neighbour. Filled from
-  /// the triangulation while its neighbour cells are being read anyway, so that the per-face
-  /// loops never load a neighbour simplex (random memory access) themselves.
-  BigArray<std::array<int, D + 1>> opposite;
-  BigArray<unsigned char> mirror;
-  /// owned[t] bit i: face i of t is numbered from t (hull face, or t < its neighbour).
-  BigArray<unsigned char> owned;
-  /// 3D only: the hull facets, in CGAL's infinite-cell order.
-  std::vector<HullFace> hull;
-};
-
-/// build_delaunay2/3 that also fills @p local (may be null). Same triangulation, same order.
-Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local);
-Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local);
-
-/// The 2D Delaunay triangulation in *ranked* vertex ids: vertex k is the k-th point of CGAL's
-/// insertion order (its spatial sort), ranked.coords holds its coordinates (the input doubles)
-/// and id[k] its input index. Same triangles, same order and same neighbours as build_delaunay2,
-/// only relabelled, so that loops over triangles and along a curve touch nearby memory.
-Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id);
-
-}  // namespace constrict::detail
+#include "cgal/detail/delaunay_local.hpp"

@@ -24,7 +24,7 @@ namespace constrict::detail {
 /// @note 2D: near O(N log N) for well-spread samples when m is close to 0 (1e5 points, m = -0.05:
 ///       ~2-3 s); output-sensitive best-first k-d tree walk with exact shadow pruning.
 ///       3D: exact, vertex "ice-cream cone" pruning; practical only for a few thousand
-///       well-spread points (boundary and surface points are not pruned, see the doc §6).
+///       well-spread points (boundary and surface points are not pruned, see docs/gamma-lens-graphs.md §6).
 Status lens_faces(const PointSet& points, double m, const GammaFaces& delaunay_faces,
                   GammaFaces& out, std::size_t* candidates_tested);
 

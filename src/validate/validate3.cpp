@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Exact validation of closed triangle meshes (3D reconstruction output), mesh volume and area.
+// Exact validation of closed triangle meshes (3D reconstruction output); the volume it reports
+// is mesh_volume() (src/core/mesh.cpp).
 // Combinatorics are exact; geometric tests use the exact orient3 / orient2 predicates only.
 #include <algorithm>
 #include <cmath>
@@ -139,18 +140,6 @@ bool triangles_intersect_improperly(const PointSet& pts, const std::array<int, 3
 
 namespace {
 
-std::array<double, 3> bbox_centre(const PointSet& pts) {
-  std::array<double, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
-  if (pts.size() == 0) return lo;
-  for (int k = 0; k < 3; ++k) lo[static_cast<std::size_t>(k)] = hi[static_cast<std::size_t>(k)] = pts[0][k];
-  for (std::size_t i = 1; i < pts.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], pts[i][k]);
-      hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], pts[i][k]);
-    }
-  return {{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}};
-}
-
 int find_root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x) {
     parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
@@ -165,35 +154,6 @@ Status fail(MeshCheck& d, std::string reason) {
 }
 
 }  // namespace
-
-double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
-  const auto o = bbox_centre(pts);
-  double vol = 0;
-  for (const auto& t : mesh.triangles) {
-    const double* a = pts[static_cast<std::size_t>(t[0])];
-    const double* b = pts[static_cast<std::size_t>(t[1])];
-    const double* c = pts[static_cast<std::size_t>(t[2])];
-    const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
-    const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
-    const double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
-    vol += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
-  }
-  return vol / 6.0;
-}
-
-double mesh_area(const PointSet& pts, const TriMesh3& mesh) {
-  double area = 0;
-  for (const auto& t : mesh.triangles) {
-    const double* a = pts[static_cast<std::size_t>(t[0])];
-    const double* b = pts[static_cast<std::size_t>(t[1])];
-    const double* c = pts[static_cast<std::size_t>(t[2])];
-    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
-    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    area += 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
-  }
-  return area;
-}
 
 Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* details,
                       const MeshCheckOptions& options) {

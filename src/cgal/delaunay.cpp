@@ -36,8 +36,8 @@
 #include <utility>
 #include <vector>
 
-#include "gamma/detail/big_vector.hpp"
-#include "gamma/detail/delaunay_local.hpp"
+#include "cgal/detail/delaunay_local.hpp"
+#include "core/detail/big_vector.hpp"
 
 namespace constrict {
 namespace {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Distances between a reconstruction and a reference (compare.hpp): deterministic grid sampling of
 // one side, exact point-to-primitive distances to the other side through CGAL's AABB tree (Epick),
-// both directions; triangle recovery by exact vertex positions. The only translation unit of the
-// comparison that includes CGAL. Sampling and its accuracy: docs/evaluation.md.
+// both directions; triangle recovery by exact vertex positions. All of compare.hpp is here, inside
+// the CGAL fence (src/cgal/), because the sampling loops query the AABB trees directly. Sampling
+// and its accuracy: docs/evaluation.md.
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -36,6 +37,16 @@ using SegTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitiv
 // Fixed block size: the per-element results do not depend on the thread count, and they are
 // reduced serially, so the output is bit-identical on any machine with the same double arithmetic.
 constexpr std::size_t kGrain = 256;
+// A triangle (segment) is cut into at most kMaxGrid pieces per side, whatever the spacing.
+constexpr double kMaxGrid = 1e6;
+// choose_spacing() widens the spacing by kSpacingGrowth until the samples fit the budget, at most
+// kSpacingSteps times (1.25^200 ~ 1e19: far past any budget's need).
+constexpr double kSpacingGrowth = 1.25;
+constexpr int kSpacingSteps = 200;
+// FNV-1a over the coordinates' bit patterns, plus a final mix of the high bits.
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
+constexpr std::uint64_t kFnvPrime = 1099511628211ull;
+constexpr int kHashMixShift = 29;
 
 struct Side {
   double hmax = 0;   // max over samples
@@ -107,13 +118,13 @@ struct Mesh {
 std::size_t grid_k(double longest, double h) {
   if (!(longest > 0)) return 1;
   const double k = std::ceil(longest / h);
-  return k < 1 ? 1 : static_cast<std::size_t>(std::min(k, 1e6));
+  return k < 1 ? 1 : static_cast<std::size_t>(std::min(k, kMaxGrid));
 }
 
 // Spacing that honours both the wanted relative spacing and the sample budget.
 template <class CountAt>
 double choose_spacing(double h, std::size_t budget, CountAt&& count_at) {
-  for (int it = 0; it < 200 && count_at(h) > budget; ++it) h *= 1.25;
+  for (int it = 0; it < kSpacingSteps && count_at(h) > budget; ++it) h *= kSpacingGrowth;
   return h;
 }
 
@@ -198,12 +209,12 @@ struct PosKey {
 };
 struct PosHash {
   std::size_t operator()(const PosKey& k) const noexcept {
-    std::uint64_t h = 1469598103934665603ull;
+    std::uint64_t h = kFnvOffset;
     for (double v : k.c) {
       std::uint64_t b;
-      std::memcpy(&b, &v, 8);
-      h = (h ^ b) * 1099511628211ull;
-      h ^= h >> 29;
+      std::memcpy(&b, &v, sizeof b);
+      h = (h ^ b) * kFnvPrime;
+      h ^= h >> kHashMixShift;
     }
     return static_cast<std::size_t>(h);
   }
