@@ -58,6 +58,50 @@ inline double edge(double ax, double ay, double bx, double by, double px, double
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
 }
 
+// Cyclic axis permutation that brings the up axis to z (orientation preserving).
+struct UpFrame {
+  const PointSet& points;
+  int ax, ay, az;
+  UpFrame(const PointSet& p, int up_axis) : points(p), ax((up_axis + 1) % 3), ay((up_axis + 2) % 3), az(up_axis) {}
+  Vec operator()(std::size_t i) const {
+    const double* q = points[i];
+    return Vec{q[ax], q[ay], q[az]};
+  }
+};
+
+// The bounding sphere (box centre, half diagonal) of a set of vertices: one frame for all panels.
+struct Sphere {
+  Vec centre;
+  double radius;
+};
+
+// The sheet: cols x rows cells over a W x H image, panel p in cell (p % cols, p / cols).
+struct Sheet {
+  int cols, rows, W, H;
+};
+
+// The pixel columns [x0, x1) and rows [y0, y1) of one sheet cell.
+struct Cell {
+  int x0, x1, y0, y1;
+};
+
+Cell cell_of(const Sheet& g, int p) {
+  return {(p % g.cols) * g.W / g.cols, (p % g.cols + 1) * g.W / g.cols, (p / g.cols) * g.H / g.rows,
+          (p / g.cols + 1) * g.H / g.rows};
+}
+
+// The stages of render_sheet3, in order (defined after it).
+Status mark_used(const std::vector<Panel3>& panels, std::size_t n, std::vector<char>& used);
+Sphere bounding_sphere(const UpFrame& at, const std::vector<char>& used);
+void project_panel(const Panel3& pan, const Cell& cell, const UpFrame& at, const Sphere& frame, const RenderOptions3& o,
+                   Screen* tris, char* live);
+std::vector<std::vector<std::uint32_t>> bin_to_bands(const std::vector<Screen>& tris, const std::vector<char>& live, int nb);
+void rasterise_band(const std::vector<Screen>& tris, const std::vector<std::uint32_t>& bin, int by0, int by1, int W,
+                    std::vector<double>& depth, std::vector<std::int64_t>& id);
+void shade_band(const std::vector<Screen>& tris, const std::vector<std::int64_t>& id, int by0, int by1,
+                const RenderOptions3& o, double half, Image& out);
+void draw_separators(const Sheet& g, const RenderOptions3& o, Image& out);
+
 }  // namespace
 
 Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, const RenderOptions3& o, Image& out) {
@@ -67,14 +111,51 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};
   if (!(o.ambient >= 0 && o.ambient <= 1) || !(o.edge_width > 0) || o.columns < 0 || o.up_axis < 0 || o.up_axis > 2)
     return {StatusCode::InvalidArgument, "render: ambient in [0, 1], edge width > 0, columns >= 0, up axis 0..2"};
-  // Cyclic axis permutation that brings the up axis to z (orientation preserving).
-  const int ax = (o.up_axis + 1) % 3, ay = (o.up_axis + 2) % 3, az = o.up_axis;
-  const auto at = [&](std::size_t i) {
-    const double* q = points[i];
-    return Vec{q[ax], q[ay], q[az]};
-  };
-  const std::size_t n = points.size();
-  std::vector<char> used(n, 0);
+  const UpFrame at(points, o.up_axis);
+  std::vector<char> used(points.size(), 0);
+  if (Status s = mark_used(panels, points.size(), used); !s) return s;
+  const Sphere frame = bounding_sphere(at, used);
+
+  const int P = static_cast<int>(panels.size());
+  const int cols = o.columns > 0 ? std::min(o.columns, P) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(P))));
+  const Sheet sheet{cols, (P + cols - 1) / cols, o.width, o.height};
+  const int W = sheet.W, H = sheet.H;
+
+  // Project every panel's triangles; panel p's start at first[p].
+  std::vector<Screen> tris;
+  std::vector<std::size_t> first(static_cast<std::size_t>(P) + 1, 0);
+  for (int p = 0; p < P; ++p) first[static_cast<std::size_t>(p) + 1] = first[static_cast<std::size_t>(p)] + panels[static_cast<std::size_t>(p)].mesh->triangles.size();
+  tris.resize(first.back());
+  std::vector<char> live(tris.size(), 0);
+  for (int p = 0; p < P; ++p) {
+    const std::size_t base = first[static_cast<std::size_t>(p)];
+    project_panel(panels[static_cast<std::size_t>(p)], cell_of(sheet, p), at, frame, o, tris.data() + base, live.data() + base);
+  }
+
+  const int nb = (H + kBand - 1) / kBand;
+  const std::vector<std::vector<std::uint32_t>> bins = bin_to_bands(tris, live, nb);
+  const std::size_t npix = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
+  std::vector<double> depth(npix, -std::numeric_limits<double>::infinity());
+  std::vector<std::int64_t> id(npix, -1);
+  out.width = W;
+  out.height = H;
+  out.rgb.assign(3 * npix, 0);
+  const double half = 0.5 * o.edge_width + 0.5;
+  tbb::parallel_for(tbb::blocked_range<int>(0, nb, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int b = r.begin(); b != r.end(); ++b) {
+      const int by0 = b * kBand, by1 = std::min(H, by0 + kBand) - 1;
+      rasterise_band(tris, bins[static_cast<std::size_t>(b)], by0, by1, W, depth, id);
+      shade_band(tris, id, by0, by1, o, half, out);
+    }
+  });
+  draw_separators(sheet, o, out);
+  return Status::ok();
+}
+
+namespace {
+
+// Checks every panel (mesh, view, vertex ids < n) and marks the vertices its mesh uses.
+Status mark_used(const std::vector<Panel3>& panels, std::size_t n, std::vector<char>& used) {
   for (const auto& p : panels) {
     if (!p.mesh) return {StatusCode::InvalidArgument, "render: panel without a mesh"};
     if (!std::isfinite(p.view.azimuth) || !std::isfinite(p.view.elevation))
@@ -86,10 +167,13 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
         used[static_cast<std::size_t>(v)] = 1;
       }
   }
-  // One frame for all panels: the bounding sphere (box centre, half diagonal) of the used vertices.
+  return Status::ok();
+}
+
+Sphere bounding_sphere(const UpFrame& at, const std::vector<char>& used) {
   double lo[3] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   double hi[3] = {-lo[0], -lo[1], -lo[2]};
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < used.size(); ++i)
     if (used[i]) {
       const Vec v = at(i);
       const double c[3] = {v.x, v.y, v.z};
@@ -103,134 +187,134 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   double radius = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
   if (!(radius > 0)) radius = 1;
+  return {centre, radius};
+}
 
-  const int P = static_cast<int>(panels.size());
-  const int cols = o.columns > 0 ? std::min(o.columns, P) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(P))));
-  const int rows = (P + cols - 1) / cols;
-  const int W = o.width, H = o.height;
-
-  // Project every panel's triangles (parallel per triangle, results per index).
-  std::vector<Screen> tris;
-  std::vector<std::size_t> first(static_cast<std::size_t>(P) + 1, 0);
-  for (int p = 0; p < P; ++p) first[static_cast<std::size_t>(p) + 1] = first[static_cast<std::size_t>(p)] + panels[static_cast<std::size_t>(p)].mesh->triangles.size();
-  tris.resize(first.back());
-  std::vector<char> live(tris.size(), 0);
-  for (int p = 0; p < P; ++p) {
-    const Panel3& pan = panels[static_cast<std::size_t>(p)];
-    const Camera cam = camera(pan.view);
-    const Vec light = unit(add(add(cam.dir, scale(cam.up, 0.6)), scale(cam.right, -0.4)));
-    const int cx0 = (p % cols) * W / cols, cx1 = (p % cols + 1) * W / cols;
-    const int cy0 = (p / cols) * H / rows, cy1 = (p / cols + 1) * H / rows;
-    const double s = 0.94 * std::min(cx1 - cx0, cy1 - cy0) / (2 * radius);
-    const double mx = 0.5 * (cx0 + cx1), my = 0.5 * (cy0 + cy1);
-    const std::size_t base = first[static_cast<std::size_t>(p)];
-    const auto& T = pan.mesh->triangles;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t t = r.begin(); t != r.end(); ++t) {
-        Screen& sc = tris[base + t];
-        Vec w[3];
-        for (int k = 0; k < 3; ++k) {
-          w[k] = at(static_cast<std::size_t>(T[t][static_cast<std::size_t>(k)]));
-          const Vec d = sub(w[k], centre);
-          sc.x[k] = mx + s * dot(d, cam.right);
-          sc.y[k] = my - s * dot(d, cam.up);
-          sc.z[k] = dot(d, cam.dir);
-        }
-        const Vec nrm = cross(sub(w[1], w[0]), sub(w[2], w[0]));
-        sc.area = edge(sc.x[0], sc.y[0], sc.x[1], sc.y[1], sc.x[2], sc.y[2]);
-        if (!(dot(nrm, nrm) > 0) || sc.area == 0 || !std::isfinite(sc.area)) continue;
-        const Vec nu = unit(nrm);
-        const bool front = dot(nu, cam.dir) > 0;
-        const double shade = o.ambient + (1 - o.ambient) * std::fabs(dot(nu, light));
-        const auto& c = front ? o.front : o.back;
-        for (int k = 0; k < 3; ++k)
-          sc.color[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::lround(std::min(255.0, c[static_cast<std::size_t>(k)] * shade)));
-        sc.x0 = std::max(cx0, static_cast<int>(std::floor(std::min({sc.x[0], sc.x[1], sc.x[2]}) - 0.5)));
-        sc.x1 = std::min(cx1 - 1, static_cast<int>(std::ceil(std::max({sc.x[0], sc.x[1], sc.x[2]}) - 0.5)));
-        sc.y0 = std::max(cy0, static_cast<int>(std::floor(std::min({sc.y[0], sc.y[1], sc.y[2]}) - 0.5)));
-        sc.y1 = std::min(cy1 - 1, static_cast<int>(std::ceil(std::max({sc.y[0], sc.y[1], sc.y[2]}) - 0.5)));
-        live[base + t] = sc.x0 <= sc.x1 && sc.y0 <= sc.y1;
+// Projects the triangles of one panel into its cell (parallel per triangle, results per index):
+// tris[t] and live[t] (a visible, non-degenerate triangle) for triangle t of the panel's mesh.
+void project_panel(const Panel3& pan, const Cell& cell, const UpFrame& at, const Sphere& frame, const RenderOptions3& o,
+                   Screen* tris, char* live) {
+  const Camera cam = camera(pan.view);
+  const Vec light = unit(add(add(cam.dir, scale(cam.up, 0.6)), scale(cam.right, -0.4)));
+  const int cx0 = cell.x0, cx1 = cell.x1, cy0 = cell.y0, cy1 = cell.y1;
+  const double s = 0.94 * std::min(cx1 - cx0, cy1 - cy0) / (2 * frame.radius);
+  const double mx = 0.5 * (cx0 + cx1), my = 0.5 * (cy0 + cy1);
+  const auto& T = pan.mesh->triangles;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      Screen& sc = tris[t];
+      Vec w[3];
+      for (int k = 0; k < 3; ++k) {
+        w[k] = at(static_cast<std::size_t>(T[t][static_cast<std::size_t>(k)]));
+        const Vec d = sub(w[k], frame.centre);
+        sc.x[k] = mx + s * dot(d, cam.right);
+        sc.y[k] = my - s * dot(d, cam.up);
+        sc.z[k] = dot(d, cam.dir);
       }
-    });
-  }
+      const Vec nrm = cross(sub(w[1], w[0]), sub(w[2], w[0]));
+      sc.area = edge(sc.x[0], sc.y[0], sc.x[1], sc.y[1], sc.x[2], sc.y[2]);
+      if (!(dot(nrm, nrm) > 0) || sc.area == 0 || !std::isfinite(sc.area)) continue;
+      const Vec nu = unit(nrm);
+      const bool front = dot(nu, cam.dir) > 0;
+      const double shade = o.ambient + (1 - o.ambient) * std::fabs(dot(nu, light));
+      const auto& c = front ? o.front : o.back;
+      for (int k = 0; k < 3; ++k)
+        sc.color[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::lround(std::min(255.0, c[static_cast<std::size_t>(k)] * shade)));
+      sc.x0 = std::max(cx0, static_cast<int>(std::floor(std::min({sc.x[0], sc.x[1], sc.x[2]}) - 0.5)));
+      sc.x1 = std::min(cx1 - 1, static_cast<int>(std::ceil(std::max({sc.x[0], sc.x[1], sc.x[2]}) - 0.5)));
+      sc.y0 = std::max(cy0, static_cast<int>(std::floor(std::min({sc.y[0], sc.y[1], sc.y[2]}) - 0.5)));
+      sc.y1 = std::min(cy1 - 1, static_cast<int>(std::ceil(std::max({sc.y[0], sc.y[1], sc.y[2]}) - 0.5)));
+      live[t] = sc.x0 <= sc.x1 && sc.y0 <= sc.y1;
+    }
+  });
+}
 
-  // Bin the triangles to bands, in index order.
-  const int nb = (H + kBand - 1) / kBand;
+// The live triangles of each band of kBand rows, in index order.
+std::vector<std::vector<std::uint32_t>> bin_to_bands(const std::vector<Screen>& tris, const std::vector<char>& live, int nb) {
   std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(nb));
   for (std::size_t t = 0; t < tris.size(); ++t)
     if (live[t])
       for (int b = tris[t].y0 / kBand; b <= tris[t].y1 / kBand; ++b) bins[static_cast<std::size_t>(b)].push_back(static_cast<std::uint32_t>(t));
+  return bins;
+}
 
-  const std::size_t npix = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
-  std::vector<double> depth(npix, -std::numeric_limits<double>::infinity());
-  std::vector<std::int64_t> id(npix, -1);
-  out.width = W;
-  out.height = H;
-  out.rgb.assign(3 * npix, 0);
-  const double half = 0.5 * o.edge_width + 0.5;
-  tbb::parallel_for(tbb::blocked_range<int>(0, nb, 1), [&](const tbb::blocked_range<int>& r) {
-    for (int b = r.begin(); b != r.end(); ++b) {
-      const int by0 = b * kBand, by1 = std::min(H, by0 + kBand) - 1;
-      for (std::uint32_t t : bins[static_cast<std::size_t>(b)]) {
-        const Screen& sc = tris[t];
-        const double inv = 1.0 / sc.area;
-        for (int y = std::max(by0, sc.y0); y <= std::min(by1, sc.y1); ++y) {
-          const double py = y + 0.5;
-          for (int x = sc.x0; x <= sc.x1; ++x) {
-            const double px = x + 0.5;
-            const double l0 = edge(sc.x[1], sc.y[1], sc.x[2], sc.y[2], px, py) * inv;
-            const double l1 = edge(sc.x[2], sc.y[2], sc.x[0], sc.y[0], px, py) * inv;
-            const double l2 = edge(sc.x[0], sc.y[0], sc.x[1], sc.y[1], px, py) * inv;
-            if (l0 < 0 || l1 < 0 || l2 < 0) continue;
-            const double z = l0 * sc.z[0] + l1 * sc.z[1] + l2 * sc.z[2];
-            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
-            if (z > depth[i]) {
-              depth[i] = z;
-              id[i] = t;
-            }
+// Depth test of the band's triangles over rows by0..by1: the nearest triangle of each pixel
+// (ties to the lower index) in id, its depth in depth.
+void rasterise_band(const std::vector<Screen>& tris, const std::vector<std::uint32_t>& bin, int by0, int by1, int W,
+                    std::vector<double>& depth, std::vector<std::int64_t>& id) {
+  for (std::uint32_t t : bin) {
+    const Screen& sc = tris[t];
+    const double inv = 1.0 / sc.area;
+    for (int y = std::max(by0, sc.y0); y <= std::min(by1, sc.y1); ++y) {
+      const double py = y + 0.5;
+      for (int x = sc.x0; x <= sc.x1; ++x) {
+        const double px = x + 0.5;
+        const double l0 = edge(sc.x[1], sc.y[1], sc.x[2], sc.y[2], px, py) * inv;
+        const double l1 = edge(sc.x[2], sc.y[2], sc.x[0], sc.y[0], px, py) * inv;
+        const double l2 = edge(sc.x[0], sc.y[0], sc.x[1], sc.y[1], px, py) * inv;
+        if (l0 < 0 || l1 < 0 || l2 < 0) continue;
+        const double z = l0 * sc.z[0] + l1 * sc.z[1] + l2 * sc.z[2];
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
+        if (z > depth[i]) {
+          depth[i] = z;
+          id[i] = t;
+        }
+      }
+    }
+  }
+}
+
+// The wireframe blend of a pixel centre (px, py) of triangle sc: coverage of the nearest edge
+// line, for lines of half width `half` (in pixels, antialiasing included).
+double edge_alpha(const Screen& sc, double px, double py, double half) {
+  double dmin = std::numeric_limits<double>::max();
+  for (int k = 0; k < 3; ++k) {
+    const int a = (k + 1) % 3, bb = (k + 2) % 3;
+    const double len = std::hypot(sc.x[bb] - sc.x[a], sc.y[bb] - sc.y[a]);
+    if (len > 0) dmin = std::min(dmin, std::fabs(edge(sc.x[a], sc.y[a], sc.x[bb], sc.y[bb], px, py)) / len);
+  }
+  return std::clamp(half - dmin, 0.0, 1.0);
+}
+
+// Colours rows by0..by1 from the winners in id: flat shade, wireframe blend, or background.
+void shade_band(const std::vector<Screen>& tris, const std::vector<std::int64_t>& id, int by0, int by1,
+                const RenderOptions3& o, double half, Image& out) {
+  const int W = out.width;
+  for (int y = by0; y <= by1; ++y)
+    for (int x = 0; x < W; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
+      std::array<std::uint8_t, 3> c = o.background;
+      if (id[i] >= 0) {
+        const Screen& sc = tris[static_cast<std::size_t>(id[i])];
+        c = sc.color;
+        if (o.wireframe) {
+          const double alpha = edge_alpha(sc, x + 0.5, y + 0.5, half);
+          for (int k = 0; k < 3; ++k) {
+            const auto u = static_cast<std::size_t>(k);
+            c[u] = static_cast<std::uint8_t>(std::lround(c[u] * (1 - alpha) + o.edge[u] * alpha));
           }
         }
       }
-      // Shade this band.
-      for (int y = by0; y <= by1; ++y)
-        for (int x = 0; x < W; ++x) {
-          const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
-          std::array<std::uint8_t, 3> c = o.background;
-          if (id[i] >= 0) {
-            const Screen& sc = tris[static_cast<std::size_t>(id[i])];
-            c = sc.color;
-            if (o.wireframe) {
-              const double px = x + 0.5, py = y + 0.5;
-              double dmin = std::numeric_limits<double>::max();
-              for (int k = 0; k < 3; ++k) {
-                const int a = (k + 1) % 3, bb = (k + 2) % 3;
-                const double len = std::hypot(sc.x[bb] - sc.x[a], sc.y[bb] - sc.y[a]);
-                if (len > 0) dmin = std::min(dmin, std::fabs(edge(sc.x[a], sc.y[a], sc.x[bb], sc.y[bb], px, py)) / len);
-              }
-              const double alpha = std::clamp(half - dmin, 0.0, 1.0);
-              for (int k = 0; k < 3; ++k) {
-                const auto u = static_cast<std::size_t>(k);
-                c[u] = static_cast<std::uint8_t>(std::lround(c[u] * (1 - alpha) + o.edge[u] * alpha));
-              }
-            }
-          }
-          out.rgb[3 * i] = c[0];
-          out.rgb[3 * i + 1] = c[1];
-          out.rgb[3 * i + 2] = c[2];
-        }
+      out.rgb[3 * i] = c[0];
+      out.rgb[3 * i + 1] = c[1];
+      out.rgb[3 * i + 2] = c[2];
     }
-  });
-  // Cell separators.
+}
+
+// The lines between sheet cells.
+void draw_separators(const Sheet& g, const RenderOptions3& o, Image& out) {
+  const int W = g.W, H = g.H;
   const auto put = [&](int x, int y) {
     const std::size_t i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x));
     for (int k = 0; k < 3; ++k) out.rgb[i + static_cast<std::size_t>(k)] = o.separator[static_cast<std::size_t>(k)];
   };
-  for (int c = 1; c < cols; ++c)
-    for (int y = 0; y < H; ++y) put(c * W / cols, y);
-  for (int r = 1; r < rows; ++r)
-    for (int x = 0; x < W; ++x) put(x, r * H / rows);
-  return Status::ok();
+  for (int c = 1; c < g.cols; ++c)
+    for (int y = 0; y < H; ++y) put(c * W / g.cols, y);
+  for (int r = 1; r < g.rows; ++r)
+    for (int x = 0; x < W; ++x) put(x, r * H / g.rows);
 }
+
+}  // namespace
 
 Status render_mesh3(const PointSet& points, const TriMesh3& mesh, const std::vector<View>& views,
                     const RenderOptions3& options, Image& out) {

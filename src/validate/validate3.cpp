@@ -153,6 +153,24 @@ Status fail(MeshCheck& d, std::string reason) {
   return {StatusCode::InvalidArgument, d.reason};
 }
 
+// The vertex links: at vertex a of face (a,b,c) the link edge is b->c; the link of vertex v is
+// link[off[v], off[v + 1]) (empty for points that are not vertices).
+struct VertexLinks {
+  std::vector<std::size_t> off;
+  std::vector<std::array<int, 2>> link;
+};
+
+// The checks of validate_mesh3, in order (defined after it); each fills its fields of the
+// MeshCheck and returns the first failure.
+Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
+Status check_edges(const TriMesh3& mesh, MeshCheck& d);
+VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n);
+Status check_vertex_links(VertexLinks& vl, MeshCheck& d);
+Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOptions& options, MeshCheck& d);
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, MeshCheck& d);
+Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
+Status check_self_intersections(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
+
 }  // namespace
 
 Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* details,
@@ -167,7 +185,23 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   if (nf == 0) return fail(d, "mesh has no faces");
   if (n > 0x7fffffffu) return fail(d, "too many points");
 
-  // 1. indices
+  if (Status s = check_faces(pts, mesh, d); !s) return s;
+  if (Status s = check_edges(mesh, d); !s) return s;
+  VertexLinks links = vertex_links(mesh, n);
+  if (Status s = check_vertex_links(links, d); !s) return s;
+  if (Status s = check_all_points(links.off, options, d); !s) return s;
+  if (Status s = check_topology(mesh, links.off, d); !s) return s;
+  if (Status s = check_outward(pts, mesh, d); !s) return s;
+  if (options.self_intersections) return check_self_intersections(pts, mesh, d);
+  return Status::ok();
+}
+
+namespace {
+
+// 1. every id in range, three distinct ids per face; 2. no face with collinear vertices.
+Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
+  const std::size_t n = pts.size();
+  const std::size_t nf = mesh.triangles.size();
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& t = mesh.triangles[f];
     for (int v : t)
@@ -177,7 +211,6 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
       return fail(d, "face " + std::to_string(f) + " repeats a vertex");
   }
   d.indices_ok = true;
-  // 2. degenerate faces
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& t = mesh.triangles[f];
     if (collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
@@ -185,10 +218,15 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
       return fail(d, "face " + std::to_string(f) + " is degenerate (collinear vertices)");
   }
   d.non_degenerate = true;
+  return Status::ok();
+}
 
-  // 3. edges: key (min, max) << 1 | direction, sorted.
+// 3. edges: closed, edge-manifold, consistently oriented (d.edges counts them). The half-edges
+// are keyed (min, max) << 1 | direction and sorted; bad_edge is the first edge of the first
+// failing property.
+Status check_edges(const TriMesh3& mesh, MeshCheck& d) {
   std::vector<std::uint64_t> half;
-  half.reserve(3 * nf);
+  half.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
       const auto u = static_cast<std::uint64_t>(t[static_cast<std::size_t>(k)]);
@@ -224,59 +262,81 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   d.oriented = oriented;
   if (!oriented)
     return fail(d, "not consistently oriented at edge (" + std::to_string(d.bad_edge[0]) + "," + std::to_string(d.bad_edge[1]) + ")");
+  return Status::ok();
+}
 
-  // 4. vertex links: at vertex a of face (a,b,c) the link edge is b->c; one cycle of length deg.
-  std::vector<std::size_t> off(n + 1, 0);
+VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n) {
+  VertexLinks vl;
+  std::vector<std::size_t>& off = vl.off;
+  off.assign(n + 1, 0);
   for (const auto& t : mesh.triangles)
     for (int v : t) ++off[static_cast<std::size_t>(v) + 1];
   for (std::size_t i = 0; i < n; ++i) off[i + 1] += off[i];
-  std::vector<std::array<int, 2>> link(3 * nf);
-  {
-    std::vector<std::size_t> fill(off.begin(), off.end() - 1);
-    for (const auto& t : mesh.triangles)
-      for (int k = 0; k < 3; ++k)
-        link[fill[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])]++] =
-            {{t[static_cast<std::size_t>((k + 1) % 3)], t[static_cast<std::size_t>((k + 2) % 3)]}};
+  vl.link.resize(3 * mesh.triangles.size());
+  std::vector<std::size_t> fill(off.begin(), off.end() - 1);
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      vl.link[fill[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])]++] =
+          {{t[static_cast<std::size_t>((k + 1) % 3)], t[static_cast<std::size_t>((k + 2) % 3)]}};
+  return vl;
+}
+
+// Whether the link edges link[b, e) (sorted here) form one cycle of length e - b.
+bool link_is_one_cycle(std::vector<std::array<int, 2>>& link, std::size_t b, std::size_t e) {
+  std::sort(link.begin() + static_cast<std::ptrdiff_t>(b), link.begin() + static_cast<std::ptrdiff_t>(e));
+  bool ok = true;
+  for (std::size_t k = b + 1; k < e && ok; ++k) ok = link[k][0] != link[k - 1][0];
+  std::size_t steps = 0;
+  int cur = link[b][0];
+  if (ok) {
+    do {
+      auto it = std::lower_bound(link.begin() + static_cast<std::ptrdiff_t>(b),
+                                 link.begin() + static_cast<std::ptrdiff_t>(e), std::array<int, 2>{{cur, -1}});
+      if (it == link.begin() + static_cast<std::ptrdiff_t>(e) || (*it)[0] != cur) { ok = false; break; }
+      cur = (*it)[1];
+      ++steps;
+    } while (cur != link[b][0] && steps <= e - b);
+    ok = ok && cur == link[b][0] && steps == e - b;
   }
+  return ok;
+}
+
+// 4. vertex-manifold: the link of every vertex is one cycle (d.vertices counts the vertices).
+Status check_vertex_links(VertexLinks& vl, MeshCheck& d) {
+  const std::size_t n = vl.off.size() - 1;
   long long n_vertices = 0;
   for (std::size_t v = 0; v < n; ++v) {
-    const std::size_t b = off[v], e = off[v + 1];
+    const std::size_t b = vl.off[v], e = vl.off[v + 1];
     if (b == e) continue;
     ++n_vertices;
-    std::sort(link.begin() + static_cast<std::ptrdiff_t>(b), link.begin() + static_cast<std::ptrdiff_t>(e));
-    bool ok = true;
-    for (std::size_t k = b + 1; k < e && ok; ++k) ok = link[k][0] != link[k - 1][0];
-    std::size_t steps = 0;
-    int cur = link[b][0];
-    if (ok) {
-      do {
-        auto it = std::lower_bound(link.begin() + static_cast<std::ptrdiff_t>(b),
-                                   link.begin() + static_cast<std::ptrdiff_t>(e), std::array<int, 2>{{cur, -1}});
-        if (it == link.begin() + static_cast<std::ptrdiff_t>(e) || (*it)[0] != cur) { ok = false; break; }
-        cur = (*it)[1];
-        ++steps;
-      } while (cur != link[b][0] && steps <= e - b);
-      ok = ok && cur == link[b][0] && steps == e - b;
-    }
-    if (!ok) {
+    if (!link_is_one_cycle(vl.link, b, e)) {
       d.bad_vertex = static_cast<int>(v);
       return fail(d, "not vertex-manifold: the link of vertex " + std::to_string(v) + " is not one cycle");
     }
   }
   d.vertex_manifold = true;
   d.vertices = n_vertices;
+  return Status::ok();
+}
 
-  // 5. points used
-  d.all_points = static_cast<std::size_t>(n_vertices) == n;
+// 5. points used: every input point is a vertex (an error only when options require it).
+Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOptions& options, MeshCheck& d) {
+  const std::size_t n = off.size() - 1;
+  d.all_points = static_cast<std::size_t>(d.vertices) == n;
   if (!d.all_points) {
     for (std::size_t v = 0; v < n; ++v)
       if (off[v] == off[v + 1]) { d.missing_point = static_cast<int>(v); break; }
     if (options.require_all_points)
       return fail(d, "point " + std::to_string(d.missing_point) + " is not a vertex (" +
-                         std::to_string(n - static_cast<std::size_t>(n_vertices)) + " points missing)");
+                         std::to_string(n - static_cast<std::size_t>(d.vertices)) + " points missing)");
   }
+  return Status::ok();
+}
 
-  // 6. components (union-find over vertices along face edges)
+// 6. one component (union-find over vertices along face edges), χ = 2, F = 2V - 4.
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, MeshCheck& d) {
+  const std::size_t n = off.size() - 1;
+  const std::size_t nf = mesh.triangles.size();
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& t : mesh.triangles) {
@@ -291,62 +351,75 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
     if (off[v] != off[v + 1] && find_root(parent, static_cast<int>(v)) == static_cast<int>(v)) ++comps;
   d.components = comps;
   d.one_component = comps == 1;
-  d.euler = n_vertices - n_edges + static_cast<long long>(nf);
+  d.euler = d.vertices - d.edges + static_cast<long long>(nf);
   if (d.one_component && d.euler % 2 == 0 && d.euler <= 2) d.genus = static_cast<int>((2 - d.euler) / 2);
   if (!d.one_component) return fail(d, "mesh has " + std::to_string(comps) + " components");
   d.euler_ok = d.euler == 2;
   if (!d.euler_ok)
     return fail(d, "Euler characteristic " + std::to_string(d.euler) + " (genus " + std::to_string(d.genus) + "), expected 2");
-  d.face_count_ok = static_cast<long long>(nf) == 2 * n_vertices - 4;
+  d.face_count_ok = static_cast<long long>(nf) == 2 * d.vertices - 4;
   if (!d.face_count_ok) return fail(d, "face count " + std::to_string(nf) + " != 2V-4");
+  return Status::ok();
+}
 
-  // 7. outward
+// 7. outward: the sign decides, exactly (the double volume can overflow, underflow or cancel).
+Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   d.volume = mesh_volume(pts, mesh);
-  // The sign decides, exactly (the double volume can overflow, underflow or cancel).
   d.outward = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
                                  mesh.triangles.size()) > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
-
-  // 8. self-intersections (sweep over x-extents)
-  if (options.self_intersections) {
-    d.self_intersection_checked = true;
-    std::vector<Box> box(nf);
-    for (std::size_t f = 0; f < nf; ++f) {
-      for (int k = 0; k < 3; ++k) {
-        box[f].lo[k] = box[f].hi[k] = pts[static_cast<std::size_t>(mesh.triangles[f][0])][k];
-        for (int j = 1; j < 3; ++j) {
-          const double x = pts[static_cast<std::size_t>(mesh.triangles[f][static_cast<std::size_t>(j)])][k];
-          box[f].lo[k] = std::min(box[f].lo[k], x);
-          box[f].hi[k] = std::max(box[f].hi[k], x);
-        }
-      }
-    }
-    std::vector<std::size_t> order(nf);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return box[a].lo[0] != box[b].lo[0] ? box[a].lo[0] < box[b].lo[0] : a < b;
-    });
-    std::vector<std::size_t> active;
-    for (std::size_t f : order) {
-      std::size_t w = 0;
-      for (std::size_t g : active)
-        if (box[g].hi[0] >= box[f].lo[0]) active[w++] = g;
-      active.resize(w);
-      for (std::size_t g : active) {
-        if (box[g].hi[1] < box[f].lo[1] || box[f].hi[1] < box[g].lo[1] || box[g].hi[2] < box[f].lo[2] ||
-            box[f].hi[2] < box[g].lo[2])
-          continue;
-        if (triangles_intersect_improperly(pts, mesh.triangles[g], mesh.triangles[f])) {
-          d.intersecting_faces = {{static_cast<int>(std::min(f, g)), static_cast<int>(std::max(f, g))}};
-          return fail(d, "faces " + std::to_string(d.intersecting_faces[0]) + " and " +
-                             std::to_string(d.intersecting_faces[1]) + " intersect");
-        }
-      }
-      active.push_back(f);
-    }
-    d.no_self_intersections = true;
-  }
   return Status::ok();
 }
+
+std::vector<Box> face_boxes(const PointSet& pts, const TriMesh3& mesh) {
+  const std::size_t nf = mesh.triangles.size();
+  std::vector<Box> box(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      box[f].lo[k] = box[f].hi[k] = pts[static_cast<std::size_t>(mesh.triangles[f][0])][k];
+      for (int j = 1; j < 3; ++j) {
+        const double x = pts[static_cast<std::size_t>(mesh.triangles[f][static_cast<std::size_t>(j)])][k];
+        box[f].lo[k] = std::min(box[f].lo[k], x);
+        box[f].hi[k] = std::max(box[f].hi[k], x);
+      }
+    }
+  }
+  return box;
+}
+
+// 8. self-intersections: sweep over the faces' x-extents, exact test of the pairs whose boxes
+// meet; reports the first intersecting pair of the sweep.
+Status check_self_intersections(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
+  d.self_intersection_checked = true;
+  const std::size_t nf = mesh.triangles.size();
+  const std::vector<Box> box = face_boxes(pts, mesh);
+  std::vector<std::size_t> order(nf);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return box[a].lo[0] != box[b].lo[0] ? box[a].lo[0] < box[b].lo[0] : a < b;
+  });
+  std::vector<std::size_t> active;
+  for (std::size_t f : order) {
+    std::size_t w = 0;
+    for (std::size_t g : active)
+      if (box[g].hi[0] >= box[f].lo[0]) active[w++] = g;
+    active.resize(w);
+    for (std::size_t g : active) {
+      if (box[g].hi[1] < box[f].lo[1] || box[f].hi[1] < box[g].lo[1] || box[g].hi[2] < box[f].lo[2] ||
+          box[f].hi[2] < box[g].lo[2])
+        continue;
+      if (triangles_intersect_improperly(pts, mesh.triangles[g], mesh.triangles[f])) {
+        d.intersecting_faces = {{static_cast<int>(std::min(f, g)), static_cast<int>(std::max(f, g))}};
+        return fail(d, "faces " + std::to_string(d.intersecting_faces[0]) + " and " +
+                           std::to_string(d.intersecting_faces[1]) + " intersect");
+      }
+    }
+    active.push_back(f);
+  }
+  d.no_self_intersections = true;
+  return Status::ok();
+}
+
+}  // namespace
 
 }  // namespace constrict
