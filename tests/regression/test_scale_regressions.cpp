@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/points.hpp"
 #include "constrict/validate.hpp"
@@ -73,6 +74,49 @@ TEST(ScaleRegression2, HugeLockBoxOverflow) {
   EXPECT_TRUE(r.complete);
   EXPECT_TRUE(r.locked_at_gamma0);
   EXPECT_TRUE(validate_polygon(p, r.boundary).is_ok());
+}
+
+
+// γ0 < 0 graphs: the lens search grew a ball forever (radius NaN for a near-collinear triple at
+// ordinary magnitudes; overflow at 1e308; a radius that underflowed to 0 at 1e-323).
+void expect_graph_as_unit_scale(const std::string& file, double g) {
+  const PointSet p = load(file);
+  const PointSet unit = scaled_to_one(p);
+  GammaFaces a, b;
+  GraphStats sa, sb;
+  ASSERT_TRUE(build_gamma_graph(p, GraphSpec::fixed(g, g), a, &sa).is_ok());
+  ASSERT_TRUE(build_gamma_graph(unit, GraphSpec::fixed(g, g), b, &sb).is_ok());
+  EXPECT_EQ(a.vertices, b.vertices);
+  EXPECT_EQ(a.gamma_a, b.gamma_a);
+  EXPECT_EQ(a.gamma_b, b.gamma_b);
+  EXPECT_EQ(sa.extra_candidates, sb.extra_candidates);  // the same work
+}
+
+TEST(ScaleRegressionGraph, Huge1e308) { expect_graph_as_unit_scale("lens_huge_1e308.xyz", -0.1); }
+TEST(ScaleRegressionGraph, Subnormal1e323) { expect_graph_as_unit_scale("lens_subnormal_1e-323.xyz", -0.1); }
+
+TEST(ScaleRegressionGraph, MixedMagnitudesFinish) {
+  const PointSet p = load("lens_mixed_1e308_1e-323.xyz");
+  GammaFaces g;
+  const Status st = build_gamma_graph(p, GraphSpec::fixed(-0.1, -0.1), g);
+  ASSERT_TRUE(st.is_ok()) << st.message();
+  EXPECT_GT(g.size(), 0u);
+}
+
+// Ordinary magnitudes: the graph equals the oracle's (brute force filtered by in_graph).
+TEST(ScaleRegressionGraph, NearCollinearTripleMatchesOracle) {
+  const PointSet p = load("lens_hang_near_collinear.xyz");
+  for (double g : {-0.1, -0.5, -0.9}) {
+    const GraphSpec spec = GraphSpec::fixed(g, g);
+    GammaFaces got, all;
+    ASSERT_TRUE(build_gamma_graph(p, spec, got).is_ok());
+    ASSERT_TRUE(brute_force_gamma_faces(p, all).is_ok());
+    std::vector<int> want;
+    for (std::size_t f = 0; f < all.size(); ++f)
+      if (in_graph(spec, all.gamma_a[f], all.gamma_b[f], (all.flags[f] & kFaceBlocked) != 0))
+        for (int k = 0; k < 3; ++k) want.push_back(all.vertex(f, k));
+    EXPECT_EQ(got.vertices, want) << "gamma " << g;
+  }
 }
 
 }  // namespace
