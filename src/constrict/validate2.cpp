@@ -10,6 +10,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -268,6 +269,7 @@ Status report_crossing(const Poly& P, std::size_t e, std::size_t f, PolygonCheck
 Status validate_polygon(const PointSet& points, const std::vector<int>& boundary,
                         PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   Poly P{points, boundary, boundary.size()};
@@ -281,6 +283,7 @@ Status validate_polygon(const PointSet& points, const std::vector<int>& boundary
 Status validate_polygon_brute_force(const PointSet& points, const std::vector<int>& boundary,
                                     PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   Poly P{points, boundary, boundary.size()};
@@ -295,6 +298,7 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
                                           const std::vector<std::array<int, 3>>& triangles,
                                           PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   // Mark the polygon edges met as triangle edges: succ[u] is the vertex after u on the polygon.

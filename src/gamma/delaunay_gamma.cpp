@@ -18,6 +18,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/check_points.hpp"
 #include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
 #include "gamma/detail/big_vector.hpp"
@@ -108,6 +109,7 @@ void count_owned(const Mesh& loc, std::size_t T, std::vector<std::size_t>& first
 }  // namespace
 
 Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
+  if (Status f = detail::check_finite(points, "delaunay_gamma2"); !f) return f;
   detail::LocalMesh<2> loc;
   if (Status s = detail::build_delaunay2_local(points, out.dt, &loc); !s) return s;
   const auto& tri = out.dt.triangles;
@@ -284,6 +286,7 @@ struct FaceOrder {
 }  // namespace
 
 Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out, bool complete_degenerate) {
+  if (Status f = detail::check_finite(points, "delaunay_gamma3"); !f) return f;
   detail::LocalMesh<3> loc;
   if (Status s = detail::build_delaunay3_local(points, out.dt, &loc); !s) return s;
   const auto& tet = out.dt.tets;
