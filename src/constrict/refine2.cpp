@@ -931,7 +931,13 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order) {
   stats = Refine2Stats{};
-  if (polygon.size() < 4 || polygon.size() != points.size()) return;
+  if (polygon.size() != points.size()) return;
+  if (polygon.size() < 4) {
+    // A triangle has no other polygon: only the normal form (counter-clockwise, smallest first);
+    // it used to come back unchanged, clockwise too.
+    normalise_polygon(points, polygon, order);
+    return;
+  }
   std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
   if (!may_improve(xy, dt, polygon, len)) {
