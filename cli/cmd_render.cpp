@@ -23,6 +23,8 @@
 namespace constrict::cli {
 namespace {
 
+constexpr int kMaxViews = 1024;  // 32 x 32 panels of 512 pixels: the largest picture (16384 pixels)
+
 struct RenderArgs {
   InputArgs in;
   std::string out, points, size, view, stages, animate, up = "z";
@@ -279,6 +281,10 @@ int run_render(const RenderArgs& a) {
   const std::string oe = lower_ext(a.out);
   if (oe != "png" && oe != "svg") return fail({StatusCode::InvalidArgument, a.out + ": the picture is .png or .svg"});
   if (a.views < 0 || a.columns < 0) return fail({StatusCode::InvalidArgument, "--views and --columns must be >= 0"});
+  // Checked before any view is made: 2e9 views allocated 8 GB before the size check refused them.
+  if (a.views > kMaxViews)
+    return fail({StatusCode::InvalidArgument, "--views must be at most " + std::to_string(kMaxViews) +
+                                                  " (a sheet of 32 x 32 panels of 512 pixels, the largest picture)"});
   if (!a.points.empty()) {  // a 2D polygon result over --points
     PointSet pts;
     ReadOptions ro;

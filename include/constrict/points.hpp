@@ -52,4 +52,30 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points);
 /// @return the merged set (first occurrences, in input order)
 PointSet merge_duplicates(const PointSet& points, std::vector<std::size_t>* kept_index);
 
+/// Engines rescale their input when the binary exponent of its largest |coordinate| is beyond
+/// ±kRescaleExponent: closer to 1 the double-valued parts (γ magnitudes, circumradii, lengths,
+/// grid cells) neither overflow nor underflow.
+constexpr int kRescaleExponent = 64;
+
+/// Binary exponent e of the largest |coordinate| (std::frexp: max |x| in [2^(e-1), 2^e)); 0 when
+/// every coordinate is 0. @pre finite coordinates. O(N).
+int max_coordinate_exponent(const PointSet& points) noexcept;
+
+/// A copy of @p in scaled by 2^-e, e = max_coordinate_exponent(in), so that the largest
+/// |coordinate| lies in [1/2, 1) -- only when every coordinate scales exactly, i.e.
+/// ldexp(ldexp(x, -e), e) == x for each x (scaling up never loses bits; scaling down loses them
+/// when a coordinate would become subnormal or zero). An exact power-of-two scaling changes no
+/// predicate (orientation, in-circle, in-sphere, duplicates), and a double computed from the copy
+/// is the one computed from the input times a power of two wherever neither overflows or
+/// underflows: the copy gives the input's combinatorics with scale-free magnitudes.
+/// @param[in] in the points
+/// @param[out] out the scaled copy (dim and size of @p in); left empty on failure
+/// @param[out] exponent e (out = in * 2^-e); 0 on failure
+/// @return Ok; NonFinite for a NaN or infinite coordinate; Unsupported when the coordinates span
+///         too many orders of magnitude to rescale exactly (the message names the extremes and a
+///         coordinate that would lose bits). The caller then keeps the original coordinates (its
+///         double-valued parts must cope) or returns this status.
+/// @note O(N), deterministic; out may alias nothing in @p in.
+Status exact_power_of_two_scale(const PointSet& in, PointSet& out, int& exponent);
+
 }  // namespace constrict

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "constrict/compare.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -185,6 +186,7 @@ std::size_t count3(const Mesh& a, double h) {
 
 Status check_mesh(const PointSet& pts, const TriMesh3& m, const char* what) {
   if (pts.dim != 3) return {StatusCode::InvalidArgument, std::string(what) + ": mesh comparison needs 3D points"};
+  if (Status f = detail::check_finite(pts, what); !f) return f;
   for (const auto& t : m.triangles)
     for (int v : t)
       if (v < 0 || static_cast<std::size_t>(v) >= pts.size())
@@ -328,7 +330,7 @@ Status segments_of(const std::vector<Polyline2>& lines, const char* what, std::v
   for (const auto& l : lines) {
     if (l.xy.size() % 2 != 0) return {StatusCode::InvalidArgument, std::string(what) + ": odd coordinate count"};
     for (double v : l.xy)
-      if (!std::isfinite(v)) return {StatusCode::InvalidArgument, std::string(what) + ": non-finite coordinate"};
+      if (!std::isfinite(v)) return {StatusCode::NonFinite, std::string(what) + ": non-finite coordinate"};
     const std::size_t n = l.xy.size() / 2;
     const std::size_t m = l.closed && n > 2 ? n : (n > 0 ? n - 1 : 0);
     for (std::size_t i = 0; i < m; ++i) {

@@ -38,6 +38,7 @@
 
 #include "cgal/detail/delaunay_local.hpp"
 #include "core/detail/big_vector.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -418,10 +419,12 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
 }  // namespace detail
 
 Status build_delaunay2(const PointSet& points, Delaunay2& out) {
+  if (Status f = detail::check_finite(points, "build_delaunay2"); !f) return f;
   return detail::build_delaunay2_local(points, out, nullptr);
 }
 
 Status build_delaunay3(const PointSet& points, Delaunay3& out) {
+  if (Status f = detail::check_finite(points, "build_delaunay3"); !f) return f;
   return detail::build_delaunay3_local(points, out, nullptr);
 }
 

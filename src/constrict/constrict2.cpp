@@ -25,6 +25,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/grid_cells.hpp"
 #include "gamma/detail/delaunay_local.hpp"
 
 namespace constrict {
@@ -120,11 +121,11 @@ class Grid {
       minx_ = std::min(minx_, pts[i][0]); maxx_ = std::max(maxx_, pts[i][0]);
       miny_ = std::min(miny_, pts[i][1]); maxy_ = std::max(maxy_, pts[i][1]);
     }
-    const double w = std::max(maxx_ - minx_, 1e-300), h = std::max(maxy_ - miny_, 1e-300);
-    cs_ = std::sqrt(w * h / static_cast<double>(n));
-    cs_ = std::max({cs_, w / 4096.0, h / 4096.0});
-    nx_ = std::min<int>(4096, std::max(1, static_cast<int>(std::ceil(w / cs_))));
-    ny_ = std::min<int>(4096, std::max(1, static_cast<int>(std::ceil(h / cs_))));
+    // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
+    const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
+    hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
+    nx_ = detail::cell_count(w, hcs_, kMaxCells);
+    ny_ = detail::cell_count(h, hcs_, kMaxCells);
     const std::size_t nc = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
     start_.assign(nc + 1, 0);
     std::vector<std::size_t> cell(n);
@@ -138,14 +139,14 @@ class Grid {
     for (std::size_t i = 0; i < n; ++i) ids_[fill[cell[i]]++] = static_cast<int>(i);
     edges_in_cell_.assign(nc, {});
   }
-  int cx(double x) const { return clampi(static_cast<int>(std::floor((x - minx_) / cs_)), nx_); }
-  int cy(double y) const { return clampi(static_cast<int>(std::floor((y - miny_) / cs_)), ny_); }
+  int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
+  int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
   }
   int nx() const { return nx_; }
   int ny() const { return ny_; }
-  double cell_size() const { return cs_; }
+  double cell_size() const { return 2 * hcs_; }  // +inf at most for a box near the double range
   template <class F> void points_in_cell(int i, int j, F&& f) const {
     const std::size_t c = index(i, j);
     for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) f(ids_[k]);
@@ -153,8 +154,8 @@ class Grid {
   std::vector<int>& edges(int i, int j) { return edges_in_cell_[index(i, j)]; }
 
  private:
-  static int clampi(int v, int n) { return v < 0 ? 0 : (v >= n ? n - 1 : v); }
-  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, cs_ = 1;
+  static constexpr int kMaxCells = 4096;  // per axis
+  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
   std::vector<std::size_t> start_;
   std::vector<int> ids_;
@@ -186,6 +187,7 @@ struct Constrictor2::Impl {
   TriHeap heap{TriEntryLess{&ties}};
   bool locked = false, stopped = false;
   double ms_delaunay = 0, ms_constrict = 0;
+  int scale_exp = 0;  // rpts = ranked input * 2^-scale_exp (exact; init)
 
   // Fallback state (built on lock).
   bool fb_ready = false, adj_ready = false;
@@ -258,6 +260,14 @@ struct Constrictor2::Impl {
     if (!st) return st;
     const auto t0 = Clock::now();
     n = points.size();
+    // Far from 1 in magnitude, the double parts (apex values, grid cells, search radii) would
+    // underflow or overflow: work on a copy scaled by a power of two when that is exact (it
+    // changes no predicate, so the polygon is the one of the input at any scale); otherwise keep
+    // the input's coordinates (the grid and the searches are scale free, the keys may degrade).
+    const PointSet* build_from = &points;
+    PointSet scaled;
+    if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent)
+      if (exact_power_of_two_scale(points, scaled, scale_exp).is_ok()) build_from = &scaled;
     {
       // The state arrays are zero-filled on the other core during the (sequential) insertion, at
       // their upper bound (at most 2n - 5 triangles), and shrunk after.
@@ -269,7 +279,7 @@ struct Constrictor2::Impl {
         nxt.assign(n, -1);
         prv.assign(n, -1);
       });
-      st = detail::build_delaunay2_ranked(points, dt, rpts, gid);
+      st = detail::build_delaunay2_ranked(*build_from, dt, rpts, gid);
       side.wait();
     }
     if (st.code() == StatusCode::Duplicate) return check_points(points);
@@ -497,7 +507,7 @@ struct Constrictor2::Impl {
     const double* a = P(i);
     const double* b = P(j);
     ga = 1; gb = 1; blocked = false;
-    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
     const int ci = grid.cx(mx), cj = grid.cy(my);
     const double cs = grid.cell_size();
     const int kmax = std::max(grid.nx(), grid.ny());
@@ -588,7 +598,7 @@ struct Constrictor2::Impl {
   bool witness_below(int i, int j, int side, double thr) {
     const double* a = P(i);
     const double* b = P(j);
-    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
     const int ci = grid.cx(mx), cj = grid.cy(my);
     const double cs = grid.cell_size();
     const int kmax = std::max(grid.nx(), grid.ny());
@@ -861,13 +871,18 @@ struct Constrictor2::Impl {
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
       if (adj_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
     }
+    r.area = std::ldexp(r.area, 2 * scale_exp);
+    r.perimeter = std::ldexp(r.perimeter, scale_exp);
+    r.perimeter_before_refine = std::ldexp(r.perimeter_before_refine, scale_exp);
     if (r.perimeter_before_refine == 0) r.perimeter_before_refine = r.perimeter;
     r.boundary.resize(m);
     for (std::size_t i = 0; i < m; ++i) r.boundary[i] = G(poly[i]);
     if (opt.validate) {
       const auto tv = Clock::now();
-      Status vs = validate_polygon_in_triangulation(*pts, poly, dt.triangles, &r.check);
-      if (!vs) {
+      // A scaled run is checked on the input's own coordinates (in input ids) right away.
+      Status vs;
+      if (scale_exp == 0) vs = validate_polygon_in_triangulation(*pts, poly, dt.triangles, &r.check);
+      if (scale_exp != 0 || !vs) {
         // The diagnostics name points and positions: redo the check in input ids.
         std::vector<std::array<int, 3>> tris(dt.triangles.size());
         for (std::size_t t = 0; t < tris.size(); ++t)

@@ -19,6 +19,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/grid_cells.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -64,11 +65,11 @@ class EdgeGrid {
       minx_ = std::min(minx_, xy[2 * i]); maxx_ = std::max(maxx_, xy[2 * i]);
       miny_ = std::min(miny_, xy[2 * i + 1]); maxy_ = std::max(maxy_, xy[2 * i + 1]);
     }
-    const double w = std::max(maxx_ - minx_, 1e-300), h = std::max(maxy_ - miny_, 1e-300);
-    cs_ = std::sqrt(w * h / static_cast<double>(n));
-    cs_ = std::max({cs_, w / 2048.0, h / 2048.0});
-    nx_ = std::min<int>(2048, std::max(1, static_cast<int>(std::ceil(w / cs_))));
-    ny_ = std::min<int>(2048, std::max(1, static_cast<int>(std::ceil(h / cs_))));
+    // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
+    const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
+    hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
+    nx_ = detail::cell_count(w, hcs_, kMaxCells);
+    ny_ = detail::cell_count(h, hcs_, kMaxCells);
     cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
     built_ = true;
   }
@@ -104,13 +105,13 @@ class EdgeGrid {
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) f(cells_[index(i, j)]);
   }
-  static int clampi(int v, int n) { return v < 0 ? 0 : (v >= n ? n - 1 : v); }
-  int cx(double x) const { return clampi(static_cast<int>(std::floor((x - minx_) / cs_)), nx_); }
-  int cy(double y) const { return clampi(static_cast<int>(std::floor((y - miny_) / cs_)), ny_); }
+  int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
+  int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
   }
-  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, cs_ = 1;
+  static constexpr int kMaxCells = 2048;  // per axis
+  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
   bool built_ = false;
   std::vector<std::vector<std::uint64_t>> cells_;
@@ -930,7 +931,13 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order) {
   stats = Refine2Stats{};
-  if (polygon.size() < 4 || polygon.size() != points.size()) return;
+  if (polygon.size() != points.size()) return;
+  if (polygon.size() < 4) {
+    // A triangle has no other polygon: only the normal form (counter-clockwise, smallest first);
+    // it used to come back unchanged, clockwise too.
+    normalise_polygon(points, polygon, order);
+    return;
+  }
   std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
   if (!may_improve(xy, dt, polygon, len)) {

@@ -227,6 +227,19 @@ PointSet merge_duplicates(const PointSet& points, std::vector<std::size_t>* kept
 }
 
 namespace {
+const char* non_finite_name(double v) { return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"; }
+
+// Message naming the point of the first non-finite coordinate, or empty when all are finite.
+std::string non_finite_message(const PointSet& points) {
+  const std::size_t dim = points.dim > 0 ? static_cast<std::size_t>(points.dim) : 1;
+  for (std::size_t k = 0; k < points.coords.size(); ++k) {
+    const double v = points.coords[k];
+    if (!std::isfinite(v))
+      return "point " + std::to_string(k / dim) + " has a non-finite coordinate (" + non_finite_name(v) + ")";
+  }
+  return {};
+}
+
 Status check_points_impl(const PointSet& points, PointCheck* report, bool duplicates) {
   if (report != nullptr) report->duplicates.clear();
   const int dim = points.dim;
@@ -240,18 +253,7 @@ Status check_points_impl(const PointSet& points, PointCheck* report, bool duplic
   const std::size_t n = points.size();
   if (n == 0) return {StatusCode::EmptyInput, "no points"};
 
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < dim; ++k) {
-      const double v = points[i][k];
-      if (!std::isfinite(v))
-        return {StatusCode::NonFinite, "point " + std::to_string(i) +
-                                           " has a non-finite coordinate (" +
-                                           (std::isnan(v) ? "nan"
-                                            : v > 0       ? "inf"
-                                                          : "-inf") +
-                                           ")"};
-    }
-  }
+  if (std::string msg = non_finite_message(points); !msg.empty()) return {StatusCode::NonFinite, std::move(msg)};
 
   std::vector<DuplicatePair> dups;
   if (duplicates) dups = find_duplicates(points);
@@ -276,6 +278,12 @@ Status check_points(const PointSet& points, PointCheck* report) {
 }
 
 namespace detail {
+Status check_finite(const PointSet& points, const char* who) {
+  std::string msg = non_finite_message(points);
+  if (msg.empty()) return Status::ok();
+  return {StatusCode::NonFinite, std::string(who) + ": " + msg};
+}
+
 Status check_points_deferred(const PointSet& points) {
   Status st = check_points_impl(points, nullptr, false);
   // Too few or collinear/coplanar: a duplicate check first, so that the status is check_points'

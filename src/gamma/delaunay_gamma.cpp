@@ -20,6 +20,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "core/detail/big_vector.hpp"
+#include "core/detail/check_points.hpp"
 #include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
 #include "gamma/detail/reconcile.hpp"
@@ -126,6 +127,7 @@ Status complete_cocircular2(const PointSet& points, const std::vector<std::array
 }  // namespace
 
 Status delaunay_gamma2(const PointSet& points, DelaunayGamma2& out) {
+  if (Status f = detail::check_finite(points, "delaunay_gamma2"); !f) return f;
   detail::LocalMesh<2> loc;
   if (Status s = detail::build_delaunay2_local(points, out.dt, &loc); !s) return s;
   const std::vector<std::size_t> first = number_faces(loc, out.dt.triangles.size(), 2, out.faces, out.simplex_face);
@@ -384,6 +386,7 @@ class Completion3 {
 }  // namespace
 
 Status delaunay_gamma3(const PointSet& points, DelaunayGamma3& out, bool complete_degenerate) {
+  if (Status f = detail::check_finite(points, "delaunay_gamma3"); !f) return f;
   detail::LocalMesh<3> loc;
   if (Status s = detail::build_delaunay3_local(points, out.dt, &loc); !s) return s;
   const std::vector<std::size_t> first = number_faces(loc, out.dt.tets.size(), 3, out.faces, out.simplex_face);

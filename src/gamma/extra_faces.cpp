@@ -40,6 +40,10 @@ constexpr double kBallRel = 1e-7;               // relative slack of ball querie
 constexpr double kGammaSlack = 1e-9;            // > rounding error of apex_gamma2/3
 constexpr double kAngleSlack = 1e-9;            // > rounding error of computed directions
 constexpr double kTangentCut = 1e-4;            // shadows nearly tangent to a bin are skipped
+constexpr double kSliverSin2 = 1e-12;           // sin^2 of the angle at a below which the
+                                                // computed circumcentre is not trusted
+constexpr int kMaxGrowRounds = 40;              // grow_side: 4^40 r, then a linear scan
+constexpr double kScanBudget = 4e8;             // point tests of the linear scans, at most
 
 // ---- k-d tree (nanoflann) ----------------------------------------------------------------------
 
@@ -69,6 +73,8 @@ struct Ctx {
   std::unordered_set<std::uint64_t> delaunay;
   std::vector<std::pair<std::uint32_t, double>> hits;
   std::size_t tested = 0;
+  double scanned = 0;  // point tests of linear scans (kScanBudget)
+  bool over_budget() const { return scanned > kScanBudget; }
 };
 
 std::uint64_t face_key(const int* ids, int dim) {
@@ -174,13 +180,22 @@ bool is_vertex(const int* ids, std::uint32_t i) {
 // Minimum apex value on side `side` when no point of that side lies in the closed smallest ball
 // (all values positive). The cap C_s(g) lies in the ball through σ of radius r/(1-g) centred at
 // c + τ(g)·s·n (spec §1.1-1.2); a point outside it has apex value >= g (Lemma 5).
+// The linear scans are exact (every point, the oracle's computation) and O(N): they are counted.
+template <int D>
+void count_scan(Ctx<D>& ctx) {
+  ctx.scanned += static_cast<double>(ctx.ps->size());
+}
+
 template <int D>
 void grow_side(Ctx<D>& ctx, const int* ids, const Sphere& s, int side, double& mn) {
   double tau = s.r;
-  for (;;) {
+  for (int round = 0;; ++round) {
     const double R = std::hypot(s.r, tau);
-    if (R > ctx.far_radius) {
-      // The cap is essentially the half-space: scan every point (exact, O(N)).
+    // Beyond far_radius the cap is essentially the half-space; after kMaxGrowRounds (a radius
+    // that underflowed to 0, or a box near the double range) the growth would not end.
+    if (!(R <= ctx.far_radius) || round == kMaxGrowRounds) {
+      // Scan every point (exact, O(N)).
+      count_scan(ctx);
       const std::size_t n = ctx.ps->size();
       for (std::size_t i = 0; i < n; ++i) {
         if (is_vertex<D>(ids, static_cast<std::uint32_t>(i))) continue;
@@ -207,16 +222,54 @@ void grow_side(Ctx<D>& ctx, const int* ids, const Sphere& s, int side, double& m
 
 // The exact test (Lemma 4, 5): false if a point blocks the face or has apex value < m;
 // otherwise the exact side values.
+// The same test by scanning every point, for a face whose smallest ball is not reliable in
+// doubles (a radius or normal that is not finite or zero, a sliver whose computed circumcentre
+// has no correct digits): a near-collinear triple made the ball NaN, the ball query empty and
+// grow_side endless.
+template <int D>
+bool scan_face(Ctx<D>& ctx, const int* ids, double& ga, double& gb) {
+  count_scan(ctx);
+  double mins[2] = {1.0, 1.0};
+  const std::size_t n = ctx.ps->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (is_vertex<D>(ids, static_cast<std::uint32_t>(i))) continue;
+    const double* p = pt(ctx, i);
+    bool blocks = false;
+    const int o = side_of(ctx, ids, p, blocks);
+    if (o == 0) {
+      if (blocks) return false;
+      continue;
+    }
+    const double g = apex(ctx, ids, p);
+    if (g < ctx.m) return false;
+    double& mn = mins[o > 0 ? 0 : 1];
+    mn = std::min(mn, g);
+  }
+  ga = mins[0];
+  gb = mins[1];
+  return true;
+}
+
+bool usable(const Sphere& s, int dim) {
+  bool ok = s.r > 0 && std::isfinite(s.r);
+  for (int d = 0; d < dim; ++d) ok = ok && std::isfinite(s.c[d]) && std::isfinite(s.n[d]);
+  return ok;
+}
+
 template <int D>
 bool evaluate_face(Ctx<D>& ctx, const int* ids, double& ga, double& gb) {
   ++ctx.tested;
   Sphere s;
+  bool reliable = true;
   if constexpr (D == 2) {
     sphere2(pt(ctx, static_cast<std::size_t>(ids[0])), pt(ctx, static_cast<std::size_t>(ids[1])), s);
   } else {
-    sphere3(pt(ctx, static_cast<std::size_t>(ids[0])), pt(ctx, static_cast<std::size_t>(ids[1])),
-            pt(ctx, static_cast<std::size_t>(ids[2])), s);
+    const double sin2 = sphere3(pt(ctx, static_cast<std::size_t>(ids[0])),
+                                pt(ctx, static_cast<std::size_t>(ids[1])),
+                                pt(ctx, static_cast<std::size_t>(ids[2])), s);
+    reliable = sin2 > kSliverSin2;
   }
+  if (!reliable || !usable(s, D)) return scan_face(ctx, ids, ga, gb);
   double mins[2] = {1.0, 1.0};  // side a, side b
   // Every point with a negative apex value, or in D, lies in the open smallest ball (exact sign).
   ball_query(ctx, s.c, s.r * (1 + kBallRel) + ctx.tol);
@@ -239,6 +292,12 @@ bool evaluate_face(Ctx<D>& ctx, const int* ids, double& ga, double& gb) {
   ga = mins[0];
   gb = mins[1];
   return true;
+}
+
+Status scan_budget_status() {
+  return {StatusCode::Unsupported,
+          "lens faces: more than 4e8 point tests in linear scans (near-degenerate faces whose "
+          "balls cannot be computed in doubles); see docs/gamma-lens-graphs.md"};
 }
 
 struct FoundFace {
@@ -505,6 +564,7 @@ Status lens_faces2(Ctx<2>& ctx, std::vector<FoundFace>& found) {
               return false;
             }
           }
+          if (ctx.over_budget()) return false;
         }
       }
       sh.insert(len, phi, static_cast<int>(v));
@@ -512,6 +572,7 @@ Status lens_faces2(Ctx<2>& ctx, std::vector<FoundFace>& found) {
     };
     auto prune = [&](const Entry<2>& e) { return sh.box_shadowed(e.lo, e.hi, pu, e.key); };
     best_first<2>(*ctx.tree, pu, heap, on_point, prune);
+    if (ctx.over_budget()) return scan_budget_status();
   }
   if (overflow)
     return {StatusCode::Unsupported,
@@ -708,7 +769,7 @@ Status lens_faces3(Ctx<3>& ctx, std::vector<FoundFace>& found) {
         if (collinear3(p0, p1, p2)) continue;
         Sphere s;
         const double sin2 = sphere3(p0, p1, p2, s);
-        if (sin2 > 1e-12) {
+        if (sin2 > kSliverSin2 && usable(s, 3)) {
           // Well-shaped enough that the computed circumcentre direction is within kAngleSlack.
           bool pruned = false;
           for (int k = 0; k < 3 && !pruned; ++k) {
@@ -727,7 +788,9 @@ Status lens_faces3(Ctx<3>& ctx, std::vector<FoundFace>& found) {
         }
         if (ctx.delaunay.count(face_key(ids, 3)) != 0) continue;
         double ga = 0, gb = 0;
-        if (evaluate_face(ctx, ids, ga, gb)) {
+        const bool member = evaluate_face(ctx, ids, ga, gb);
+        if (ctx.over_budget()) return scan_budget_status();
+        if (member) {
           found.push_back({{ids[0], ids[1], ids[2]}, ga, gb});
           if (found.size() > kMaxFaces)
             return {StatusCode::Unsupported,

@@ -8,6 +8,7 @@
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/check_points.hpp"
 #include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
 #include "gamma/detail/reconcile.hpp"
@@ -91,6 +92,7 @@ void side_values_scan(const PointSet& points, const int* ids, double& gamma_a, d
 }
 
 Status brute_force_gamma_faces(const PointSet& points, GammaFaces& out) {
+  if (Status f = detail::check_finite(points, "brute force oracle"); !f) return f;
   const std::size_t n = points.size();
   out.clear();
   out.dim = points.dim;

@@ -163,16 +163,27 @@ void sort_faces(GammaFaces& g) {
 Status build_gamma_graph(const PointSet& points, const GraphSpec& spec, GammaFaces& out, GraphStats* stats) {
   if (Status s = spec.validate(); !s) return s;
   if (Status s = check_points(points); !s) return s;
+  // Far from 1 in magnitude the γ magnitudes, balls and k-d tree radii under- or overflow: work
+  // on an exact power-of-two rescaling when there is one (it changes no predicate, and every
+  // double computed from it is the input's up to the power of two: the same faces and side
+  // values). Otherwise the input's own coordinates; the lens search then copes (linear scans).
+  PointSet scaled_copy;
+  const PointSet* use = &points;
+  if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
+    int applied = 0;
+    if (exact_power_of_two_scale(points, scaled_copy, applied).is_ok()) use = &scaled_copy;
+  }
+  const PointSet& pts = *use;
   GraphStats st;
   const auto t0 = std::chrono::steady_clock::now();
   GammaFaces all;
   if (points.dim == 2) {
     DelaunayGamma2 dg;
-    if (Status s = delaunay_gamma2(points, dg); !s) return s;
+    if (Status s = delaunay_gamma2(pts, dg); !s) return s;
     all = std::move(dg.faces);
   } else {
     DelaunayGamma3 dg;
-    if (Status s = delaunay_gamma3(points, dg); !s) return s;
+    if (Status s = delaunay_gamma3(pts, dg); !s) return s;
     all = std::move(dg.faces);
   }
   st.ms_gamma = ms_since(t0);
@@ -184,7 +195,7 @@ Status build_gamma_graph(const PointSet& points, const GraphSpec& spec, GammaFac
     const auto t1 = std::chrono::steady_clock::now();
     GammaFaces extra;
     extra.dim = points.dim;
-    if (Status s = detail::lens_faces(points, spec.min_side_value(), all, extra, &st.extra_candidates); !s) return s;
+    if (Status s = detail::lens_faces(pts, spec.min_side_value(), all, extra, &st.extra_candidates); !s) return s;
     append_members(extra, spec, out);
     st.ms_extra = ms_since(t1);
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "constrict/render.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -75,6 +76,7 @@ struct Canvas {
 
 Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, const RenderOptions2& o, Image& out) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "render: a 2D picture needs 2D points"};
+  if (Status f = detail::check_finite(points, "render"); !f) return f;
   if (panels.empty()) return {StatusCode::InvalidArgument, "render: nothing to draw (no panel)"};
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};

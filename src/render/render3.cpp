@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "constrict/render.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -106,6 +107,7 @@ void draw_separators(const Sheet& g, const RenderOptions3& o, Image& out);
 
 Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, const RenderOptions3& o, Image& out) {
   if (points.dim != 3) return {StatusCode::InvalidArgument, "render: a 3D picture needs 3D points"};
+  if (Status f = detail::check_finite(points, "render"); !f) return f;
   if (panels.empty()) return {StatusCode::InvalidArgument, "render: nothing to draw (no panel)"};
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};

@@ -9,6 +9,8 @@
 #include "constrict/predicates.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/grid_cells.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -211,9 +213,10 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
     Y0 = std::min(Y0, P.vtx(i)[1]); Y1 = std::max(Y1, P.vtx(i)[1]);
   }
   const int G = static_cast<int>(std::min<std::size_t>(1024, 4 + 4 * static_cast<std::size_t>(std::sqrt(static_cast<double>(odd.size())))));
-  const double cw = std::max(X1 - X0, 1e-300) / G, ch = std::max(Y1 - Y0, 1e-300) / G;
-  const auto cx = [&](double x) { return std::clamp(static_cast<int>(std::floor((x - X0) / cw)), 0, G - 1); };
-  const auto cy = [&](double y) { return std::clamp(static_cast<int>(std::floor((y - Y0) / ch)), 0, G - 1); };
+  // Half units (grid_cells.hpp): no overflow or underflow at any scale.
+  const double cw = detail::half_span(X0, X1) / G, ch = detail::half_span(Y0, Y1) / G;
+  const auto cx = [&](double x) { return detail::cell_of(x, X0, cw, G); };
+  const auto cy = [&](double y) { return detail::cell_of(y, Y0, ch, G); };
   constexpr long long kBig = 4096;  // boxes over more cells are compared with every edge
   const auto cells_of = [&](const Box& b, int& i0, int& i1, int& j0, int& j1) {
     i0 = cx(b.x0); i1 = cx(b.x1); j0 = cy(b.y0); j1 = cy(b.y1);
@@ -266,6 +269,7 @@ Status report_crossing(const Poly& P, std::size_t e, std::size_t f, PolygonCheck
 Status validate_polygon(const PointSet& points, const std::vector<int>& boundary,
                         PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   Poly P{points, boundary, boundary.size()};
@@ -279,6 +283,7 @@ Status validate_polygon(const PointSet& points, const std::vector<int>& boundary
 Status validate_polygon_brute_force(const PointSet& points, const std::vector<int>& boundary,
                                     PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   Poly P{points, boundary, boundary.size()};
@@ -293,6 +298,7 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
                                           const std::vector<std::array<int, 3>>& triangles,
                                           PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
+  if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
   if (!st) return st;
   // Mark the polygon edges met as triangle edges: succ[u] is the vertex after u on the polygon.

@@ -11,6 +11,7 @@
 
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace {
@@ -179,6 +180,10 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   MeshCheck& d = details ? *details : local;
   d = MeshCheck{};
   if (pts.dim != 3) return fail(d, "validate_mesh3: points must be 3D");
+  if (Status f = detail::check_finite(pts, "validate_mesh3"); !f) {
+    d.reason = f.message();
+    return f;
+  }
   const std::size_t n = pts.size();
   const std::size_t nf = mesh.triangles.size();
   d.faces = static_cast<long long>(nf);

@@ -198,5 +198,16 @@ TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
   EXPECT_GT(rejected, 0u);  // the exact simplicity test is exercised
 }
 
+// refine_polygon2's contract: the result is counter-clockwise, a triangle too.
+TEST(RefineContract, ClockwiseTriangleComesBackCounterClockwise) {
+  PointSet p;
+  p.dim = 2;
+  p.coords = {0, 0, 4, 0, 1, 3};
+  std::vector<int> poly = {0, 2, 1};  // clockwise
+  ASSERT_TRUE(refine_polygon2(p, poly).is_ok());
+  EXPECT_EQ(poly, (std::vector<int>{0, 1, 2}));
+  EXPECT_TRUE(validate_polygon(p, poly).is_ok());
+}
+
 }  // namespace
 }  // namespace constrict

@@ -13,4 +13,9 @@ namespace constrict::detail {
 /// the message that names them by index.
 Status check_points_deferred(const PointSet& points);
 
+/// NonFinite naming the first point with a NaN or infinite coordinate ("<who>: point I has a
+/// non-finite coordinate (nan)"), else Ok: the first check of every public function that takes
+/// points, before any predicate sees them (CGAL asserts on infinities). O(N).
+Status check_finite(const PointSet& points, const char* who);
+
 }  // namespace constrict::detail
