@@ -24,8 +24,6 @@ using detail::kAlive;
 using detail::uz;
 
 namespace {
-// The input is rescaled by a power of two when its largest magnitude is beyond 2^±kScaleExp.
-constexpr int kScaleExp = 64;
 // Option ranges of the size bias and the label weight.
 constexpr double kMaxWeight = 100;
 bool weights_ok(double size_bias, double label_weight) {
@@ -314,19 +312,17 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   // or underflow: work on a copy scaled by a power of two, which changes no predicate and makes
   // every magnitude scale free (the result is then the same at any scale); areas and volumes are
   // scaled back in collect().
-  {
-    double m = 0;
-    for (double c : points.coords) m = std::max(m, std::abs(c));
-    int e = 0;
-    std::frexp(m, &e);
-    if (e > kScaleExp || e < -kScaleExp) {
-      auto scaled = std::make_shared<PointSet>(points);
-      for (double& c : scaled->coords) c = std::ldexp(c, -e);
-      s.scale_exp = e;
-      s.body.pts = scaled.get();
-      s.scaled = std::move(scaled);
-    }
+  // Refused (Unsupported) when no exact rescaling exists: the coordinates span too many orders of
+  // magnitude for the double-valued parts.
+  if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
+    auto scaled = std::make_shared<PointSet>();
+    int exp = 0;
+    if (Status st = exact_power_of_two_scale(points, *scaled, exp); !st) return st;
+    s.scale_exp = exp;
+    s.body.pts = scaled.get();
+    s.scaled = std::move(scaled);
   }
+  s.input = &points;
   s.opt = options;
   s.visitor = visitor;
   s.body.n = points.size();
@@ -417,7 +413,7 @@ void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
   mo.require_all_points = r.complete;
   mo.self_intersections = s.opt.validate_self_intersections;
   MeshCheck mc;
-  const Status vs = validate_mesh3(*s.body.pts, r.mesh, &mc, mo);
+  const Status vs = validate_mesh3(*s.input, r.mesh, &mc, mo);  // on the input's own coordinates
   CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
   r.validated = true;
   r.ms_validate = ms_since(t0);

@@ -142,7 +142,7 @@ TEST(ScaleRegression3, MixedMagnitudesHaveNoExactRescaling) {
 // The contract once Constrictor3::init calls exact_power_of_two_scale (the lead's restructuring of
 // constrict3.cpp; enable then): a surface valid on the input's own coordinates, or a one-line
 // refusal naming the magnitudes, never a false Duplicate or an internal error.
-TEST(ScaleRegression3, DISABLED_MixedMagnitudesValidOnInputOrRefused) {
+TEST(ScaleRegression3, MixedMagnitudesValidOnInputOrRefused) {
   for (const char* f : kMixed3D) {
     const PointSet p = load(f);
     Mesh3Result r;

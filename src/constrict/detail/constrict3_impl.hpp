@@ -25,6 +25,7 @@ struct Constrictor3::Impl {
   static constexpr double kFillConfidence = 0.5;
 
   // Inputs.
+  const PointSet* input = nullptr;         // the caller's points (the validation reads them)
   std::shared_ptr<const PointSet> scaled;  // power-of-two scaled copy of the input (init), or null
   int scale_exp = 0;                       // body.pts = input * 2^-scale_exp
   Constrict3Options opt;
