@@ -79,7 +79,8 @@ Status OffReader::counts(std::vector<Span>& fields, bool with_faces) {
   const std::uint64_t room = left / kMinRecordBytes + 1;  // the last line may lack its '\n'
   if (n_vertices_ > room || n_faces_ > room - n_vertices_)
     return error_at(StatusCode::ParseError, name_, line,
-                    "OFF counts announce " + plural(n_vertices_, "vertex") +
+                    "OFF counts announce " + std::to_string(n_vertices_) +
+                        (n_vertices_ == 1 ? " vertex" : " vertices") +
                         (with_faces ? " and " + plural(n_faces_, "face") : std::string()) +
                         ", more lines than the " + std::to_string(left) +
                         " bytes left in the file can hold; correct the counts");
