@@ -16,6 +16,8 @@ namespace {
 // Largest magnitude of a kept list item (face index): every integer up to 2^53 is exact in a double,
 // so an item of any PLY type converts to int64 without rounding or overflow.
 constexpr double kMaxListItem = 9007199254740992.0;  // 2^53
+// Most values kept per record: x y z, nx ny nz, red green blue alpha.
+constexpr std::size_t kMaxSlots = 10;
 
 bool ply_type_from_name(std::string_view s, PlyType& t) {
   static const struct {
@@ -221,18 +223,6 @@ PlyBody::PlyBody(std::string_view data, const std::string& name, const PlyHeader
       swap_((header.encoding == PlyEncoding::BinaryLittleEndian) != host_is_little_endian()),
       line_(ascii_ ? header.body_line : 0) {}
 
-bool PlyBody::next_token(const char*& b, const char*& e) noexcept {
-  while (p_ < end_ && (is_space(*p_) || *p_ == '\n')) {
-    if (*p_ == '\n') ++line_;
-    ++p_;
-  }
-  if (p_ == end_) return false;
-  b = p_;
-  while (p_ < end_ && !is_space(*p_) && *p_ != '\n') ++p_;
-  e = p_;
-  return true;
-}
-
 Status PlyBody::check_room(const PlyElement& el) const {
   const std::uint64_t left = bytes_left();
   if (!ascii_ && el.min_size > 0) {
@@ -282,17 +272,19 @@ Status PlyBody::skip(const PlyElement& el) {
 Status PlyBody::read_table(const PlyElement& el, const PlyRecordSpec& spec, int n_slots,
                            std::vector<double>& table) {
   const auto width = static_cast<std::size_t>(n_slots);
+  CONSTRICT_CHECK(width <= kMaxSlots, "more PLY slots than a record row holds");
   if (!ascii_ && !el.has_list) return read_fixed_binary(el, spec, n_slots, table);
   // Never trust the count for an allocation: at most one record per value-sized piece left.
   const std::uint64_t per_record = ascii_ ? 2 * std::max<std::size_t>(el.properties.size(), 1)
                                           : std::max<std::size_t>(el.min_size, 1);
   table.reserve(table.size() +
                 static_cast<std::size_t>(std::min(el.count, bytes_left() / per_record)) * width);
-  std::vector<double> row(width, 0.0);
+  double row[kMaxSlots] = {};
   for (std::uint64_t i = 0; i < el.count; ++i) {
-    Status st = read_record(el, i, spec, row.data(), nullptr);
+    Status st = ascii_ ? read_record_ascii(el, i, spec, row, nullptr)
+                       : read_record_binary(el, i, spec, row, nullptr);
     if (!st) return st;
-    table.insert(table.end(), row.begin(), row.end());
+    table.insert(table.end(), row, row + width);
   }
   return Status::ok();
 }
@@ -314,13 +306,12 @@ Status PlyBody::read_record_ascii(const PlyElement& el, std::uint64_t i,
     const int slot = spec.slot[k];
     if (!el.properties[k].is_list) {
       if (slot < 0) continue;  // skipped values are not parsed
-      Status st = parse_coordinate(Span{b, e}, name_, line_, values[slot]);
-      if (st) continue;
       // A malformed number is an error in any kept value; a non-finite one only in coordinates.
-      if (st.code() == StatusCode::NonFinite && slot >= spec.n_finite) continue;
-      if (st.code() == StatusCode::NonFinite)
-        return {st.code(), st.message() + " (" + el.name + " " + std::to_string(i) + ")"};
-      return st;
+      double& v = values[slot];
+      if (parse_double(b, e, v) && (slot >= spec.n_finite || std::isfinite(v))) continue;
+      Status st = parse_coordinate(Span{b, e}, name_, line_, v);
+      if (st.code() != StatusCode::NonFinite) return st;
+      return {st.code(), st.message() + " (" + el.name + " " + std::to_string(i) + ")"};
     }
     std::uint64_t n = 0;
     if (!parse_count(b, e, n))

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "constrict/status.hpp"
+#include "io/detail/scan.hpp"
 
 namespace constrict {
 namespace detail {
@@ -99,7 +100,19 @@ class PlyBody {
   std::size_t line() const noexcept { return line_; }
 
  private:
-  bool next_token(const char*& b, const char*& e) noexcept;
+  // The next whitespace-separated token (ascii), counting lines; false at the end of the data.
+  // Defined here so that it inlines into the per-value loops.
+  bool next_token(const char*& b, const char*& e) noexcept {
+    while (p_ < end_ && (is_space(*p_) || *p_ == '\n')) {
+      if (*p_ == '\n') ++line_;
+      ++p_;
+    }
+    if (p_ == end_) return false;
+    b = p_;
+    while (p_ < end_ && !is_space(*p_) && *p_ != '\n') ++p_;
+    e = p_;
+    return true;
+  }
   std::uint64_t bytes_left() const noexcept { return static_cast<std::uint64_t>(end_ - p_); }
   Status truncated(const PlyElement& el, std::uint64_t i) const;
   Status read_record_ascii(const PlyElement& el, std::uint64_t i, const PlyRecordSpec& spec,
