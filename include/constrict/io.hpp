@@ -28,6 +28,18 @@ struct ReadOptions {
   bool check = true;
 };
 
+/// Per-point attributes a file carries besides the coordinates, as plain arrays in the order of
+/// the returned points (after merge_duplicates). Read from PLY vertex properties; empty when the
+/// file has none (or for the other formats).
+struct PointAttributes {
+  /// nx, ny, nz per point (PLY scalar properties nx, ny, nz, any numeric type), as written
+  std::vector<double> normals;
+  /// color_channels values per point (PLY red, green, blue[, alpha]), scaled to [0, 1]: integer
+  /// types divided by 255 (ushort: 65535), float types kept as written
+  std::vector<double> colors;
+  int color_channels = 0;  ///< 0 (no colours), 3 (red green blue) or 4 (with alpha)
+};
+
 /// What read_points() saw besides the points.
 struct ReadReport {
   std::size_t points_read = 0;              ///< points in the file, before merging
@@ -35,6 +47,7 @@ struct ReadReport {
   /// For each point of the result, its 0-based index in the file (identity unless merged).
   std::vector<std::size_t> original_index;
   std::vector<std::string> warnings;        ///< one line each (e.g. merged duplicates)
+  PointAttributes attributes;               ///< normals and colours (PLY), when the file has them
 };
 
 /// Reads a point set (full rules and every error message: docs/input-formats.md).
@@ -44,8 +57,10 @@ struct ReadReport {
 /// dim = 0 the field count (2 or 3) is the dimension; a forced dim takes the first `dim` fields of
 /// each line (so --dim 2 drops z) and fewer fields than `dim` is a ParseError.
 /// PLY: ascii, binary_little_endian, binary_big_endian; `vertex` element with float/double (or
-/// integer) properties x, y[, z]; other elements and properties (lists too) are skipped. 3D if
-/// the vertex has z, else 2D; a forced dim 2 drops z.
+/// integer) properties x, y[, z]; normals nx ny nz and colours red green blue [alpha] go to
+/// report->attributes; other elements and properties (lists too) are skipped. 3D if the vertex
+/// has z, else 2D; a forced dim 2 drops z. A header count larger than the rest of the file can
+/// hold is a ParseError before anything is allocated.
 /// OFF (also COFF, NOFF...) / OBJ (`v` lines): the vertices only, 3D unless dim 2 is forced.
 /// @param[in] path file to read
 /// @param[in] options see ReadOptions

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "constrict/points.hpp"
@@ -118,12 +119,19 @@ struct MeshReadReport {
 /// .obj (`v` and `f` records, `a/b/c` and negative indices accepted), .stl (binary or ASCII;
 /// identical corner coordinates become one vertex, first occurrence order). Polygons with more
 /// than three vertices are split into a fan from their first vertex. Vertices are kept in file
-/// order (OFF/PLY/OBJ), unused ones included; no geometric check is made.
+/// order (OFF/PLY/OBJ), unused ones included; no geometric check is made. OFF, PLY and OBJ use the
+/// readers of read_points(): a header count larger than the file can hold is a ParseError before
+/// anything is allocated, and face indices must be integers (any PLY list type) in range.
 /// @param[out] points dim 3, the file's vertices; unchanged on error
 /// @param[out] mesh triangles over @p points; unchanged on error
 /// @return Ok, FileNotFound, ParseError ("file:LINE: ..." or "file: PLY face I: ..."),
 ///         NonFinite, EmptyInput (no faces). One-line messages starting with @p path.
 /// @note O(file size) (STL: O(F log F) for the vertex identification).
 Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, MeshReadReport* report = nullptr);
+
+/// Same as read_mesh() on an in-memory buffer; the format follows the extension of @p name,
+/// which also starts every message. FileNotFound cannot occur.
+Status read_mesh_from_buffer(std::string_view data, const std::string& name, PointSet& points,
+                             TriMesh3& mesh, MeshReadReport* report = nullptr);
 
 }  // namespace constrict

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Triangle mesh input (reference meshes for `constrict compare` and `constrict render`): OFF, PLY
-// (ascii, binary little/big endian), OBJ and STL (binary and ascii). Polygons with more than three
-// vertices are split into a fan. Errors name the file and the 1-based line (binary files: the
-// element and its index), like the point reader.
+// (ascii, binary little/big endian), OBJ and STL (binary and ascii). OFF, PLY and OBJ go through
+// the same readers as the point input (io/detail/off, ply, obj), so both accept the same files and
+// refuse the same lies; STL is read here. Polygons with more than three vertices are split into a
+// fan. Errors name the file and the 1-based line (binary files: the element and its index).
 #include <fast_float/fast_float.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -20,6 +20,9 @@
 #include <vector>
 
 #include "constrict/mesh.hpp"
+#include "io/detail/obj.hpp"
+#include "io/detail/off.hpp"
+#include "io/detail/ply.hpp"
 #include "io/detail/write_util.hpp"
 
 namespace constrict {
@@ -32,7 +35,7 @@ struct Builder {
   MeshReadReport rep;
 
   // Adds polygon `ids` (already 0-based and in range) as a triangle fan.
-  void polygon(const std::vector<long long>& ids) {
+  void polygon(const std::vector<std::int64_t>& ids) {
     ++rep.polygons;
     if (ids.size() > 3) ++rep.split_polygons;
     for (std::size_t k = 1; k + 1 < ids.size(); ++k)
@@ -48,12 +51,8 @@ bool to_double(std::string_view t, double& v) {
   const auto r = fast_float::from_chars(t.data(), t.data() + t.size(), v);
   return r.ec == std::errc() && r.ptr == t.data() + t.size();
 }
-bool to_ll(std::string_view t, long long& v) {
-  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-  return r.ec == std::errc() && r.ptr == t.data() + t.size();
-}
 
-// Splits a text buffer into lines (without '\n', '\r' stripped) and words.
+// Splits a text buffer into lines (without '\n', '\r' stripped) and words (ASCII STL).
 struct Lines {
   std::string_view data;
   std::size_t pos = 0, line = 0;
@@ -82,17 +81,10 @@ void words(std::string_view s, std::vector<std::string_view>& w) {
   }
 }
 
-Status finite_point(Builder& b, const std::array<double, 3>& p, std::size_t line) {
-  for (double v : p)
-    if (!std::isfinite(v)) return at(StatusCode::NonFinite, b.name, line, "non-finite vertex coordinate");
-  b.pts.coords.insert(b.pts.coords.end(), p.begin(), p.end());
-  return Status::ok();
-}
-
-Status check_ids(Builder& b, std::vector<long long>& ids, std::size_t line) {
+Status check_ids(Builder& b, const std::vector<std::int64_t>& ids, std::size_t line) {
   if (ids.size() < 3) return at(StatusCode::ParseError, b.name, line, "a face needs at least 3 vertices");
-  const long long n = static_cast<long long>(b.pts.size());
-  for (long long v : ids)
+  const auto n = static_cast<std::int64_t>(b.pts.size());
+  for (std::int64_t v : ids)
     if (v < 0 || v >= n)
       return at(StatusCode::ParseError, b.name, line,
                 "vertex index " + std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
@@ -100,116 +92,90 @@ Status check_ids(Builder& b, std::vector<long long>& ids, std::size_t line) {
 }
 
 Status parse_off(std::string_view data, Builder& b) {
-  Lines L{data};
-  std::string_view s;
-  std::vector<std::string_view> w;
-  // Header keyword (OFF, COFF, NOFF, STOFF...), possibly followed by the counts on the same line.
-  std::vector<std::string_view> counts;
-  bool keyword = false;
-  while (L.next(s)) {
-    words(s, w);
-    if (w.empty()) continue;
-    if (!keyword) {
-      if (w[0].size() < 3 || w[0].substr(w[0].size() - 3) != "OFF")
-        return at(StatusCode::ParseError, b.name, L.line, "an OFF file starts with 'OFF'");
-      keyword = true;
-      counts.assign(w.begin() + 1, w.end());
-      if (counts.empty()) continue;
-    } else {
-      counts = w;
-    }
-    break;
-  }
-  long long nv = 0, nf = 0;
-  if (counts.size() < 2 || !to_ll(counts[0], nv) || !to_ll(counts[1], nf) || nv < 0 || nf < 0)
-    return at(StatusCode::ParseError, b.name, L.line, "expected 'vertices faces edges' counts");
-  b.pts.coords.reserve(static_cast<std::size_t>(nv) * 3);
-  for (long long i = 0; i < nv;) {
-    if (!L.next(s)) return at(StatusCode::ParseError, b.name, L.line, "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
-    words(s, w);
-    if (w.empty()) continue;
-    std::array<double, 3> p{};
-    if (w.size() < 3) return at(StatusCode::ParseError, b.name, L.line, "a vertex needs 3 coordinates");
-    for (int k = 0; k < 3; ++k)
-      if (!to_double(w[static_cast<std::size_t>(k)], p[static_cast<std::size_t>(k)]))
-        return at(StatusCode::ParseError, b.name, L.line, "malformed number '" + std::string(w[static_cast<std::size_t>(k)]) + "'");
-    if (Status st = finite_point(b, p, L.line); !st) return st;
-    ++i;
-  }
-  std::vector<long long> ids;
-  for (long long f = 0; f < nf;) {
-    if (!L.next(s)) return at(StatusCode::ParseError, b.name, L.line, "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
-    words(s, w);
-    if (w.empty()) continue;
-    long long k = 0;
-    if (!to_ll(w[0], k) || k < 0 || static_cast<std::size_t>(k) + 1 > w.size())
-      return at(StatusCode::ParseError, b.name, L.line, "malformed face (count, then that many indices)");
-    ids.assign(static_cast<std::size_t>(k), 0);
-    for (long long j = 0; j < k; ++j)
-      if (!to_ll(w[static_cast<std::size_t>(j + 1)], ids[static_cast<std::size_t>(j)]))
-        return at(StatusCode::ParseError, b.name, L.line, "malformed vertex index");
-    if (Status st = check_ids(b, ids, L.line); !st) return st;
+  detail::OffReader off(data, b.name);
+  Status st = off.header(true);
+  if (!st) return st;
+  if (off.empty()) return at(StatusCode::ParseError, b.name, off.line(), "an OFF file starts with 'OFF'");
+  st = off.vertices(3, b.pts.coords);
+  if (!st) return st;
+  std::vector<std::int64_t> ids;
+  for (std::uint64_t f = 0; f < off.n_faces(); ++f) {
+    st = off.face(f, ids);
+    if (st) st = check_ids(b, ids, off.line());
+    if (!st) return st;
     b.polygon(ids);
-    ++f;
   }
   return Status::ok();
 }
+
+// Faces arrive while the vertices are still being read (negative indices are relative to the
+// vertices so far), so each one is checked against the vertices read before it.
+struct ObjFaces final : detail::ObjFaceSink {
+  Builder& b;
+  explicit ObjFaces(Builder& builder) : b(builder) {}
+  Status face(std::size_t line, const std::vector<std::int64_t>& ids) override {
+    Status st = check_ids(b, ids, line);
+    if (st) b.polygon(ids);
+    return st;
+  }
+};
 
 Status parse_obj(std::string_view data, Builder& b) {
-  Lines L{data};
-  std::string_view s;
-  std::vector<std::string_view> w;
-  // Faces may come before all vertices are known (negative indices are relative to the vertices
-  // read so far), so indices are resolved and checked per line.
-  std::vector<long long> ids;
-  while (L.next(s)) {
-    words(s, w);
-    if (w.empty()) continue;
-    if (w[0] == "v") {
-      if (w.size() < 4) return at(StatusCode::ParseError, b.name, L.line, "a vertex needs 3 coordinates");
-      std::array<double, 3> p{};
-      for (int k = 0; k < 3; ++k)
-        if (!to_double(w[static_cast<std::size_t>(k + 1)], p[static_cast<std::size_t>(k)]))
-          return at(StatusCode::ParseError, b.name, L.line, "malformed number '" + std::string(w[static_cast<std::size_t>(k + 1)]) + "'");
-      if (Status st = finite_point(b, p, L.line); !st) return st;
-    } else if (w[0] == "f") {
-      ids.clear();
-      for (std::size_t j = 1; j < w.size(); ++j) {
-        std::string_view t = w[j].substr(0, w[j].find('/'));
-        long long v = 0;
-        if (!to_ll(t, v) || v == 0) return at(StatusCode::ParseError, b.name, L.line, "malformed vertex index");
-        ids.push_back(v > 0 ? v - 1 : static_cast<long long>(b.pts.size()) + v);
-      }
-      if (Status st = check_ids(b, ids, L.line); !st) return st;
-      b.polygon(ids);
-    }
+  ObjFaces faces(b);
+  return detail::read_obj(data, b.name, 3, b.pts.coords, &faces);
+}
+
+// ---- PLY: 'vertex' x y z and 'face' vertex_indices (or vertex_index); other elements skipped --
+
+Status ply_faces(detail::PlyBody& body, const detail::PlyElement& el, Builder& b) {
+  int list = el.find("vertex_indices");
+  if (list < 0) list = el.find("vertex_index");
+  if (list >= 0 && !el.properties[static_cast<std::size_t>(list)].is_list) list = -1;
+  if (list < 0) return body.skip(el);
+  const detail::PlyRecordSpec spec{std::vector<int>(el.properties.size(), -1), 0, list};
+  std::vector<std::int64_t> ids;
+  for (std::uint64_t i = 0; i < el.count; ++i) {
+    Status st = body.read_record(el, i, spec, nullptr, &ids);
+    if (!st) return st;
+    st = check_ids(b, ids, body.line());
+    if (!st && !body.ascii())
+      st = {st.code(), b.name + ": PLY face " + std::to_string(i) + ": bad vertex list (" +
+                           std::to_string(ids.size()) + " indices, " + std::to_string(b.pts.size()) +
+                           " vertices)"};
+    if (!st) return st;
+    b.polygon(ids);
   }
   return Status::ok();
 }
 
-// ---- PLY ----------------------------------------------------------------------------------
-enum class PT { I8, U8, I16, U16, I32, U32, F32, F64 };
-bool pt_from(std::string_view s, PT& t) {
-  static const std::pair<const char*, PT> names[] = {
-      {"char", PT::I8},   {"int8", PT::I8},    {"uchar", PT::U8},   {"uint8", PT::U8},  {"short", PT::I16},
-      {"int16", PT::I16}, {"ushort", PT::U16}, {"uint16", PT::U16}, {"int", PT::I32},   {"int32", PT::I32},
-      {"uint", PT::U32},  {"uint32", PT::U32}, {"float", PT::F32},  {"float32", PT::F32}, {"double", PT::F64},
-      {"float64", PT::F64}};
-  for (const auto& n : names)
-    if (s == n.first) { t = n.second; return true; }
-  return false;
-}
-std::size_t pt_size(PT t) {
-  switch (t) {
-    case PT::I8: case PT::U8: return 1;
-    case PT::I16: case PT::U16: return 2;
-    case PT::I32: case PT::U32: case PT::F32: return 4;
-    case PT::F64: return 8;
+Status ply_vertices(detail::PlyBody& body, const detail::PlyElement& el, Builder& b) {
+  static const char* const kAxes[3] = {"x", "y", "z"};
+  detail::PlyRecordSpec spec{std::vector<int>(el.properties.size(), -1), 3, -1};
+  for (int k = 0; k < 3; ++k) {
+    const int prop = el.find(kAxes[k]);
+    if (prop < 0 || el.properties[static_cast<std::size_t>(prop)].is_list)
+      return {StatusCode::ParseError, b.name + ": PLY vertex element needs x, y and z"};
+    spec.slot[static_cast<std::size_t>(prop)] = k;
   }
-  return 0;
+  return body.read_table(el, spec, 3, b.pts.coords);
 }
-struct Prop { std::string name; bool list = false; PT count{}, type{}; };
-struct Elem { std::string name; long long n = 0; std::vector<Prop> props; };
+
+Status parse_ply(std::string_view data, Builder& b) {
+  detail::PlyHeader header;
+  Status st = detail::parse_ply_header(data, b.name, header);
+  if (!st) return st;
+  detail::PlyBody body(data, b.name, header);
+  for (const detail::PlyElement& el : header.elements) {
+    st = body.check_room(el);
+    if (st) {
+      if (el.name == "vertex") st = ply_vertices(body, el, b);
+      else if (el.name == "face") st = ply_faces(body, el, b);
+      else st = body.skip(el);
+    }
+    if (!st) return st;
+  }
+  return Status::ok();
+}
 
 template <class T>
 T load(const unsigned char* p, bool swap) {
@@ -219,143 +185,6 @@ T load(const unsigned char* p, bool swap) {
   T v;
   std::memcpy(&v, buf, sizeof(T));
   return v;
-}
-double load_value(const unsigned char* p, PT t, bool swap) {
-  switch (t) {
-    case PT::I8: return static_cast<double>(static_cast<std::int8_t>(*p));
-    case PT::U8: return static_cast<double>(*p);
-    case PT::I16: return load<std::int16_t>(p, swap);
-    case PT::U16: return load<std::uint16_t>(p, swap);
-    case PT::I32: return load<std::int32_t>(p, swap);
-    case PT::U32: return load<std::uint32_t>(p, swap);
-    case PT::F32: return static_cast<double>(load<float>(p, swap));
-    case PT::F64: return load<double>(p, swap);
-  }
-  return 0;
-}
-
-Status parse_ply(std::string_view data, Builder& b) {
-  Lines L{data};
-  std::string_view s;
-  std::vector<std::string_view> w;
-  if (!L.next(s) || s != "ply") return at(StatusCode::ParseError, b.name, 1, "a PLY file starts with 'ply'");
-  int format = -1;  // 0 ascii, 1 little, 2 big
-  std::vector<Elem> elems;
-  bool ended = false;
-  while (L.next(s)) {
-    words(s, w);
-    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header") { ended = true; break; }
-    if (w[0] == "format" && w.size() >= 2) {
-      if (w[1] == "ascii") format = 0;
-      else if (w[1] == "binary_little_endian") format = 1;
-      else if (w[1] == "binary_big_endian") format = 2;
-      else return at(StatusCode::ParseError, b.name, L.line, "unknown PLY format");
-    } else if (w[0] == "element" && w.size() == 3) {
-      Elem e;
-      e.name = std::string(w[1]);
-      if (!to_ll(w[2], e.n) || e.n < 0) return at(StatusCode::ParseError, b.name, L.line, "malformed element count");
-      elems.push_back(e);
-    } else if (w[0] == "property" && !elems.empty()) {
-      Prop p;
-      bool ok = false;
-      if (w.size() == 5 && w[1] == "list") {
-        p.list = true;
-        ok = pt_from(w[2], p.count) && pt_from(w[3], p.type);
-        p.name = std::string(w[4]);
-      } else if (w.size() == 3) {
-        ok = pt_from(w[1], p.type);
-        p.name = std::string(w[2]);
-      }
-      if (!ok) return at(StatusCode::ParseError, b.name, L.line, "malformed property");
-      elems.back().props.push_back(p);
-    } else {
-      return at(StatusCode::ParseError, b.name, L.line, "unknown PLY header line");
-    }
-  }
-  if (!ended || format < 0) return at(StatusCode::ParseError, b.name, L.line, "PLY header without format or end_header");
-  const bool little_host = [] { const std::uint16_t x = 1; unsigned char c; std::memcpy(&c, &x, 1); return c == 1; }();
-  const bool swap = (format == 1 && !little_host) || (format == 2 && little_host);
-  std::vector<double> vals;
-  std::vector<long long> ids;
-  std::size_t off = L.pos;
-  const auto* base = reinterpret_cast<const unsigned char*>(data.data());
-  const auto truncated = [&b](const Elem& e, long long i) {
-    return Status{StatusCode::ParseError, b.name + ": PLY " + e.name + " " + std::to_string(i) + ": file truncated"};
-  };
-  for (const Elem& e : elems) {
-    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
-    int ix = -1, iy = -1, iz = -1, iface = -1;
-    for (std::size_t k = 0; k < e.props.size(); ++k) {
-      const std::string& n = e.props[k].name;
-      if (n == "x") ix = static_cast<int>(k);
-      if (n == "y") iy = static_cast<int>(k);
-      if (n == "z") iz = static_cast<int>(k);
-      if (e.props[k].list && (n == "vertex_indices" || n == "vertex_index")) iface = static_cast<int>(k);
-    }
-    if (is_vertex && (ix < 0 || iy < 0 || iz < 0))
-      return {StatusCode::ParseError, b.name + ": PLY vertex element needs x, y and z"};
-    for (long long i = 0; i < e.n; ++i) {
-      std::array<double, 3> p{};
-      ids.clear();
-      if (format == 0) {
-        std::string_view line;
-        do {
-          if (!L.next(line)) return at(StatusCode::ParseError, b.name, L.line, "file ends inside element '" + e.name + "'");
-          words(line, w);
-        } while (w.empty());
-        std::size_t t = 0;
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const Prop& pr = e.props[k];
-          long long cnt = 1;
-          if (pr.list) {
-            if (t >= w.size() || !to_ll(w[t], cnt) || cnt < 0) return at(StatusCode::ParseError, b.name, L.line, "malformed list count");
-            ++t;
-          }
-          for (long long j = 0; j < cnt; ++j, ++t) {
-            double v = 0;
-            if (t >= w.size() || !to_double(w[t], v)) return at(StatusCode::ParseError, b.name, L.line, "malformed or missing value");
-            if (static_cast<int>(k) == iface) ids.push_back(static_cast<long long>(v));
-            if (static_cast<int>(k) == ix) p[0] = v;
-            if (static_cast<int>(k) == iy) p[1] = v;
-            if (static_cast<int>(k) == iz) p[2] = v;
-          }
-        }
-      } else {
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const Prop& pr = e.props[k];
-          long long cnt = 1;
-          if (pr.list) {
-            if (off + pt_size(pr.count) > data.size()) return truncated(e, i);
-            cnt = static_cast<long long>(load_value(base + off, pr.count, swap));
-            off += pt_size(pr.count);
-            if (cnt < 0) return {StatusCode::ParseError, b.name + ": PLY " + e.name + " " + std::to_string(i) + ": negative list count"};
-          }
-          const std::size_t sz = pt_size(pr.type);
-          if (off + sz * static_cast<std::size_t>(cnt) > data.size()) return truncated(e, i);
-          for (long long j = 0; j < cnt; ++j, off += sz) {
-            if (static_cast<int>(k) == iface) ids.push_back(static_cast<long long>(load_value(base + off, pr.type, swap)));
-            else if (static_cast<int>(k) == ix) p[0] = load_value(base + off, pr.type, swap);
-            else if (static_cast<int>(k) == iy) p[1] = load_value(base + off, pr.type, swap);
-            else if (static_cast<int>(k) == iz) p[2] = load_value(base + off, pr.type, swap);
-          }
-        }
-      }
-      const std::size_t where = format == 0 ? L.line : static_cast<std::size_t>(i);
-      if (is_vertex) {
-        for (double v : p)
-          if (!std::isfinite(v))
-            return format == 0 ? at(StatusCode::NonFinite, b.name, where, "non-finite vertex coordinate")
-                               : Status{StatusCode::NonFinite, b.name + ": PLY vertex " + std::to_string(i) + ": non-finite coordinate"};
-        b.pts.coords.insert(b.pts.coords.end(), p.begin(), p.end());
-      } else if (is_face && iface >= 0) {
-        Status st = check_ids(b, ids, where);
-        if (!st) return format == 0 ? st : Status{st.code(), b.name + ": PLY face " + std::to_string(i) + ": bad vertex list (" + std::to_string(ids.size()) + " indices, " + std::to_string(b.pts.size()) + " vertices)"};
-        b.polygon(ids);
-      }
-    }
-  }
-  return Status::ok();
 }
 
 // ---- STL: shared vertices are identified by exact coordinates (first occurrence order) -----
@@ -373,7 +202,7 @@ Status parse_stl(std::string_view data, Builder& b) {
     const auto n = load<std::uint32_t>(base + 80, !little_host);
     if (84 + 50ull * n == data.size()) {  // binary
       for (std::uint32_t f = 0; f < n; ++f) {
-        std::vector<long long> tri;
+        std::vector<std::int64_t> tri;
         for (int v = 0; v < 3; ++v) {
           std::array<double, 3> p{};
           for (int k = 0; k < 3; ++k)
@@ -390,7 +219,7 @@ Status parse_stl(std::string_view data, Builder& b) {
   Lines L{data};
   std::string_view s;
   std::vector<std::string_view> w;
-  std::vector<long long> tri;
+  std::vector<std::int64_t> tri;
   bool solid = false;
   while (L.next(s)) {
     words(s, w);
@@ -418,6 +247,26 @@ Status parse_stl(std::string_view data, Builder& b) {
 
 }  // namespace
 
+Status read_mesh_from_buffer(std::string_view data, const std::string& name, PointSet& points, TriMesh3& mesh,
+                             MeshReadReport* report) {
+  const std::string ext = detail::extension(name);
+  if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
+    return {StatusCode::ParseError, name + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};
+  Builder b{name, {}, {}, {}};
+  b.pts.dim = 3;
+  Status st;
+  if (ext == "off") st = parse_off(data, b);
+  else if (ext == "ply") st = parse_ply(data, b);
+  else if (ext == "obj") st = parse_obj(data, b);
+  else st = parse_stl(data, b);
+  if (!st) return st;
+  if (b.mesh.triangles.empty()) return {StatusCode::EmptyInput, name + ": no faces"};
+  points = std::move(b.pts);
+  mesh = std::move(b.mesh);
+  if (report) *report = b.rep;
+  return Status::ok();
+}
+
 Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, MeshReadReport* report) {
   const std::string ext = detail::extension(path);
   if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
@@ -426,20 +275,7 @@ Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, Mesh
   if (!f) return {StatusCode::FileNotFound, path + ": cannot open: " + std::strerror(errno)};
   std::ostringstream ss;
   ss << f.rdbuf();
-  const std::string data = ss.str();
-  Builder b{path, {}, {}, {}};
-  b.pts.dim = 3;
-  Status st;
-  if (ext == "off") st = parse_off(data, b);
-  else if (ext == "ply") st = parse_ply(data, b);
-  else if (ext == "obj") st = parse_obj(data, b);
-  else st = parse_stl(data, b);
-  if (!st) return st;
-  if (b.mesh.triangles.empty()) return {StatusCode::EmptyInput, path + ": no faces"};
-  points = std::move(b.pts);
-  mesh = std::move(b.mesh);
-  if (report) *report = b.rep;
-  return Status::ok();
+  return read_mesh_from_buffer(ss.str(), path, points, mesh, report);
 }
 
 }  // namespace constrict

@@ -1,0 +1,9 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// libFuzzer target: the text reader of read_points() (docs/fuzzing.md).
+#include "fuzz_common.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view input = constrict_fuzz::as_view(data, size);
+  constrict_fuzz::fuzz_points(input, "fuzz.xyz", constrict::PointFormat::Text);
+  return 0;
+}

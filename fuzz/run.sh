@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Builds the reader fuzz targets with clang (libFuzzer + ASan + UBSan) in build-fuzz/ and runs each
+# for SECONDS (default 60) on a temporary copy of its corpus (fuzz/corpus/<target>/), so the
+# repository stays clean. Exits non-zero on any finding (crash, sanitizer report, failed check,
+# 10 s timeout, more than 2 GiB allocated); crash inputs are kept in build-fuzz/findings/.
+# Usage: fuzz/run.sh [SECONDS] [TARGET...]   (targets: text ply off obj stl; docs/fuzzing.md)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_EACH=${1:-60}
+shift || true
+TARGETS=("$@")
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(text ply off obj stl)
+BUILD=${FUZZ_BUILD:-build-fuzz}
+JOBS=${JOBS:-2}
+
+CC=${CC:-clang-14} CXX=${CXX:-clang++-14} cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCONSTRICT_BUILD_FUZZ=ON -DCONSTRICT_BUILD_TESTS=OFF -DCONSTRICT_BUILD_PYTHON=OFF \
+  -DCONSTRICT_BUILD_CLI=OFF >/dev/null
+cmake --build "$BUILD" -j "$JOBS" --target $(printf 'fuzz_%s ' "${TARGETS[@]}")
+
+mkdir -p "$BUILD/findings"
+status=0
+for t in "${TARGETS[@]}"; do
+  work=$(mktemp -d)
+  cp -r "fuzz/corpus/$t" "$work/corpus"
+  echo "== fuzz_$t: ${SECONDS_EACH}s"
+  if ! "$BUILD/fuzz/fuzz_$t" "$work/corpus" -max_total_time="$SECONDS_EACH" -timeout=10 \
+       -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+       -artifact_prefix="$BUILD/findings/${t}-" 2>"$work/log"; then
+    status=1
+    echo "!! fuzz_$t: finding (log: $BUILD/findings/$t.log)"
+  fi
+  grep -E "^#[0-9]+.*(DONE|cov:)" "$work/log" | tail -1 || true
+  grep -E "stat::number_of_executed_units" "$work/log" || true
+  cp "$work/log" "$BUILD/findings/$t.log"
+  rm -rf "$work"
+done
+exit $status
