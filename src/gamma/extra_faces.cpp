@@ -679,15 +679,21 @@ float up_float(double x) {
   return f;
 }
 
-Status lens_faces3(Ctx<3>& ctx, std::vector<FoundFace>& found) {
-  const std::size_t n = ctx.ps->size();
-  const double ms = std::max(-1.0, ctx.m - kShrink);
+// The blocking cone of the lens parameter m (shrunk by kShrink), over the direction bins.
+IceCream make_ice_cream(double m, const DirBins& bins) {
+  const double ms = std::max(-1.0, m - kShrink);
   const double big_r = 1.0 / (1.0 - std::fabs(ms));  // R / r
-  const DirBins bins;
   IceCream ice;
   ice.bins = &bins;
   ice.rho = std::isfinite(big_r) ? big_r - std::sqrt(std::max(0.0, big_r * big_r - 1.0)) : 0.0;
   ice.alpha = std::asin(std::min(1.0, ice.rho));
+  return ice;
+}
+
+Status lens_faces3(Ctx<3>& ctx, std::vector<FoundFace>& found) {
+  const std::size_t n = ctx.ps->size();
+  const DirBins bins;
+  IceCream ice = make_ice_cream(ctx.m, bins);
 
   // Pass 1: per vertex, the envelope and the points within 2 * hmax (Lemma 7).
   std::vector<float> env(n * static_cast<std::size_t>(kBins3));
