@@ -4,6 +4,7 @@
 # repository stays clean. Exits non-zero on any finding (crash, sanitizer report, failed check,
 # 10 s timeout, more than 2 GiB allocated); crash inputs are kept in build-fuzz/findings/.
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]   (targets: text ply off obj stl; docs/fuzzing.md)
+# MAX_LEN (default 4096) bounds the input size; fuzz/dict/<target>.dict is passed as -dict.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
@@ -23,9 +24,11 @@ status=0
 for t in "${TARGETS[@]}"; do
   work=$(mktemp -d)
   cp -r "fuzz/corpus/$t" "$work/corpus"
+  dict=()
+  [ -f "fuzz/dict/$t.dict" ] && dict=(-dict="fuzz/dict/$t.dict")
   echo "== fuzz_$t: ${SECONDS_EACH}s"
-  if ! "$BUILD/fuzz/fuzz_$t" "$work/corpus" -max_total_time="$SECONDS_EACH" -timeout=10 \
-       -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+  if ! "$BUILD/fuzz/fuzz_$t" "$work/corpus" "${dict[@]}" -max_total_time="$SECONDS_EACH" -timeout=10 \
+       -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len="${MAX_LEN:-4096}" -print_final_stats=1 \
        -artifact_prefix="$BUILD/findings/${t}-" 2>"$work/log"; then
     status=1
     echo "!! fuzz_$t: finding (log: $BUILD/findings/$t.log)"
