@@ -5,6 +5,7 @@
 //   sculpt -> refine (flips) -> sculpt (bridges) -> result + validation.
 // reconstruct3 adds the variant selection (variants3.cpp). The stages live in their own files
 // (detail/stages3.hpp); this file only orders them and fills the result.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "constrict/detail/constrict3_impl.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/canonical_order.hpp"
 
 namespace constrict {
 
@@ -79,6 +81,37 @@ Status Constrict3Options::from_preset(const std::string& name, Constrict3Options
 }
 
 // ---- Impl: the set-up and the stages in order --------------------------------------------------
+
+void Constrictor3::Impl::IdMapVisitor::on_event(const Constrict3Event& e) {
+  Constrict3Event m = e;
+  for (int& v : m.tet)
+    if (v >= 0) v = (*order)[uz(v)];
+  if (m.point >= 0) m.point = (*order)[uz(m.point)];
+  inner->on_event(m);
+}
+
+void Constrictor3::Impl::set_visitor(Constrict3Visitor* v) {
+  id_map.inner = v;
+  id_map.order = order.get();
+  visitor = v ? &id_map : nullptr;
+}
+
+std::vector<int> Constrictor3::Impl::input_ids(std::vector<int> ids) const {
+  for (int& v : ids) v = (*order)[uz(v)];
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+std::array<int, 4> Constrictor3::Impl::input_ids(std::array<int, 4> t) const {
+  for (int& v : t) v = (*order)[uz(v)];
+  return t;
+}
+
+TriMesh3 Constrictor3::Impl::input_ids(TriMesh3 m) const {
+  for (auto& t : m.triangles)
+    for (int& v : t) v = (*order)[uz(v)];
+  return m;
+}
 
 void Constrictor3::Impl::reset_to_hull() {
   body.reset_to_hull(nbr_delaunay);
@@ -280,17 +313,19 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
   r.removed_sculpt = removed_sculpt;
   r.cavities = cavity.made;
   r.cavity_attempts = cavity.attempts;
-  r.unplaced_points = body.inside();
-  r.mesh = body.surface();
+  r.unplaced_points = input_ids(body.inside());
+  r.stuck_points = input_ids(r.stuck_points);
+  const TriMesh3 surface = body.surface();  // (engine ids: the volume and area read body.pts)
+  r.mesh = input_ids(surface);
   for (std::size_t t = 0; t < body.tets.size(); ++t)
     if (body.state[t] == kAlive) {
-      r.tets.push_back(body.tets[t]);
+      r.tets.push_back(input_ids(body.tets[t]));
       if (t >= body.T0) ++r.non_delaunay_tets;
     }
   r.ms_setup = ms_setup;  // (the hull start may have been made on demand, with the γ pass)
   r.ms_delaunay = ms_delaunay;
-  r.volume = std::ldexp(mesh_volume(*body.pts, r.mesh), 3 * scale_exp);
-  r.surface_area = std::ldexp(mesh_area(*body.pts, r.mesh), 2 * scale_exp);
+  r.volume = std::ldexp(mesh_volume(*body.pts, surface), 3 * scale_exp);
+  r.surface_area = std::ldexp(mesh_area(*body.pts, surface), 2 * scale_exp);
 }
 
 // ---- Constrictor3 --------------------------------------------------------------------------------
@@ -307,24 +342,28 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   if (!weights_ok(options.size_bias, options.label_weight))
     return {StatusCode::InvalidArgument, "size_bias and label_weight must be in [0, 100]"};
   if (Status st = check_points(points); !st) return st;
-  s.body.pts = &points;
+  s.input = &points;
+  // The engine runs on the points in a canonical order of their coordinates, so that the same
+  // points in any file order give the same surface (ties everywhere are broken by engine ids);
+  // the result is mapped back to input ids in collect().
+  s.order = std::make_shared<const std::vector<int>>(detail::canonical_order(points));
+  auto work = std::make_shared<PointSet>(detail::permuted(points, *s.order));
   // Far from 1 in magnitude, the double parts (γ magnitudes, circumballs, lengths) would overflow
   // or underflow: work on a copy scaled by a power of two, which changes no predicate and makes
   // every magnitude scale free (the result is then the same at any scale); areas and volumes are
-  // scaled back in collect().
-  // Refused (Unsupported) when no exact rescaling exists: the coordinates span too many orders of
-  // magnitude for the double-valued parts.
+  // scaled back in collect(). Refused (Unsupported) when no exact rescaling exists: the
+  // coordinates span too many orders of magnitude for the double-valued parts.
   if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
     auto scaled = std::make_shared<PointSet>();
     int exp = 0;
-    if (Status st = exact_power_of_two_scale(points, *scaled, exp); !st) return st;
+    if (Status st = exact_power_of_two_scale(*work, *scaled, exp); !st) return st;
     s.scale_exp = exp;
-    s.body.pts = scaled.get();
-    s.scaled = std::move(scaled);
+    work = std::move(scaled);
   }
-  s.input = &points;
+  s.body.pts = work.get();
+  s.work = std::move(work);
   s.opt = options;
-  s.visitor = visitor;
+  s.set_visitor(visitor);
   s.body.n = points.size();
   if (Status st = s.build_tetrahedralization(); !st) return st;
   return Status::ok();
@@ -374,9 +413,9 @@ Status Constrictor3::Impl::build_tetrahedralization() {
 
 bool Constrictor3::step() { return impl_->step(); }
 
-TriMesh3 Constrictor3::surface() const { return impl_->body.surface(); }
+TriMesh3 Constrictor3::surface() const { return impl_->input_ids(impl_->body.surface()); }
 
-std::vector<int> Constrictor3::inside_points() const { return impl_->body.inside(); }
+std::vector<int> Constrictor3::inside_points() const { return impl_->input_ids(impl_->body.inside()); }
 
 Status Constrictor3::finish(Mesh3Result& r) { return finish_impl(*impl_, r, impl_->opt.validate); }
 

@@ -23,9 +23,9 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   Impl& base = *impl_;
   // The growth first (§4.7) or the hull alone (every point on it): then there is nothing to vary.
   const auto single = [&](bool growth_only, Mesh3Result& r) {
-    base.visitor = visitor;  // (stage events; the parallel variant runs below report none)
+    base.set_visitor(visitor);  // (stage events; the parallel variant runs below report none)
     const Status s = finish_impl(base, r, false, growth_only);
-    base.visitor = nullptr;
+    base.set_visitor(nullptr);
     return s;
   };
   std::size_t grow_unreached = 0;
@@ -45,9 +45,9 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     if (options.validate) validate_result(base, result);
     return Status::ok();
   }
-  base.visitor = visitor;
+  base.set_visitor(visitor);
   base.stage_event(Stage3::Candidates);
-  base.visitor = nullptr;
+  base.set_visitor(nullptr);
   base.ensure_hull_start();  // shared face terms and bridge ratios, before the copies
   const std::vector<Constrict3Variant>& cand = options.variants;
   const std::size_t k = cand.size();

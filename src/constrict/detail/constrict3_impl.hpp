@@ -25,11 +25,25 @@ struct Constrictor3::Impl {
   static constexpr double kFillConfidence = 0.5;
 
   // Inputs.
-  const PointSet* input = nullptr;         // the caller's points (the validation reads them)
-  std::shared_ptr<const PointSet> scaled;  // power-of-two scaled copy of the input (init), or null
-  int scale_exp = 0;                       // body.pts = input * 2^-scale_exp
+  const PointSet* input = nullptr;  // the caller's points (the validation reads them)
+  // Engine id k is input point (*order)[k] (canonical_order: the coordinates decide, not the
+  // file order); work = the points in that order, times 2^-scale_exp.
+  std::shared_ptr<const std::vector<int>> order;
+  std::shared_ptr<const PointSet> work;
+  int scale_exp = 0;
   Constrict3Options opt;
-  Constrict3Visitor* visitor = nullptr;
+  // Events carry input ids: the stages report to id_map, which maps and passes them on.
+  struct IdMapVisitor final : Constrict3Visitor {
+    Constrict3Visitor* inner = nullptr;
+    const std::vector<int>* order = nullptr;
+    void on_event(const Constrict3Event& e) override;
+  };
+  IdMapVisitor id_map;
+  Constrict3Visitor* visitor = nullptr;  // &id_map, or null without a caller's visitor
+  void set_visitor(Constrict3Visitor* v);
+  std::vector<int> input_ids(std::vector<int> ids) const;  // mapped and ascending
+  std::array<int, 4> input_ids(std::array<int, 4> t) const;
+  TriMesh3 input_ids(TriMesh3 m) const;
 
   // State.
   detail::Body3 body;                 // tetrahedra, adjacency, body, surface points
