@@ -151,6 +151,8 @@ class Constrictor2 {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  struct Canonical;  // the canonical point order the engine runs in (constrict2.cpp)
+  std::unique_ptr<Canonical> canon_;
 };
 
 /// Reconstructs a simple polygon through all points (2D).

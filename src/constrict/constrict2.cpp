@@ -24,6 +24,7 @@
 #include "constrict/detail/refine2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "gamma/detail/delaunay_local.hpp"
@@ -905,6 +906,38 @@ struct Constrictor2::Impl {
   }
 };
 
+// The engine runs on the points in a canonical order of their coordinates
+// (core/detail/canonical_order.hpp), so that the same points in any file order give the same
+// polygon: every tie the engine breaks "by id" is then decided by the coordinates. The results and
+// the visitor's events are mapped back to input ids here.
+struct Constrictor2::Canonical {
+  const PointSet* input = nullptr;
+  std::vector<int> order;  // engine id k = input point order[k]
+  PointSet points;         // the input in that order
+  struct IdMap final : Constrict2Visitor {
+    Constrict2Visitor* inner = nullptr;
+    const std::vector<int>* order = nullptr;
+    void on_event(const Constrict2Event& e) override {
+      Constrict2Event m = e;
+      for (int& v : m.triangle)
+        if (v >= 0) v = (*order)[static_cast<std::size_t>(v)];
+      inner->on_event(m);
+    }
+  } id_map;
+  int to_input(int v) const { return v < 0 ? v : order[static_cast<std::size_t>(v)]; }
+  std::vector<int> to_input_sorted(std::vector<int> ids) const {
+    for (int& v : ids) v = to_input(v);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  }
+  // A polygon in input ids, started at its smallest input id (the orientation kept).
+  std::vector<int> to_input_polygon(std::vector<int> poly) const {
+    for (int& v : poly) v = to_input(v);
+    std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end()), poly.end());
+    return poly;
+  }
+};
+
 Constrictor2::Constrictor2() : impl_(new Impl) {}
 Constrictor2::~Constrictor2() = default;
 
@@ -913,16 +946,51 @@ Status Constrictor2::init(const PointSet& points, const Constrict2Options& optio
   impl_.reset(new Impl);
   impl_->opt = options;
   impl_->visitor = visitor;
-  return impl_->init(points);
+  canon_.reset();
+  // Non-finite or non-2D input: no canonical order (it needs a total order of the coordinates).
+  if (points.dim != 2 || !detail::check_finite(points, "reconstruct2")) return impl_->init(points);
+  canon_ = std::make_unique<Canonical>();
+  canon_->input = &points;
+  canon_->order = detail::canonical_order(points);
+  canon_->points = detail::permuted(points, canon_->order);
+  canon_->id_map.inner = visitor;
+  canon_->id_map.order = &canon_->order;
+  impl_->visitor = visitor ? &canon_->id_map : nullptr;
+  const Status st = impl_->init(canon_->points);
+  if (st) return st;
+  // The error in the input's own indices (duplicates, ...).
+  if (Status in = check_points(points); !in) return in;
+  return st;
 }
 bool Constrictor2::step() { return impl_->step(); }
 std::vector<int> Constrictor2::boundary() const {
   std::vector<int> b = impl_->boundary_list();
   for (int& v : b) v = impl_->G(v);
+  if (!canon_) return b;
+  for (int& v : b) v = canon_->to_input(v);
   return b;
 }
-std::vector<int> Constrictor2::inside_points() const { return impl_->inside_input_ids(); }
-Status Constrictor2::finish(Polygon2Result& result) { return impl_->finish(result); }
+std::vector<int> Constrictor2::inside_points() const {
+  return canon_ ? canon_->to_input_sorted(impl_->inside_input_ids()) : impl_->inside_input_ids();
+}
+Status Constrictor2::finish(Polygon2Result& result) {
+  const Status st = impl_->finish(result);
+  if (!st || !canon_) return st;
+  const Canonical& c = *canon_;
+  result.boundary = c.to_input_polygon(std::move(result.boundary));
+  result.stuck_points = c.to_input_sorted(std::move(result.stuck_points));
+  for (auto& e : result.fallback_edges) {
+    e = {{c.to_input(e[0]), c.to_input(e[1])}};
+    if (e[0] > e[1]) std::swap(e[0], e[1]);
+  }
+  std::sort(result.fallback_edges.begin(), result.fallback_edges.end());
+  if (!result.check.reason.empty()) {  // (positions and ids of a failed check: on the input again)
+    PolygonCheck chk;
+    (void)validate_polygon(*c.input, result.boundary, &chk);
+    result.check = chk;
+  }
+  return st;
+}
 
 Status reconstruct2(const PointSet& points, const Constrict2Options& options,
                     Polygon2Result& result, Constrict2Visitor* visitor) {

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <utility>
 
 namespace constrict::detail {
 namespace {
@@ -12,11 +14,46 @@ namespace {
 // Bits per axis of the Morton code: 3 x 21 = 63 (3D), 2 x 31 = 62 (2D).
 constexpr int kBits3 = 21, kBits2 = 31;
 
-// Spreads the low `bits` bits of x to every `stride`-th bit.
-std::uint64_t spread(std::uint64_t x, int bits, int stride) {
-  std::uint64_t r = 0;
-  for (int b = 0; b < bits; ++b) r |= ((x >> b) & 1u) << (b * stride);
-  return r;
+// Spreads the low 32 bits of x to the even bits (2D Morton code).
+std::uint64_t spread2(std::uint64_t x) {
+  x &= 0xffffffffULL;
+  x = (x | (x << 16)) & 0x0000ffff0000ffffULL;
+  x = (x | (x << 8)) & 0x00ff00ff00ff00ffULL;
+  x = (x | (x << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+  x = (x | (x << 2)) & 0x3333333333333333ULL;
+  x = (x | (x << 1)) & 0x5555555555555555ULL;
+  return x;
+}
+// Spreads the low 21 bits of x to every third bit (3D Morton code).
+std::uint64_t spread3(std::uint64_t x) {
+  x &= 0x1fffffULL;
+  x = (x | (x << 32)) & 0x1f00000000ffffULL;
+  x = (x | (x << 16)) & 0x1f0000ff0000ffULL;
+  x = (x | (x << 8)) & 0x100f00f00f00f00fULL;
+  x = (x | (x << 4)) & 0x10c30c30c30c30c3ULL;
+  x = (x | (x << 2)) & 0x1249249249249249ULL;
+  return x;
+}
+
+// Sorts (key, index) pairs by key: least-significant-digit radix sort, 16-bit digits (stable).
+void radix_sort(std::vector<std::pair<std::uint64_t, int>>& a) {
+  constexpr int kDigit = 16;
+  constexpr std::size_t kRadix = std::size_t(1) << kDigit;
+  std::vector<std::pair<std::uint64_t, int>> tmp(a.size());
+  std::vector<std::size_t> count(kRadix);
+  for (int shift = 0; shift < 64; shift += kDigit) {
+    std::fill(count.begin(), count.end(), 0);
+    for (const auto& e : a) ++count[(e.first >> shift) & (kRadix - 1)];
+    if (a.empty() || count[(a[0].first >> shift) & (kRadix - 1)] == a.size()) continue;  // one digit value
+    std::size_t sum = 0;
+    for (auto& c : count) {
+      const std::size_t k = c;
+      c = sum;
+      sum += k;
+    }
+    for (const auto& e : a) tmp[count[(e.first >> shift) & (kRadix - 1)]++] = e;
+    a.swap(tmp);
+  }
 }
 
 }  // namespace
@@ -40,19 +77,27 @@ std::vector<int> canonical_order(const PointSet& p) {
     if (!(t > 0)) return 0;
     return t >= cells - 1 ? static_cast<std::uint64_t>(cells - 1) : static_cast<std::uint64_t>(t);
   };
-  std::vector<std::uint64_t> key(n);
+  std::vector<std::pair<std::uint64_t, int>> key(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t m = 0;
-    for (std::size_t k = 0; k < d; ++k) m |= spread(cell(p[i][k], k), bits, p.dim) << k;
-    key[i] = m;
+    for (std::size_t k = 0; k < d; ++k) m |= (p.dim == 3 ? spread3(cell(p[i][k], k)) : spread2(cell(p[i][k], k))) << k;
+    key[i] = {m, static_cast<int>(i)};
+  }
+  radix_sort(key);
+  // Equal codes (points in one cell): the exact lexicographic order of the coordinates.
+  const auto lex = [&](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
+    const double* pa = p[static_cast<std::size_t>(a.second)];
+    const double* pb = p[static_cast<std::size_t>(b.second)];
+    return std::lexicographical_compare(pa, pa + d, pb, pb + d);
+  };
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && key[j].first == key[i].first) ++j;
+    if (j - i > 1) std::sort(key.begin() + static_cast<std::ptrdiff_t>(i), key.begin() + static_cast<std::ptrdiff_t>(j), lex);
+    i = j;
   }
   std::vector<int> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
-    if (key[ia] != key[ib]) return key[ia] < key[ib];
-    return std::lexicographical_compare(p[ia], p[ia] + d, p[ib], p[ib] + d);
-  });
+  for (std::size_t i = 0; i < n; ++i) order[i] = key[i].second;
   return order;
 }
 
