@@ -17,6 +17,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
+#include "constrict/io.hpp"
 #include "core/detail/canonical_order.hpp"
 
 namespace constrict {
@@ -126,6 +127,20 @@ TEST(OrderIndependence, SameSurfaceInAnyFileOrder3D) {
         EXPECT_EQ(to_string(r.method), std::string(to_string(base.method))) << name;
       }
     }
+}
+
+TEST(OrderIndependence, SharedModelsInAnyFileOrder) {
+  for (const char* name : {"knight_sparse", "spot"}) {
+    PointSet p;
+    const std::string path = std::string(CONSTRICT_SHARED_DIR) + "/data/3d/" + name + ".xyz";
+    if (!read_points(path, {}, p)) GTEST_SKIP() << path << " not found";
+    Mesh3Result base;
+    ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, base).is_ok());
+    const PointSet q = shuffled(p, 5);
+    Mesh3Result r;
+    ASSERT_TRUE(reconstruct3(q, Constrict3Options{}, r).is_ok());
+    EXPECT_EQ(coordinate_triangles(q, r.mesh), coordinate_triangles(p, base.mesh)) << name;
+  }
 }
 
 // ---- 2D families ---------------------------------------------------------------------------------
