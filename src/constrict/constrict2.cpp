@@ -26,6 +26,7 @@
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/edge_key.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "gamma/detail/delaunay_local.hpp"
 
@@ -38,12 +39,6 @@ using detail::same_side_collinear;
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-std::uint64_t pair_key(int u, int v) {
-  if (u > v) std::swap(u, v);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) |
-         static_cast<std::uint32_t>(v);
 }
 
 std::array<int, 3> sorted3(int a, int b, int c) {
@@ -495,14 +490,14 @@ struct Constrictor2::Impl {
   struct SideCache { double ga, gb; bool blocked; double radius; };
   std::unordered_map<std::uint64_t, SideCache> side_cache;
   void sides_cached(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
-    auto it = side_cache.find(pair_key(i, j));
+    auto it = side_cache.find(detail::edge_key(i, j));
     if (it != side_cache.end() && (it->second.radius >= radius || it->second.blocked)) {
       ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
       return;
     }
     double searched = 0;
     search_sides(i, j, radius, ga, gb, blocked, searched);
-    side_cache[pair_key(i, j)] = SideCache{ga, gb, blocked, searched};
+    side_cache[detail::edge_key(i, j)] = SideCache{ga, gb, blocked, searched};
   }
   void search_sides(int i, int j, double radius, double& ga, double& gb, bool& blocked, double& searched) {
     const double* a = P(i);
@@ -561,7 +556,7 @@ struct Constrictor2::Impl {
   // Δ(u, v) = filtration value (spec §2.2); -inf for a blocked pair. Exhaustive when a side is
   // empty (used only by the degree-4 ranking, on few pairs).
   double delta(int u, int v) {
-    const std::uint64_t key = pair_key(u, v);
+    const std::uint64_t key = detail::edge_key(u, v);
     auto it = delta_cache.find(key);
     if (it != delta_cache.end()) return it->second;
     const int i = std::min(u, v), j = std::max(u, v);
@@ -634,7 +629,7 @@ struct Constrictor2::Impl {
   bool in_graph(Graph g, double gamma0, int u, int v) {
     if (g == Graph::Complete) return true;
     if (is_dt_edge(u, v)) return true;
-    if (g == Graph::Degree4) return aug.count(pair_key(u, v)) > 0;
+    if (g == Graph::Degree4) return aug.count(detail::edge_key(u, v)) > 0;
     return delta_at_least(u, v, gamma0);
   }
 
@@ -734,14 +729,14 @@ struct Constrictor2::Impl {
       cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
       std::vector<std::pair<double, int>> ranked;
       for (int w : cand)
-        if (w != v && !is_dt_edge(v, w) && !aug.count(pair_key(v, w)))
+        if (w != v && !is_dt_edge(v, w) && !aug.count(detail::edge_key(v, w)))
           ranked.emplace_back(delta(v, w), w);
       std::sort(ranked.begin(), ranked.end(), [&](const auto& l, const auto& r) {
         return l.first != r.first ? l.first > r.first : G(l.second) < G(r.second);
       });
       for (std::size_t r = 0; r < ranked.size() && static_cast<int>(r) < 4 - d; ++r) {
         if (ranked[r].first == -HUGE_VAL) break;  // blocked pair: in no graph
-        aug.insert(pair_key(v, ranked[r].second));
+        aug.insert(detail::edge_key(v, ranked[r].second));
         ++extra[v];
         ++extra[ranked[r].second];
       }

@@ -18,6 +18,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/edge_key.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/grid_cells.hpp"
 
@@ -40,12 +41,6 @@ constexpr int kMaxExchanged = kMaxDepth > 4 ? kMaxDepth : 4;
 // a floor, so that small inputs are not starved (s2d_spiral_e0.9: 189 points, about 25 000 nodes).
 constexpr std::size_t kDeepNodesPerPoint = 256;
 constexpr std::size_t kDeepNodesFloor = std::size_t{1} << 20;
-
-std::uint64_t edge_key(int u, int v) {
-  if (u > v) std::swap(u, v);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) |
-         static_cast<std::uint32_t>(v);
-}
 
 struct Edge {
   int u, v;

@@ -16,6 +16,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
+#include "core/detail/edge_key.hpp"
 
 namespace constrict::detail {
 
@@ -31,11 +32,6 @@ inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 inline std::array<int, 4> sorted4(std::array<int, 4> t) {
   std::sort(t.begin(), t.end());
   return t;
-}
-
-inline std::uint64_t edge_key(int u, int v) {
-  if (u > v) std::swap(u, v);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
 }
 
 using Tets = std::vector<std::array<int, 4>>;
