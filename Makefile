@@ -1,7 +1,8 @@
 # constrict — the two commands of the README:
 #   make demo   install missing Debian packages, build (Release), reconstruct the bundled examples into out/
 #   make test   build and run every test through ctest
-# Variables: BUILD (build dir), JOBS, CMAKE_ARGS (extra cmake flags, e.g. -DCONSTRICT_WERROR=ON).
+#   make install  library, headers, CLI and the Python package ($(PREFIX)/lib/python3/dist-packages/constrict)
+# Variables: BUILD (build dir), JOBS, CMAKE_ARGS (extra cmake flags, e.g. -DCONSTRICT_WERROR=ON), PREFIX.
 
 BUILD      ?= build
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)

@@ -1,24 +1,30 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Python bindings (pybind11, numpy): reconstruction in 2D and 3D, the γ-graph family, the
-// validators. Arrays in, arrays out; bad input raises constrict.Error (a ValueError) with the
-// library's one-line message and its status name in .code. See docs/python.md.
+// The compiled half of the Python package: constrict._core (pybind11, numpy). Thin: numpy arrays
+// in, plain dicts of arrays and numbers out; constrict/__init__.py turns them into the pickleable
+// result dataclasses, checks which keyword applies to which dimension and carries the docstrings.
+// Bad input raises constrict.Error (a ValueError) with the library's one-line message and its
+// status name in .code. Every computation releases the GIL. See docs/python.md.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
-#include "constrict/report.hpp"
+#include "constrict/criterion.hpp"
 #include "constrict/gamma_graph.hpp"
+#include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
+#include "constrict/report.hpp"
 #include "constrict/validate.hpp"
 #include "constrict/version.hpp"
+#include "constrict/voronoi_skeleton.hpp"
 
 namespace py = pybind11;
 using namespace constrict;
@@ -27,14 +33,36 @@ namespace {
 
 PyObject* g_error = nullptr;  // constrict.Error
 
+// The library's duplicate message ends with the CLI's remedy; Python's is a keyword argument.
+constexpr const char* kCliDuplicateRemedy = "use --merge-duplicates to keep the first of each";
+constexpr const char* kPythonDuplicateRemedy = "pass merge_duplicates=True to keep the first of each";
+
+std::string python_message(const Status& st) {
+  std::string msg = st.message();
+  if (st.code() != StatusCode::Duplicate) return msg;
+  const auto at = msg.find(kCliDuplicateRemedy);
+  if (at != std::string::npos) msg.replace(at, std::string(kCliDuplicateRemedy).size(), kPythonDuplicateRemedy);
+  return msg;
+}
+
 [[noreturn]] void raise(const Status& st) {
-  py::object err = py::reinterpret_borrow<py::object>(g_error)(st.message());
+  py::object err = py::reinterpret_borrow<py::object>(g_error)(python_message(st));
   err.attr("code") = to_string(st.code());
   PyErr_SetObject(g_error, err.ptr());
   throw py::error_already_set();
 }
 void check(const Status& st) {
   if (!st) raise(st);
+}
+// Runs f() (returning a Status) without the GIL; raises constrict.Error when it fails.
+template <class F>
+void run_nogil(F&& f) {
+  Status st;
+  {
+    py::gil_scoped_release nogil;
+    st = f();
+  }
+  check(st);
 }
 
 // (N, dim) float array -> PointSet (copied; any numeric dtype and memory layout is accepted).
@@ -51,78 +79,286 @@ PointSet to_points(const py::handle& obj, int dim) {
   p.coords.assign(a.data(), a.data() + a.size());
   return p;
 }
+py::array_t<double> to_array(const PointSet& p) {
+  py::array_t<double> out({static_cast<py::ssize_t>(p.size()), static_cast<py::ssize_t>(p.dim)});
+  std::copy(p.coords.begin(), p.coords.end(), out.mutable_data());
+  return out;
+}
+// (F, K) index array -> rows of K ints, each in [0, n).
+template <std::size_t K>
+std::vector<std::array<int, K>> to_rows(const py::handle& obj, std::size_t n, const char* what) {
+  const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!t || t.ndim() != 2 || t.shape(1) != static_cast<py::ssize_t>(K))
+    raise({StatusCode::InvalidArgument, std::string(what) + " must have shape (F, " + std::to_string(K) + ")"});
+  std::vector<std::array<int, K>> rows(static_cast<std::size_t>(t.shape(0)));
+  const std::int64_t* d = t.data();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t k = 0; k < K; ++k) {
+      const std::int64_t v = d[i * K + k];
+      if (v < 0 || static_cast<std::uint64_t>(v) >= n)
+        raise({StatusCode::InvalidArgument, std::string(what) + ": index " + std::to_string(v) + " out of range (" +
+                                                std::to_string(n) + " points)"});
+      rows[i][k] = static_cast<int>(v);
+    }
+  return rows;
+}
+std::vector<int> to_ids(const py::handle& obj) { return obj.cast<std::vector<int>>(); }
 
 py::array_t<std::int64_t> ids(const std::vector<int>& v) {
   py::array_t<std::int64_t> out(static_cast<py::ssize_t>(v.size()));
-  auto m = out.mutable_unchecked<1>();
-  for (std::size_t i = 0; i < v.size(); ++i) m(static_cast<py::ssize_t>(i)) = v[i];
+  std::copy(v.begin(), v.end(), out.mutable_data());
   return out;
 }
 template <std::size_t K>
 py::array_t<std::int64_t> ids(const std::vector<std::array<int, K>>& v) {
   py::array_t<std::int64_t> out({static_cast<py::ssize_t>(v.size()), static_cast<py::ssize_t>(K)});
-  auto m = out.mutable_unchecked<2>();
+  std::int64_t* d = out.mutable_data();
   for (std::size_t i = 0; i < v.size(); ++i)
-    for (std::size_t k = 0; k < K; ++k) m(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(k)) = v[i][k];
+    for (std::size_t k = 0; k < K; ++k) d[i * K + k] = v[i][k];
   return out;
+}
+py::array_t<std::int64_t> ids64(const std::vector<std::int64_t>& v) {
+  return py::array_t<std::int64_t>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+// Maps reconstruction ids back to the caller's rows (merge_duplicates); empty: identity.
+using RowMap = std::vector<std::size_t>;
+template <class Vec>
+void remap(Vec& v, const RowMap& m) {
+  if (m.empty()) return;
+  for (auto& x : v) x = static_cast<typename Vec::value_type>(m[static_cast<std::size_t>(x)]);
+}
+template <std::size_t K>
+void remap(std::vector<std::array<int, K>>& v, const RowMap& m) {
+  if (m.empty()) return;
+  for (auto& a : v)
+    for (int& x : a) x = static_cast<int>(m[static_cast<std::size_t>(x)]);
 }
 py::array_t<double> doubles(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-Fallback parse_fallback(const std::string& s) {
-  if (s == "auto") return Fallback::Auto;
-  if (s == "gamma0") return Fallback::Gamma0;
-  if (s == "degree4") return Fallback::Degree4;
-  if (s == "none") return Fallback::None;
-  raise({StatusCode::InvalidArgument, "fallback must be auto, gamma0, degree4 or none, got '" + s + "'"});
+// The points a reconstruction runs on: as given, or without the later copies of duplicates
+// (merge_duplicates=True; `rows` then maps each kept point to its row in the caller's array).
+struct Input {
+  PointSet points;
+  RowMap rows;
+  std::vector<std::int64_t> dropped;  // rows of the copies dropped
+};
+Input prepare(const py::handle& obj, int dim, bool merge) {
+  Input in;
+  in.points = to_points(obj, dim);
+  if (!merge) return in;
+  PointSet merged = merge_duplicates(in.points, &in.rows);
+  if (merged.size() == in.points.size()) {
+    in.rows.clear();
+    return in;
+  }
+  std::vector<char> kept(in.points.size(), 0);
+  for (std::size_t r : in.rows) kept[r] = 1;
+  for (std::size_t r = 0; r < kept.size(); ++r)
+    if (!kept[r]) in.dropped.push_back(static_cast<std::int64_t>(r));
+  in.points = std::move(merged);
+  return in;
 }
 
-py::tuple verdict(const Status& st, const std::string& reason) { return py::make_tuple(st.is_ok(), reason); }
+bool parse_refine(const std::string& s) {
+  if (s == "auto") return true;
+  if (s == "none") return false;
+  raise({StatusCode::InvalidArgument, "refine must be True/'auto' or False/'none', got '" + s + "'"});
+}
+// method: a criterion name (criterion.hpp) or "voronoi-skeleton" (the comparison method).
+bool parse_method(const std::string& s, Criterion& c) {
+  if (s == "voronoi-skeleton") return true;
+  if (!criterion_from_name(s, c))
+    raise({StatusCode::InvalidArgument,
+           "method must be gamma, min-area-change, boissonnat or voronoi-skeleton, got '" + s + "'"});
+  return false;
+}
+std::size_t parse_stop_after(const py::object& v) { return v.is_none() ? SIZE_MAX : v.cast<std::size_t>(); }
 
-struct Polygon {
-  Polygon2Result r;
-  Constrict2Options o;  // what it was made with (the report)
-};
-struct Surface {
-  Mesh3Result r;  // validated by reconstruct3 (closed, manifold, oriented, genus 0) when complete
-  Constrict3Options o;
-};
+py::dict skeleton_stats(const VoronoiSkeletonStats& s, std::size_t seed_limit) {
+  py::dict d;
+  d["seed_limit"] = seed_limit;
+  d["simplices"] = s.simplices;
+  d["seeds_tried"] = s.seeds_tried;
+  d["seeds_pruned"] = s.seeds_pruned;
+  d["seeds_complete"] = s.seeds_complete;
+  d["best_seed"] = s.best_seed;
+  d["tree_length"] = s.tree_length;
+  return d;
+}
 
-Polygon reconstruct2_py(const py::handle& points, const std::string& fallback, bool refine) {
-  const PointSet p = to_points(points, 2);
+// ---- 2D ------------------------------------------------------------------------------------
+
+// The options exactly as `constrict reconstruct` builds them from the same flags (cmd_reconstruct.cpp).
+Constrict2Options options2(const std::string& fallback, bool refine, Criterion criterion, std::size_t stop_after) {
   Constrict2Options o;
-  o.fallback = parse_fallback(fallback);
-  o.refine = refine ? Refine2::LocalSearch : Refine2::None;
-  Polygon out;
-  out.o = o;
-  {
-    py::gil_scoped_release nogil;
-    const Status st = reconstruct2(p, o, out.r);
-    if (!st) {
-      py::gil_scoped_acquire gil;
-      raise(st);
-    }
-  }
-  return out;
+  check(Constrict2Options::from_preset(refine ? "default" : "paper", o));
+  if (!fallback_from_name(fallback, o.fallback))
+    raise({StatusCode::InvalidArgument, "fallback must be auto, gamma0, degree4 or none, got '" + fallback + "'"});
+  o.stop_after = stop_after;
+  o.criterion = criterion;
+  return o;
 }
 
-Surface reconstruct3_py(const py::handle& points, bool grow) {
-  const PointSet p = to_points(points, 3);
-  Constrict3Options o;
-  o.grow = grow;
-  Surface out;
-  out.o = o;
-  {
-    py::gil_scoped_release nogil;
-    const Status st = reconstruct3(p, o, out.r);
-    if (!st) {
-      py::gil_scoped_acquire gil;
-      raise(st);
-    }
-  }
-  return out;
+py::dict polygon_dict(Polygon2Result& r, const Constrict2Options& o, const Input& in) {
+  remap(r.boundary, in.rows);
+  remap(r.stuck_points, in.rows);
+  remap(r.fallback_edges, in.rows);
+  py::dict d;
+  d["boundary"] = ids(r.boundary);
+  d["valid"] = r.valid();
+  d["complete"] = r.complete;
+  d["method"] = r.method;
+  d["criterion"] = criterion_name(o.criterion);
+  d["locked"] = r.locked_at_gamma0;
+  d["stuck_points"] = ids(r.stuck_points);
+  d["area"] = r.area;
+  d["perimeter"] = r.perimeter;
+  d["removed_simplices"] = r.removed_simplices;
+  d["fallback_edges"] = ids(r.fallback_edges);
+  py::list stages;
+  for (const auto& s : r.stages) stages.append(py::make_tuple(s.name, s.placed));
+  d["stages"] = stages;
+  d["refine_moves"] = r.refine_moves;
+  py::dict t;
+  t["delaunay"] = r.ms_delaunay;
+  t["constrict"] = r.ms_constrict;
+  t["fallback"] = r.ms_fallback;
+  t["refine"] = r.ms_refine;
+  t["validate"] = r.ms_validate;
+  d["timings_ms"] = t;
+  d["merged_duplicates"] = ids64(in.dropped);
+  d["report_json"] = to_json(r, o);
+  return d;
 }
+
+py::dict reconstruct2_py(const py::handle& points, const std::string& fallback, const std::string& refine,
+                         const std::string& method, const py::object& stop_after, std::size_t seed_limit,
+                         bool merge) {
+  Criterion criterion = Criterion::Gamma;
+  const bool skeleton = parse_method(method, criterion);
+  const Constrict2Options o = options2(fallback, parse_refine(refine), criterion, parse_stop_after(stop_after));
+  const Input in = prepare(points, 2, merge);
+  Polygon2Result r;
+  py::object stats = py::none();
+  if (skeleton) {
+    // The comparison method's result in the constriction's result type, as the CLI does it.
+    VoronoiSkeletonOptions vo;
+    vo.seed_limit = seed_limit;
+    VoronoiSkeleton2Result v;
+    run_nogil([&] { return voronoi_skeleton2(in.points, vo, v); });
+    r.boundary = v.boundary;
+    r.complete = v.complete;
+    r.stuck_points = v.unplaced_points;
+    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
+    r.validated = v.validated && v.complete;
+    r.check = v.check;
+    r.area = v.area;
+    r.perimeter = v.perimeter;
+    r.ms_delaunay = v.stats.ms_delaunay;
+    r.ms_constrict = v.stats.ms_grow;
+    r.ms_validate = v.stats.ms_validate;
+    stats = skeleton_stats(v.stats, seed_limit);
+  } else {
+    run_nogil([&] { return reconstruct2(in.points, o, r); });
+  }
+  py::dict d = polygon_dict(r, o, in);
+  d["skeleton"] = stats;
+  return d;
+}
+
+// ---- 3D ------------------------------------------------------------------------------------
+
+Constrict3Options options3(const std::string& fallback, bool refine, bool fast, bool grow, Criterion criterion,
+                           std::size_t stop_after, bool self_intersections) {
+  if (fallback == "gamma0" || fallback == "degree4")
+    raise({StatusCode::InvalidArgument, "fallback '" + fallback + "' is a 2D fallback; 3D has auto (star cavities) or none"});
+  Constrict3Options o;
+  check(Constrict3Options::from_preset(!refine ? "paper" : fast ? "fast" : "default", o));
+  if (!fallback3_from_name(fallback, o.fallback))
+    raise({StatusCode::InvalidArgument, "fallback must be auto or none in 3D, got '" + fallback + "'"});
+  o.stop_after = stop_after;
+  if (!grow) o.grow = false;
+  o.criterion = criterion;
+  o.validate_self_intersections = self_intersections;
+  return o;
+}
+
+py::dict surface_dict(Mesh3Result& r, const Constrict3Options& o, const Input& in) {
+  remap(r.mesh.triangles, in.rows);
+  remap(r.tets, in.rows);
+  remap(r.stuck_points, in.rows);
+  remap(r.unplaced_points, in.rows);
+  py::dict d;
+  d["triangles"] = ids(r.mesh.triangles);
+  d["tetrahedra"] = ids(r.tets);
+  d["valid"] = r.valid();
+  d["complete"] = r.complete;
+  d["genus"] = r.valid() ? 0 : -1;
+  d["method"] = std::string(to_string(r.method));
+  d["criterion"] = criterion_name(o.criterion);
+  d["volume"] = r.volume;
+  d["area"] = r.surface_area;
+  d["locked"] = r.locked;
+  d["stuck_points"] = ids(r.stuck_points);
+  d["unplaced_points"] = ids(r.unplaced_points);
+  py::list stages;
+  for (const auto& s : r.stages) stages.append(py::make_tuple(std::string(to_string(s.name)), s.placed, s.removed));
+  d["stages"] = stages;
+  py::dict t;
+  t["delaunay"] = r.ms_delaunay;
+  t["grow"] = r.ms_grow;
+  t["fill"] = r.ms_fill;
+  t["constrict"] = r.ms_constrict;
+  t["fallback"] = r.ms_fallback;
+  t["sculpt"] = r.ms_sculpt;
+  t["carve"] = r.ms_carve;
+  t["refine"] = r.ms_refine;
+  t["validate"] = r.ms_validate;
+  t["setup"] = r.ms_setup;
+  t["variants"] = r.ms_variants;
+  d["timings_ms"] = t;
+  d["merged_duplicates"] = ids64(in.dropped);
+  d["report_json"] = to_json(r, o);
+  return d;
+}
+
+py::dict reconstruct3_py(const py::handle& points, const std::string& fallback, const std::string& refine, bool fast,
+                         bool grow, const std::string& method, const py::object& stop_after, std::size_t seed_limit,
+                         bool merge, bool self_intersections) {
+  Criterion criterion = Criterion::Gamma;
+  const bool skeleton = parse_method(method, criterion);
+  const Constrict3Options o = options3(fallback, parse_refine(refine), fast, grow, criterion,
+                                       parse_stop_after(stop_after), self_intersections);
+  const Input in = prepare(points, 3, merge);
+  Mesh3Result r;
+  py::object stats = py::none();
+  if (skeleton) {
+    VoronoiSkeletonOptions vo;
+    vo.seed_limit = seed_limit;
+    VoronoiSkeleton3Result v;
+    run_nogil([&] { return voronoi_skeleton3(in.points, vo, v); });
+    r.mesh = std::move(v.mesh);
+    r.tets = std::move(v.tets);
+    r.complete = v.complete;
+    r.validated = v.validated && v.complete;
+    r.unplaced_points = v.unplaced_points;
+    r.method = v.complete ? Method3::VoronoiSkeleton : Method3::Incomplete;
+    r.volume = v.volume;
+    r.surface_area = v.surface_area;
+    r.ms_delaunay = v.stats.ms_delaunay;
+    r.ms_constrict = v.stats.ms_grow;
+    stats = skeleton_stats(v.stats, seed_limit);
+  } else {
+    run_nogil([&] { return reconstruct3(in.points, o, r); });
+  }
+  py::dict d = surface_dict(r, o, in);
+  d["skeleton"] = stats;
+  return d;
+}
+
+// ---- graphs, validation --------------------------------------------------------------------
 
 GraphSpec parse_spec(const std::string& preset, const py::object& gamma, const py::object& interval) {
   const int given = !preset.empty() + !gamma.is_none() + !interval.is_none();
@@ -143,22 +379,21 @@ GraphSpec parse_spec(const std::string& preset, const py::object& gamma, const p
   return spec;
 }
 
+int dim_of(const py::handle& points) {
+  const auto a = py::array::ensure(points);
+  return a && a.ndim() == 2 && a.shape(1) == 3 ? 3 : 2;
+}
+
 py::dict gamma_graph_py(const py::handle& points, const std::string& preset, const py::object& gamma,
                         const py::object& interval) {
-  const auto a = py::array::ensure(points);
-  const int dim = a && a.ndim() == 2 && a.shape(1) == 3 ? 3 : 2;
-  const PointSet p = to_points(points, dim);
+  const PointSet p = to_points(points, dim_of(points));
   const GraphSpec spec = parse_spec(preset, gamma, interval);
   GammaFaces f;
-  {
-    py::gil_scoped_release nogil;
+  run_nogil([&] {
     Status st = check_points(p);
     if (st) st = build_gamma_graph(p, spec, f);
-    if (!st) {
-      py::gil_scoped_acquire gil;
-      raise(st);
-    }
-  }
+    return st;
+  });
   py::array_t<std::int64_t> faces({static_cast<py::ssize_t>(f.size()), static_cast<py::ssize_t>(f.dim)});
   auto m = faces.mutable_unchecked<2>();
   for (std::size_t i = 0; i < f.size(); ++i)
@@ -172,104 +407,121 @@ py::dict gamma_graph_py(const py::handle& points, const std::string& preset, con
   return d;
 }
 
+py::tuple verdict(const Status& st, const std::string& reason) { return py::make_tuple(st.is_ok(), reason); }
+
+// ---- files ---------------------------------------------------------------------------------
+
+py::tuple read_points_py(const std::string& path, int dim, bool merge, bool check_input) {
+  ReadOptions o;
+  o.dim = dim;
+  o.merge_duplicates = merge;
+  o.check = check_input;
+  PointSet p;
+  ReadReport rep;
+  run_nogil([&] { return read_points(path, o, p, &rep); });
+  py::dict info;
+  info["points_read"] = rep.points_read;
+  info["merged_duplicates"] = rep.merged_duplicates;
+  std::vector<std::int64_t> rows(p.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    rows[i] = static_cast<std::int64_t>(rep.original_index.empty() ? i : rep.original_index[i]);
+  info["original_index"] = ids64(rows);
+  info["warnings"] = rep.warnings;
+  const auto n = static_cast<py::ssize_t>(p.size());
+  if (!rep.attributes.normals.empty())
+    info["normals"] = doubles(rep.attributes.normals).reshape({n, py::ssize_t{3}});
+  if (rep.attributes.color_channels > 0)
+    info["colors"] = doubles(rep.attributes.colors).reshape({n, static_cast<py::ssize_t>(rep.attributes.color_channels)});
+  return py::make_tuple(to_array(p), info);
+}
+
 }  // namespace
 
-PYBIND11_MODULE(constrict, m) {
-  m.doc() = "Object reconstruction with the gamma-neighborhood graph (Veltkamp): a simple polygon "
-            "through all points in 2D, a closed genus-0 surface through all points in 3D.";
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "The compiled part of constrict (pybind11); use the package `constrict`, not this module.";
   m.attr("__version__") = CONSTRICT_VERSION_STRING;
   static py::exception<std::runtime_error> error(m, "Error", PyExc_ValueError);
   g_error = error.ptr();
 
-  py::class_<Polygon>(m, "Polygon", "Result of reconstruct2().")
-      .def_property_readonly("boundary", [](const Polygon& p) { return ids(p.r.boundary); },
-                             "vertex indices in counter-clockwise order, each point once")
-      .def_property_readonly("valid", [](const Polygon& p) { return p.r.validated && p.r.check.reason.empty() && p.r.complete; })
-      .def_property_readonly("complete", [](const Polygon& p) { return p.r.complete; })
-      .def_property_readonly("method", [](const Polygon& p) { return p.r.method; },
-                             "gamma, gamma0=<v>, degree4, repair, star (last stage that placed a point)")
-      .def_property_readonly("locked", [](const Polygon& p) { return p.r.locked_at_gamma0; })
-      .def_property_readonly("stuck_points", [](const Polygon& p) { return ids(p.r.stuck_points); })
-      .def_property_readonly("area", [](const Polygon& p) { return p.r.area; })
-      .def_property_readonly("perimeter", [](const Polygon& p) { return p.r.perimeter; })
-      .def_property_readonly("removed_simplices", [](const Polygon& p) { return p.r.removed_simplices; })
-      .def_property_readonly("timings_ms", [](const Polygon& p) {
-        py::dict d;
-        d["delaunay"] = p.r.ms_delaunay;
-        d["constrict"] = p.r.ms_constrict;
-        d["fallback"] = p.r.ms_fallback;
-        d["refine"] = p.r.ms_refine;
-        d["validate"] = p.r.ms_validate;
-        return d;
-      })
-      .def("report", [](const Polygon& p) { return to_json(p.r, p.o); },
-           "the library's JSON report (the same fields as `constrict reconstruct --report`), a str")
-      .def("__repr__", [](const Polygon& p) {
-        return "<constrict.Polygon " + std::to_string(p.r.boundary.size()) + " vertices, method=" + p.r.method +
-               (p.r.complete ? ", valid" : ", incomplete") + ">";
-      });
-
-  py::class_<Surface>(m, "Surface", "Result of reconstruct3().")
-      .def_property_readonly("triangles", [](const Surface& s) { return ids(s.r.mesh.triangles); },
-                             "(F, 3) vertex indices, oriented outward")
-      .def_property_readonly("tetrahedra", [](const Surface& s) { return ids(s.r.tets); },
-                             "(T, 4) the body bounded by the surface, positively oriented")
-      .def_property_readonly("valid", [](const Surface& s) { return s.r.valid(); })
-      .def_property_readonly("complete", [](const Surface& s) { return s.r.complete; })
-      .def_property_readonly("genus", [](const Surface& s) { return s.r.complete ? 0 : -1; },
-                             "0: the library validated a closed genus-0 surface through every point")
-      .def_property_readonly("method", [](const Surface& s) { return std::string(to_string(s.r.method)); })
-      .def_property_readonly("volume", [](const Surface& s) { return s.r.volume; })
-      .def_property_readonly("area", [](const Surface& s) { return s.r.surface_area; })
-      .def_property_readonly("unplaced_points", [](const Surface& s) { return ids(s.r.unplaced_points); })
-      .def("report", [](const Surface& s) { return to_json(s.r, s.o); },
-           "the library's JSON report (the same fields as `constrict reconstruct --report`), a str")
-      .def("__repr__", [](const Surface& s) {
-        return "<constrict.Surface " + std::to_string(s.r.mesh.triangles.size()) + " triangles, method=" +
-               std::string(to_string(s.r.method)) + (s.r.complete ? ", valid" : ", incomplete") + ">";
-      });
-
-  m.def("reconstruct2", &reconstruct2_py, py::arg("points"), py::arg("fallback") = "auto",
-        py::arg("refine") = true,
-        "Simple polygon through every point of an (N, 2) array (the gamma-constriction of the "
-        "Delaunay triangulation, local fallbacks after a lock, length-decreasing refinement; "
-        "validated exactly). fallback: auto | gamma0 | degree4 | none. refine=False gives the "
-        "paper's algorithm. Raises constrict.Error on bad input (duplicates named by index, "
-        "collinear, too few, NaN/Inf).");
-  m.def("reconstruct3", &reconstruct3_py, py::arg("points"), py::arg("grow") = true,
-        "Closed genus-0 triangulated surface through every point of an (N, 3) array, and the "
-        "tetrahedral body it bounds; validated (closed, manifold, oriented, genus 0). grow=False "
-        "runs the constriction from the convex hull instead of the growth from the inside.");
+  m.def("reconstruct2", &reconstruct2_py, py::arg("points"), py::arg("fallback"), py::arg("refine"),
+        py::arg("method"), py::arg("stop_after"), py::arg("seed_limit"), py::arg("merge_duplicates"));
+  m.def("reconstruct3", &reconstruct3_py, py::arg("points"), py::arg("fallback"), py::arg("refine"),
+        py::arg("fast"), py::arg("grow"), py::arg("method"), py::arg("stop_after"), py::arg("seed_limit"),
+        py::arg("merge_duplicates"), py::arg("validate_self_intersections"));
   m.def("gamma_graph", &gamma_graph_py, py::arg("points"), py::arg("preset") = "", py::arg("gamma") = py::none(),
-        py::arg("interval") = py::none(),
-        "A graph of the gamma family on an (N, 2) or (N, 3) array: preset (hull, delaunay "
-        "[default], gabriel, beta-circle=B, beta-lune=B, complete, void), gamma=(g0, g1) or "
-        "interval=(a0, a1, b0, b1). Returns a dict: faces (edges in 2D, triangles in 3D, sorted "
-        "ids), gamma_a, gamma_b, delta, graph.");
+        py::arg("interval") = py::none());
   m.def(
       "validate_polygon",
       [](const py::handle& points, const py::handle& boundary) {
         const PointSet p = to_points(points, 2);
-        const auto b = boundary.cast<std::vector<int>>();
+        const std::vector<int> b = to_ids(boundary);
         PolygonCheck c;
-        return verdict(validate_polygon(p, b, &c), c.reason);
+        Status st;
+        {
+          py::gil_scoped_release nogil;
+          st = validate_polygon(p, b, &c);
+        }
+        return verdict(st, c.reason);
       },
-      py::arg("points"), py::arg("boundary"),
-      "(ok, reason): is boundary a simple counter-clockwise polygon through every point exactly "
-      "once? Exact predicates.");
+      py::arg("points"), py::arg("boundary"));
   m.def(
       "validate_surface",
       [](const py::handle& points, const py::handle& triangles) {
         const PointSet p = to_points(points, 3);
-        const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(triangles);
-        if (!t || t.ndim() != 2 || t.shape(1) != 3) raise({StatusCode::InvalidArgument, "triangles must have shape (F, 3)"});
         TriMesh3 mesh;
-        for (py::ssize_t i = 0; i < t.shape(0); ++i)
-          mesh.triangles.push_back({{static_cast<int>(t.at(i, 0)), static_cast<int>(t.at(i, 1)), static_cast<int>(t.at(i, 2))}});
+        mesh.triangles = to_rows<3>(triangles, p.size(), "triangles");
         MeshCheck c;
-        return verdict(validate_mesh3(p, mesh, &c), c.reason);
+        Status st;
+        {
+          py::gil_scoped_release nogil;
+          st = validate_mesh3(p, mesh, &c);
+        }
+        return verdict(st, c.reason);
       },
-      py::arg("points"), py::arg("triangles"),
-      "(ok, reason): is the mesh closed, manifold, outward oriented, connected, genus 0 and "
-      "through every point?");
+      py::arg("points"), py::arg("triangles"));
+  m.def("check_points", [](const py::handle& points) {
+    const PointSet p = to_points(points, dim_of(points));
+    run_nogil([&] { return check_points(p); });
+  });
+  m.def("merge_duplicates", [](const py::handle& points) {
+    const PointSet p = to_points(points, dim_of(points));
+    std::vector<std::size_t> kept;
+    const PointSet merged = merge_duplicates(p, &kept);
+    std::vector<std::int64_t> rows(kept.begin(), kept.end());
+    return py::make_tuple(to_array(merged), ids64(rows));
+  });
+  m.def("read_points", &read_points_py, py::arg("path"), py::arg("dim"), py::arg("merge_duplicates"), py::arg("check"));
+  m.def("read_mesh", [](const std::string& path) {
+    PointSet p;
+    TriMesh3 mesh;
+    run_nogil([&] { return read_mesh(path, p, mesh); });
+    return py::make_tuple(to_array(p), ids(mesh.triangles));
+  });
+  m.def(
+      "write_mesh",
+      [](const std::string& path, const py::handle& points, const py::handle& triangles, bool ascii) {
+        const PointSet p = to_points(points, 3);
+        TriMesh3 mesh;
+        mesh.triangles = to_rows<3>(triangles, p.size(), "triangles");
+        MeshWriteOptions o;
+        o.ply_ascii = ascii;
+        run_nogil([&] { return write_mesh(path, p, mesh, o); });
+      },
+      py::arg("path"), py::arg("points"), py::arg("triangles"), py::arg("ascii"));
+  m.def(
+      "write_body",
+      [](const std::string& path, const py::handle& points, const py::handle& tetrahedra) {
+        const PointSet p = to_points(points, 3);
+        const auto tets = to_rows<4>(tetrahedra, p.size(), "tetrahedra");
+        run_nogil([&] { return write_body_vtk(path, p, tets); });
+      },
+      py::arg("path"), py::arg("points"), py::arg("tetrahedra"));
+  m.def(
+      "write_polygon",
+      [](const std::string& path, const py::handle& points, const py::handle& boundary) {
+        const PointSet p = to_points(points, 2);
+        const std::vector<int> b = to_ids(boundary);
+        run_nogil([&] { return write_polygon2(path, p, b); });
+      },
+      py::arg("path"), py::arg("points"), py::arg("boundary"));
 }

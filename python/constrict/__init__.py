@@ -1,0 +1,508 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Object reconstruction with the gamma-neighborhood graph (Veltkamp).
+
+A simple polygon through all points in 2D (:func:`reconstruct2`), a closed genus-0 surface
+through all points in 3D (:func:`reconstruct3`), the graphs of the gamma family
+(:func:`gamma_graph`), exact validators, and the library's readers and writers.
+
+Arrays in, arrays out: points are any array-like of shape (N, 2) or (N, 3) (copied as float64),
+index arrays are int64 numpy arrays of input row numbers. Results are plain dataclasses
+(:class:`Polygon`, :class:`Surface`) that pickle, so they travel between processes (Dask,
+multiprocessing). Bad input raises :class:`Error` (a ``ValueError``) with the library's
+one-line message and the status name in ``.code``. The C++ work releases the GIL, so threads run
+reconstructions in parallel. ``python3 -m constrict`` is the command line. See docs/python.md.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+
+__version__: str = _core.__version__
+
+Error = _core.Error
+Error.__module__ = "constrict"  # constrict.Error in messages, and what pickle looks up
+Error.__doc__ = (
+    "Bad input or a failed read/write: the library's one-line message, the status name "
+    "(Duplicate, Collinear, Coplanar, TooFewPoints, NonFinite, InvalidArgument, FileNotFound, "
+    "ParseError, WriteFailed, ...) in .code. A subclass of ValueError."
+)
+
+__all__ = [
+    "Error", "Polygon", "Surface", "reconstruct", "reconstruct2", "reconstruct3", "gamma_graph",
+    "validate_polygon", "validate_surface", "read_points", "read_points_info", "read_mesh",
+    "write_mesh", "write_polygon", "write_body", "cli_path", "__version__",
+]
+
+ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of rows, ...
+Refine = Union[bool, str]
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+# ---- results ---------------------------------------------------------------------------------
+
+def _optional(module: str, what: str, package: str):
+    """Imports an optional dependency, or says which Debian package / pip name provides it."""
+    try:
+        return __import__(module, fromlist=["_"])
+    except ImportError as e:
+        raise ImportError(f"{what} needs the '{module}' module: install {package}") from e
+
+
+@dataclasses.dataclass(repr=False)
+class Polygon:
+    """Result of :func:`reconstruct2`: a simple counter-clockwise polygon through the points.
+
+    Plain data (numpy arrays, numbers, strings): it pickles, and ``==`` compares every field
+    but the wall-clock ones (timings_ms, report_json).
+    Indices are rows of the array given to reconstruct2 (also with ``merge_duplicates=True``).
+    """
+
+    boundary: np.ndarray  #: int64 (B,): vertex rows in counter-clockwise order, each point once
+    valid: bool  #: complete and validated exactly: simple, CCW, every point once
+    complete: bool  #: every point on the boundary (false only for fallback="none" / stop_after)
+    method: str  #: last stage that placed a point: gamma, gamma0=<v>, degree4, repair, star, locked, stopped, voronoi-skeleton
+    criterion: str  #: the constriction's criterion (gamma, min-area-change, boissonnat)
+    locked: bool  #: the Delaunay (gamma0 = 0) constriction locked
+    stuck_points: np.ndarray  #: int64: points inside when the constriction stopped
+    area: float
+    perimeter: float
+    removed_simplices: int  #: triangles removed by the Delaunay constriction
+    fallback_edges: np.ndarray  #: int64 (K, 2): polygon edges that are not Delaunay edges
+    stages: List[Tuple[str, int]]  #: (stage name, points placed), in order
+    refine_moves: int  #: moves of the local-search refinement
+    timings_ms: Dict[str, float]  #: delaunay, constrict, fallback, refine, validate
+    merged_duplicates: np.ndarray  #: int64: rows dropped as later copies (merge_duplicates=True)
+    report_json: str  #: the library's JSON report, verbatim (see report())
+    skeleton: Optional[Dict[str, Any]] = None  #: method="voronoi-skeleton": the search statistics
+
+    def report(self) -> str:
+        """The library's JSON report (the fields of ``constrict reconstruct --report`` that the
+        library writes; the CLI adds input/output names and read/write times), a str."""
+        return self.report_json
+
+    def report_dict(self) -> Dict[str, Any]:
+        """:meth:`report` parsed into a dict."""
+        return json.loads(self.report_json)
+
+    def __eq__(self, other: object) -> bool:
+        return _same(self, other)
+
+    def __repr__(self) -> str:
+        state = "valid" if self.valid else "incomplete" if not self.complete else "invalid"
+        return f"<constrict.Polygon {len(self.boundary)} vertices, method={self.method}, {state}>"
+
+    def coordinates(self, points: ArrayLike) -> np.ndarray:
+        """(B, 2) coordinates of the boundary, in order (the ring not closed)."""
+        return np.asarray(points, dtype=float)[self.boundary]
+
+    def to_shapely(self, points: ArrayLike):
+        """The polygon as a ``shapely.geometry.Polygon`` over ``points`` (the array given to
+        reconstruct2). Needs shapely (Debian: python3-shapely)."""
+        geometry = _optional("shapely.geometry", "Polygon.to_shapely()", "python3-shapely (pip: shapely)")
+        return geometry.Polygon(self.coordinates(points))
+
+
+@dataclasses.dataclass(repr=False)
+class Surface:
+    """Result of :func:`reconstruct3`: a closed genus-0 triangulated surface through the points
+    and the tetrahedral body it bounds.
+
+    Plain data (numpy arrays, numbers, strings): it pickles, and ``==`` compares every field
+    but the wall-clock ones (timings_ms, report_json).
+    Indices are rows of the array given to reconstruct3 (also with ``merge_duplicates=True``).
+    """
+
+    triangles: np.ndarray  #: int64 (F, 3): vertex rows, oriented outward
+    tetrahedra: np.ndarray  #: int64 (T, 4): the body, positively oriented
+    valid: bool  #: complete and validated: closed, manifold, outward, genus 0, every point a vertex
+    complete: bool  #: every point on the surface
+    genus: int  #: 0 when valid, else -1
+    method: str  #: gamma, grow, cavity, locked, stopped, voronoi-skeleton, incomplete
+    criterion: str  #: the constriction's criterion (gamma, min-area-change, boissonnat)
+    volume: float
+    area: float
+    locked: bool  #: the Delaunay constriction locked
+    stuck_points: np.ndarray  #: int64: points inside when it locked
+    unplaced_points: np.ndarray  #: int64: points still inside at the end (empty when complete)
+    stages: List[Tuple[str, int, int]]  #: (stage name, points placed, tetrahedra removed)
+    timings_ms: Dict[str, float]  #: the library's phases
+    merged_duplicates: np.ndarray  #: int64: rows dropped as later copies (merge_duplicates=True)
+    report_json: str  #: the library's JSON report, verbatim (see report())
+    skeleton: Optional[Dict[str, Any]] = None  #: method="voronoi-skeleton": the search statistics
+
+    def report(self) -> str:
+        """The library's JSON report (the fields of ``constrict reconstruct --report`` that the
+        library writes; the CLI adds input/output names, validation details and times), a str."""
+        return self.report_json
+
+    def report_dict(self) -> Dict[str, Any]:
+        """:meth:`report` parsed into a dict."""
+        return json.loads(self.report_json)
+
+    def __eq__(self, other: object) -> bool:
+        return _same(self, other)
+
+    def __repr__(self) -> str:
+        state = "valid" if self.valid else "incomplete" if not self.complete else "invalid"
+        return f"<constrict.Surface {len(self.triangles)} triangles, method={self.method}, {state}>"
+
+    def to_meshio(self, points: ArrayLike, body: bool = False):
+        """The surface as a ``meshio.Mesh`` (vertices = all points, one "triangle" cell block;
+        with ``body=True`` also the "tetra" block). Needs meshio (Debian: python3-meshio)."""
+        meshio = _optional("meshio", "Surface.to_meshio()", "python3-meshio (pip: meshio)")
+        cells = [("triangle", self.triangles)]
+        if body:
+            cells.append(("tetra", self.tetrahedra))
+        return meshio.Mesh(np.asarray(points, dtype=float), cells)
+
+    def to_open3d(self, points: ArrayLike):
+        """The surface as an ``open3d.geometry.TriangleMesh``. Needs Open3D (not in Debian 12:
+        ``pip install open3d`` where wheels exist)."""
+        o3d = _optional("open3d", "Surface.to_open3d()", "open3d (pip: open3d; not packaged in Debian 12)")
+        return o3d.geometry.TriangleMesh(
+            o3d.utility.Vector3dVector(np.asarray(points, dtype=float)),
+            o3d.utility.Vector3iVector(self.triangles.astype(np.int32)),
+        )
+
+
+def _same(a: object, b: object) -> bool:
+    """Field-by-field equality with numpy arrays compared by value."""
+    if type(a) is not type(b):
+        return NotImplemented
+    for f in dataclasses.fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray):
+            if not np.array_equal(x, y):
+                return False
+        elif f.name == "timings_ms" or f.name == "report_json":
+            continue  # wall-clock times differ between equal runs
+        elif x != y:
+            return False
+    return True
+
+
+# ---- keyword checking --------------------------------------------------------------------------
+
+# CLI flags that are not reconstruction options, and what to do in Python instead.
+_NOT_OPTIONS = {
+    "dim": "pass an (N, 2) or (N, 3) array (read_points(path, dim=...) forces the dimension of a file)",
+    "output": "write the result with write_polygon()/write_mesh()",
+    "o": "write the result with write_polygon()/write_mesh()",
+    "body": "write the body with write_body(path, points, surface.tetrahedra)",
+    "ascii": "pass ascii=True to write_mesh()",
+    "report": "the report is result.report() (str) / result.report_dict()",
+    "render": "the CLI draws pictures: python3 -m constrict reconstruct IN -o OUT --render PIC",
+    "quiet": "the Python functions print nothing",
+    "no_grow": "use grow=False",
+}
+_ONLY_3D = ("fast", "grow", "validate_self_intersections")
+
+
+def _reject(func: str, extra: Dict[str, Any]) -> None:
+    """TypeError for keywords reconstruct2/3 do not take, naming the right place for each."""
+    if not extra:
+        return
+    name = sorted(extra)[0]
+    if name in _NOT_OPTIONS:
+        hint = _NOT_OPTIONS[name]
+    elif func == "reconstruct2" and name in _ONLY_3D:
+        hint = f"'{name}' applies to 3D only (reconstruct3)"
+    else:
+        hint = "see help(constrict." + func + ")"
+    raise TypeError(f"{func}() got an unexpected keyword argument '{name}': {hint}")
+
+
+def _refine_name(refine: Refine) -> str:
+    if refine is True or refine is False:
+        return "auto" if refine else "none"
+    if isinstance(refine, str):
+        return refine
+    raise TypeError(f"refine must be a bool or 'auto'/'none', got {type(refine).__name__}")
+
+
+def _skeleton_options(method: str, seed_limit: int, **constriction: Any) -> None:
+    """seed_limit belongs to the Voronoi skeleton; the constriction's options do not."""
+    if method == "voronoi-skeleton":
+        given = sorted(k for k, (value, default) in constriction.items() if value != default)
+        if given:
+            raise _invalid(f"{', '.join(given)}: not an option of method='voronoi-skeleton'")
+    elif seed_limit:
+        raise _invalid("seed_limit applies to method='voronoi-skeleton' only")
+
+
+def _invalid(message: str):
+    err = Error(message)
+    err.code = "InvalidArgument"
+    return err
+
+
+def _with_skeleton(d: Dict[str, Any]) -> Dict[str, Any]:
+    """The CLI's report fields of the Voronoi skeleton, added to the library's report."""
+    if d["skeleton"] is not None:
+        rep = json.loads(d["report_json"])
+        rep["method_requested"] = "voronoi-skeleton"
+        rep["criterion"] = None
+        rep["voronoi_skeleton"] = d["skeleton"]
+        d["report_json"] = json.dumps(rep, sort_keys=True, separators=(",", ":"))
+    return d
+
+
+# ---- reconstruction ----------------------------------------------------------------------------
+
+def reconstruct2(
+    points: ArrayLike,
+    fallback: str = "auto",
+    refine: Refine = True,
+    *,
+    method: str = "gamma",
+    stop_after: Optional[int] = None,
+    seed_limit: int = 0,
+    merge_duplicates: bool = False,
+    **unknown: Any,
+) -> Polygon:
+    """Simple polygon through every point of an (N, 2) array.
+
+    The gamma-constriction of the Delaunay triangulation, local fallbacks after a lock, a
+    length-decreasing refinement; validated exactly. The keywords are the options of
+    ``constrict reconstruct`` (same names, ``-`` spelled ``_``) and give the same polygon:
+
+    Args:
+        points: (N, 2) array-like of numbers; N >= 3, not all collinear, no duplicates (unless
+            merge_duplicates).
+        fallback: on a lock: "auto" (gamma0 schedule, degree-4, repair; always completes),
+            "gamma0", "degree4", or "none" (stop: complete=False, stuck_points listed).
+            CLI --fallback.
+        refine: True / "auto": the local-search post-pass (2-opt, Or-opt); False / "none": the
+            paper's algorithm (Constrict2Options::paper()). CLI --refine.
+        method: the constriction's criterion: "gamma" (default), "min-area-change",
+            "boissonnat"; or "voronoi-skeleton" (the comparison method). CLI --method.
+        stop_after: stop the constriction after this many removals (the result is then
+            incomplete); None: run to the end. CLI --stop-after.
+        seed_limit: method="voronoi-skeleton" only: try at most this many seeds (0 = all).
+            CLI --seed-limit.
+        merge_duplicates: drop later copies of identical points instead of raising; indices in
+            the result stay rows of ``points``, the dropped rows are in
+            ``result.merged_duplicates``. CLI --merge-duplicates.
+
+    Returns:
+        :class:`Polygon`.
+
+    Raises:
+        Error: bad input (Duplicate names the rows, Collinear, TooFewPoints, NonFinite) or an
+            unknown option value (InvalidArgument).
+        TypeError: a keyword reconstruct2 does not take (e.g. grow, which is 3D only).
+    """
+    _reject("reconstruct2", unknown)
+    ref = _refine_name(refine)
+    _skeleton_options(method, seed_limit, fallback=(fallback, "auto"), refine=(ref, "auto"),
+                      stop_after=(stop_after, None))
+    d = _core.reconstruct2(points, fallback, ref, method, stop_after, seed_limit, merge_duplicates)
+    return Polygon(**_with_skeleton(d))
+
+
+def reconstruct3(
+    points: ArrayLike,
+    grow: bool = True,
+    *,
+    fallback: str = "auto",
+    refine: Refine = True,
+    fast: bool = False,
+    method: str = "gamma",
+    stop_after: Optional[int] = None,
+    seed_limit: int = 0,
+    merge_duplicates: bool = False,
+    validate_self_intersections: bool = False,
+    **unknown: Any,
+) -> Surface:
+    """Closed genus-0 triangulated surface through every point of an (N, 3) array, and the
+    tetrahedral body it bounds; validated (closed, manifold, oriented, genus 0).
+
+    The keywords are the options of ``constrict reconstruct`` (same names, ``-`` spelled ``_``)
+    and give the same surface:
+
+    Args:
+        points: (N, 3) array-like of numbers; N >= 4, not all coplanar, no duplicates (unless
+            merge_duplicates).
+        grow: True: grow the body from the inside first (docs/reconstruction-3d.md §4.7);
+            False: constrict from the convex hull only. CLI --no-grow is grow=False.
+        fallback: on a lock: "auto" (star cavities) or "none" (stop: complete=False).
+            CLI --fallback ("gamma0"/"degree4" are 2D only and raise).
+        refine: True / "auto": carve and edge-flip post-passes (the default preset); False /
+            "none": the paper's algorithm (Constrict3Options::paper(): no growth, no labels, no
+            post-pass). CLI --refine.
+        fast: one constriction run instead of two variants when the growth does not reach every
+            point (Constrict3Options::fast()). CLI --fast. Has no effect with refine=False.
+        method: the constriction's criterion: "gamma" (default), "min-area-change",
+            "boissonnat"; or "voronoi-skeleton" (the comparison method). CLI --method.
+        stop_after: stop the constriction after this many removals (the result is then
+            incomplete); None: run to the end. CLI --stop-after.
+        seed_limit: method="voronoi-skeleton" only: try at most this many seeds (0 = all).
+            CLI --seed-limit.
+        merge_duplicates: drop later copies of identical points instead of raising; indices in
+            the result stay rows of ``points``, the dropped rows are in
+            ``result.merged_duplicates``. CLI --merge-duplicates.
+        validate_self_intersections: add the exact self-intersection test to the library's
+            validation (O(F log F + K); off by default, the surface bounds a
+            tetrahedralization).
+
+    Returns:
+        :class:`Surface`.
+
+    Raises:
+        Error: bad input (Duplicate names the rows, Coplanar, TooFewPoints, NonFinite) or an
+            unknown option value (InvalidArgument).
+        TypeError: a keyword reconstruct3 does not take.
+    """
+    _reject("reconstruct3", unknown)
+    ref = _refine_name(refine)
+    _skeleton_options(method, seed_limit, fallback=(fallback, "auto"), refine=(ref, "auto"),
+                      stop_after=(stop_after, None), grow=(grow, True), fast=(fast, False))
+    if fast and ref == "none":
+        raise _invalid("fast=True does not apply with refine=False (the paper's algorithm is one run)")
+    d = _core.reconstruct3(points, fallback, ref, fast, grow, method, stop_after, seed_limit,
+                           merge_duplicates, validate_self_intersections)
+    return Surface(**_with_skeleton(d))
+
+
+def reconstruct(source: Union[ArrayLike, "PathLike"], *, dim: Optional[int] = None,
+                merge_duplicates: bool = False, **options: Any) -> Union[Polygon, Surface]:
+    """:func:`reconstruct2` or :func:`reconstruct3` by dimension, on an array or a point file
+    (read with :func:`read_points`, ``dim`` and ``merge_duplicates`` as there): the Python form
+    of ``constrict reconstruct IN``. One function of one argument, handy for ``map`` over files
+    (threads, processes, Dask). ``options`` are the keywords of reconstruct2/3."""
+    if isinstance(source, (str, os.PathLike)):
+        points = read_points(source, dim=dim, merge_duplicates=merge_duplicates)
+    else:
+        points = np.asarray(source, dtype=float)
+        if dim is not None and points.ndim == 2 and points.shape[1] != dim:
+            points = points[:, :dim]
+        options["merge_duplicates"] = merge_duplicates
+    if points.ndim == 2 and points.shape[1] == 3:
+        return reconstruct3(points, **options)
+    return reconstruct2(points, **options)
+
+
+def gamma_graph(points: ArrayLike, preset: str = "", gamma: Optional[Sequence[float]] = None,
+                interval: Optional[Sequence[float]] = None) -> Dict[str, Any]:
+    """A graph of the gamma family on an (N, 2) or (N, 3) array.
+
+    Give at most one of: ``preset`` (hull, delaunay [default], gabriel, beta-circle=B,
+    beta-lune=B, complete, void), ``gamma=(g0, g1)`` or ``interval=(a0, a1, b0, b1)``.
+
+    Returns:
+        dict: ``faces`` (int64; edges in 2D, triangles in 3D, sorted ids), ``gamma_a``,
+        ``gamma_b``, ``delta`` (float arrays, one per face) and ``graph`` (its name).
+    """
+    return _core.gamma_graph(points, preset, gamma, interval)
+
+
+def validate_polygon(points: ArrayLike, boundary: ArrayLike) -> Tuple[bool, str]:
+    """(ok, reason): is ``boundary`` a simple counter-clockwise polygon through every point
+    exactly once? Exact predicates."""
+    return _core.validate_polygon(points, boundary)
+
+
+def validate_surface(points: ArrayLike, triangles: ArrayLike) -> Tuple[bool, str]:
+    """(ok, reason): is the mesh closed, manifold, outward oriented, connected, genus 0 and
+    through every point?"""
+    return _core.validate_surface(points, triangles)
+
+
+# ---- files -------------------------------------------------------------------------------------
+
+def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optional[Sequence[int]] = None,
+                     merge_duplicates: bool = False, check: bool = True) -> Tuple[np.ndarray, Dict[str, Any]]:
+    """:func:`read_points` plus what the reader saw: a dict with ``points_read``,
+    ``merged_duplicates`` (count), ``original_index`` (int64: the file row of each point),
+    ``warnings`` and, from PLY files, ``normals`` (N, 3) and ``colors`` (N, 3 or 4) in [0, 1]."""
+    path = os.fspath(path)
+    if columns is None:
+        return _core.read_points(path, 0 if dim is None else dim, merge_duplicates, check)
+    cols = [int(c) for c in columns]
+    if len(cols) not in (2, 3) or dim not in (None, len(cols)):
+        raise _invalid(f"columns must name 2 or 3 columns (and match dim), got {list(columns)}")
+    if min(cols) < 0 or max(cols) > 2:
+        # The library's readers take the first two or three fields of a row (io.hpp).
+        raise _invalid(f"columns can pick among the first three fields (0, 1, 2), got {cols}")
+    raw, info = _core.read_points(path, max(2, max(cols) + 1), False, False)
+    pts = np.ascontiguousarray(raw[:, cols])
+    rows = info["original_index"]
+    if merge_duplicates:
+        merged, kept = _core.merge_duplicates(pts)
+        info["merged_duplicates"] = len(pts) - len(merged)
+        if info["merged_duplicates"]:
+            info["warnings"].append(f"{path}: merged {info['merged_duplicates']} duplicate points")
+        pts, rows = merged, rows[kept]
+    info["original_index"] = rows
+    for k in ("normals", "colors"):
+        if k in info:
+            info[k] = info[k][rows]
+    if check:
+        _core.check_points(pts)
+    return pts, info
+
+
+def read_points(path: PathLike, dim: Optional[int] = None, columns: Optional[Sequence[int]] = None,
+                merge_duplicates: bool = False) -> np.ndarray:
+    """Reads a point file with the library's reader (the CLI's): text columns (.xyz .xy .csv
+    .txt: whitespace, comma, semicolon or tab separated; ``#`` comments; one optional header),
+    PLY (ascii/binary), OFF, OBJ vertices. docs/input-formats.md has every rule and message.
+
+    Args:
+        path: the file.
+        dim: None: from the data (2 or 3 columns); 2 or 3: forced (dim=2 drops z). CLI --dim.
+        columns: pick 2 or 3 of the first three fields, e.g. (0, 2) for x and z.
+        merge_duplicates: keep the first of identical points instead of raising Duplicate
+            (read_points_info() says which file rows were kept). CLI --merge-duplicates.
+
+    Returns:
+        float64 array (N, dim). The points are checked as the CLI checks them (duplicates, too
+        few, collinear/coplanar).
+
+    Raises:
+        Error: FileNotFound, ParseError ("file:LINE: ..."), NonFinite, EmptyInput, Duplicate,
+            TooFewPoints, Collinear, Coplanar.
+    """
+    return read_points_info(path, dim, columns, merge_duplicates)[0]
+
+
+def read_mesh(path: PathLike) -> Tuple[np.ndarray, np.ndarray]:
+    """(points (V, 3), triangles (F, 3) int64) of an .off, .ply, .obj or .stl mesh (polygons are
+    split into fans). No geometric check."""
+    return _core.read_mesh(os.fspath(path))
+
+
+def write_mesh(path: PathLike, points: ArrayLike, triangles: ArrayLike, ascii: bool = False) -> None:
+    """Writes a triangle mesh; the format follows the extension: .off, .ply (binary unless
+    ``ascii``, CLI --ascii), .obj, .stl. Vertices are all points in order, so the triangles'
+    ids are row numbers. The bytes are the CLI's for the same surface."""
+    _core.write_mesh(os.fspath(path), points, triangles, ascii)
+
+
+def write_polygon(path: PathLike, points: ArrayLike, boundary: ArrayLike) -> None:
+    """Writes a 2D polygon given as rows in boundary order; the format follows the extension:
+    .idx (one row number per line), .csv (x,y), .geojson/.json, .wkt, .svg (points and polygon;
+    the CLI's SVG also draws the Delaunay edges)."""
+    _core.write_polygon(os.fspath(path), points, boundary)
+
+
+def write_body(path: PathLike, points: ArrayLike, tetrahedra: ArrayLike) -> None:
+    """Writes a tetrahedral body (Surface.tetrahedra) as VTK legacy .vtk (CLI --body)."""
+    _core.write_body(os.fspath(path), points, tetrahedra)
+
+
+def cli_path() -> str:
+    """Path of the ``constrict`` executable shipped inside the package (what
+    ``python3 -m constrict`` runs). Raises FileNotFoundError when the package was built without
+    the CLI."""
+    exe = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bin", "constrict")
+    if not os.access(exe, os.X_OK):
+        raise FileNotFoundError(f"{exe}: this constrict package was built without its command line "
+                                "(CONSTRICT_BUILD_CLI=OFF)")
+    return exe

@@ -1,0 +1,448 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Tests of the Python module (run by ctest as python.bindings)."""
+import importlib.util
+import json
+import math
+import os
+import pickle
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import numpy as np
+
+import constrict
+import sample_data
+
+
+def cli():
+    """The CLI built with this tree (ctest passes it), else the one inside the package."""
+    path = os.environ.get("CONSTRICT_CLI")
+    if path:
+        return path
+    try:
+        return constrict.cli_path()
+    except FileNotFoundError:
+        return None
+
+
+def polygon_is_simple(pts, b):
+    """Brute force: no two non-adjacent edges meet (general position inputs only)."""
+    n = len(b)
+
+    def orient(a, c, d):
+        return np.sign((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]))
+
+    for i in range(n):
+        p, q = pts[b[i]], pts[b[(i + 1) % n]]
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue
+            r, s = pts[b[j]], pts[b[(j + 1) % n]]
+            if orient(p, q, r) != orient(p, q, s) and orient(r, s, p) != orient(r, s, q):
+                return False
+    return True
+
+
+class Reconstruct2(unittest.TestCase):
+    def test_curve_gives_the_curve_order(self):
+        t = np.linspace(0, 2 * math.pi, 60, endpoint=False)
+        r = 1 + 0.3 * np.cos(5 * t)
+        curve = np.column_stack([r * np.cos(t), r * np.sin(t)])
+        perm = np.random.default_rng(1).permutation(len(curve))
+        res = constrict.reconstruct2(curve[perm])
+        self.assertTrue(res.valid)
+        self.assertEqual(res.method, "gamma")
+        b = perm[res.boundary]  # back to curve order: consecutive parameters
+        steps = {(int(b[(i + 1) % 60]) - int(b[i])) % 60 for i in range(60)}
+        self.assertEqual(steps, {1})
+        self.assertGreater(res.area, 0)
+        self.assertAlmostEqual(res.perimeter, sum(np.linalg.norm(curve[(i + 1) % 60] - curve[i]) for i in range(60)))
+
+    def test_random_inputs_are_simple_polygons_through_all_points(self):
+        rng = np.random.default_rng(7)
+        for seed in range(30):
+            pts = rng.random((int(rng.integers(3, 80)), 2))
+            for fallback in ("auto", "degree4"):
+                res = constrict.reconstruct2(pts, fallback=fallback)
+                self.assertTrue(res.valid, seed)
+                self.assertEqual(sorted(res.boundary.tolist()), list(range(len(pts))), seed)
+                self.assertTrue(polygon_is_simple(pts, res.boundary), seed)
+                ok, reason = constrict.validate_polygon(pts, res.boundary)
+                self.assertTrue(ok, reason)
+
+    def test_lock_is_reported(self):
+        # Spec example B (§5.2): the Delaunay constriction locks with P5 inside.
+        pts = [[-8, 13], [12, 13], [20, -3], [15, 20], [8, 6], [9, 11], [4, 17]]
+        res = constrict.reconstruct2(pts, refine=False)
+        self.assertTrue(res.locked)
+        self.assertTrue(res.valid)
+        self.assertNotEqual(res.method, "gamma")
+        locked = constrict.reconstruct2(pts, fallback="none")
+        self.assertFalse(locked.complete)
+        self.assertEqual(locked.stuck_points.tolist(), [5])
+
+    def test_bad_input_raises_with_the_status_name(self):
+        cases = {
+            "Duplicate": [[0, 0], [1, 0], [0, 1], [1, 0]],
+            "Collinear": [[0, 0], [1, 1], [2, 2]],
+            "TooFewPoints": [[0, 0], [1, 1]],
+            "NonFinite": [[0, 0], [1, 0], [float("nan"), 1]],
+        }
+        for code, pts in cases.items():
+            with self.assertRaises(constrict.Error) as ctx:
+                constrict.reconstruct2(pts)
+            self.assertEqual(ctx.exception.code, code)
+        with self.assertRaises(ValueError) as ctx:
+            constrict.reconstruct2([[0, 0], [1, 0], [0, 1], [1, 0]])
+        self.assertIn("points 1 and 3", str(ctx.exception))
+        self.assertIn("merge_duplicates=True", str(ctx.exception))
+        self.assertNotIn("--", str(ctx.exception))  # Python has no such flag
+        with self.assertRaises(constrict.Error):
+            constrict.reconstruct2(np.zeros((5, 3)))
+        with self.assertRaises(constrict.Error):
+            constrict.reconstruct2(np.random.random((5, 2)), fallback="sometimes")
+
+
+class Reconstruct3(unittest.TestCase):
+    def test_sphere_with_inside_points_is_a_closed_genus0_surface(self):
+        rng = np.random.default_rng(3)
+        v = rng.normal(size=(400, 3))
+        v /= np.linalg.norm(v, axis=1)[:, None]
+        v *= 1 + 0.05 * rng.random((400, 1))  # a shell: some points are not on the hull
+        res = constrict.reconstruct3(v)
+        self.assertTrue(res.valid)
+        self.assertEqual(res.genus, 0)
+        tri = res.triangles
+        self.assertEqual(tri.shape, (2 * len(v) - 4, 3))
+        self.assertEqual(sorted(set(tri.ravel().tolist())), list(range(len(v))))
+        ok, reason = constrict.validate_surface(v, tri)
+        self.assertTrue(ok, reason)
+        # The body: its volume is the enclosed volume (divergence theorem on the surface).
+        a, b, c = v[tri[:, 0]], v[tri[:, 1]], v[tri[:, 2]]
+        enclosed = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
+        t = res.tetrahedra
+        p0, p1, p2, p3 = (v[t[:, k]] for k in range(4))
+        body = np.einsum("ij,ij->i", p1 - p0, np.cross(p2 - p0, p3 - p0)).sum() / 6
+        self.assertAlmostEqual(body, enclosed, places=9)
+        self.assertAlmostEqual(res.volume, enclosed, places=9)
+        self.assertLess(res.volume, 4 / 3 * math.pi * 1.05 ** 3)
+        # The library's report: the same writer as the CLI's --report.
+        rep = json.loads(res.report())
+        self.assertTrue(rep["valid"])
+        self.assertEqual(rep["method"], res.method)
+        self.assertEqual(rep["faces"], len(tri))
+        self.assertEqual(rep["stages"][0]["name"], "hull")
+
+    def test_coplanar_input_raises(self):
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.reconstruct3([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [2, 3, 0]])
+        self.assertEqual(ctx.exception.code, "Coplanar")
+
+
+class GammaGraph(unittest.TestCase):
+    def test_family_nests_and_matches_the_definition(self):
+        pts = np.random.default_rng(5).random((40, 2))
+        dt = constrict.gamma_graph(pts)
+        gab = constrict.gamma_graph(pts, preset="gabriel")
+        hull = constrict.gamma_graph(pts, preset="hull")
+        as_set = lambda g: {tuple(e) for e in g["faces"].tolist()}
+        self.assertLessEqual(as_set(hull), as_set(dt))
+        self.assertLessEqual(as_set(gab), as_set(dt))
+        self.assertEqual(len(dt["faces"]), 3 * 40 - 3 - len(hull["faces"]))  # planar triangulation
+        # Gabriel by definition: no point inside the circle with diameter ab.
+        for a, b in gab["faces"].tolist():
+            m, r2 = (pts[a] + pts[b]) / 2, np.sum((pts[a] - pts[b]) ** 2) / 4
+            d2 = np.sum((pts - m) ** 2, axis=1)
+            d2[[a, b]] = np.inf
+            self.assertTrue(np.all(d2 > r2))
+        same = constrict.gamma_graph(pts, interval=(-1, 1, 0, 1))
+        self.assertEqual(as_set(same), as_set(dt))
+        self.assertEqual(as_set(constrict.gamma_graph(pts, gamma=(0, 0))), as_set(gab))
+        with self.assertRaises(constrict.Error):
+            constrict.gamma_graph(pts, preset="gabriel", gamma=(0, 0))
+
+    def test_3d_faces_are_triangles(self):
+        pts = np.random.default_rng(2).random((30, 3))
+        g = constrict.gamma_graph(pts)
+        self.assertEqual(g["faces"].shape[1], 3)
+        self.assertEqual(len(g["faces"]), len(g["delta"]))
+
+
+class Keywords(unittest.TestCase):
+    def test_inapplicable_and_unknown_keywords_raise(self):
+        pts2 = sample_data.curve(20, 1)
+        pts3 = sample_data.shell(30, 1)
+        with self.assertRaisesRegex(TypeError, "3D only"):
+            constrict.reconstruct2(pts2, grow=False)
+        with self.assertRaisesRegex(TypeError, "grow=False"):
+            constrict.reconstruct3(pts3, no_grow=True)
+        with self.assertRaisesRegex(TypeError, "write_mesh"):
+            constrict.reconstruct3(pts3, ascii=True)
+        with self.assertRaisesRegex(TypeError, "unexpected keyword argument 'colour'"):
+            constrict.reconstruct3(pts3, colour="red")
+        bad = [
+            lambda: constrict.reconstruct3(pts3, fallback="degree4"),
+            lambda: constrict.reconstruct3(pts3, fast=True, refine=False),
+            lambda: constrict.reconstruct2(pts2, seed_limit=3),
+            lambda: constrict.reconstruct2(pts2, method="voronoi-skeleton", stop_after=3),
+            lambda: constrict.reconstruct2(pts2, method="nearest"),
+            lambda: constrict.reconstruct2(pts2, refine="sometimes"),
+        ]
+        for i, f in enumerate(bad):
+            with self.assertRaises(constrict.Error, msg=i) as ctx:
+                f()
+            self.assertEqual(ctx.exception.code, "InvalidArgument", i)
+
+    def test_help_explains_every_argument(self):
+        import inspect
+        for f in (constrict.reconstruct2, constrict.reconstruct3):
+            for name in inspect.signature(f).parameters:
+                if name != "unknown":
+                    self.assertIn(f"    {name}:", f.__doc__, (f.__name__, name))
+
+    def test_stop_after_and_criteria(self):
+        pts = sample_data.curve(60, 2)
+        stopped = constrict.reconstruct2(pts, stop_after=3)
+        self.assertFalse(stopped.complete)
+        self.assertEqual(stopped.method, "stopped")
+        self.assertEqual(stopped.removed_simplices, 3)
+        for m in ("min-area-change", "boissonnat", "voronoi-skeleton"):
+            r = constrict.reconstruct2(pts, method=m)
+            self.assertTrue(r.valid, m)
+            self.assertEqual(sorted(r.boundary.tolist()), list(range(60)), m)
+        self.assertIsNotNone(constrict.reconstruct2(pts, method="voronoi-skeleton").skeleton)
+        s = constrict.reconstruct3(sample_data.shell(60, 3), grow=False, validate_self_intersections=True)
+        self.assertTrue(s.valid)
+        self.assertNotEqual(s.method, "grow")
+
+
+class MergeDuplicates(unittest.TestCase):
+    def test_ids_stay_rows_of_the_input(self):
+        pts = sample_data.curve(30, 4)
+        dup = np.vstack([pts[:5], pts[2:3], pts[5:], pts[7:9]])  # rows 5, 31, 32 are later copies
+        r = constrict.reconstruct2(dup, merge_duplicates=True)
+        self.assertTrue(r.valid)
+        self.assertEqual(r.merged_duplicates.tolist(), [5, 31, 32])
+        self.assertEqual(sorted(r.boundary.tolist()), sorted(set(range(len(dup))) - {5, 31, 32}))
+        ok, reason = constrict.validate_polygon(np.delete(dup, [5, 31, 32], axis=0),
+                                                np.searchsorted(np.setdiff1d(np.arange(len(dup)), [5, 31, 32]),
+                                                                r.boundary))
+        self.assertTrue(ok, reason)
+        s3 = sample_data.shell(40, 5)
+        s = constrict.reconstruct3(np.vstack([s3, s3[:3]]), merge_duplicates=True)
+        self.assertTrue(s.valid)
+        self.assertEqual(s.merged_duplicates.tolist(), [40, 41, 42])
+        self.assertEqual(s.triangles.max(), 39)
+
+
+class Pickle(unittest.TestCase):
+    def test_results_round_trip(self):
+        p = constrict.reconstruct2(sample_data.curve(40, 6))
+        s = constrict.reconstruct3(sample_data.shell(50, 6))
+        for r in (p, s):
+            back = pickle.loads(pickle.dumps(r))
+            self.assertEqual(back, r)
+            self.assertEqual(back.report(), r.report())
+            self.assertEqual(back.timings_ms, r.timings_ms)
+        err = None
+        try:
+            constrict.reconstruct2([[0, 0], [1, 1]])
+        except constrict.Error as e:
+            err = pickle.loads(pickle.dumps(e))
+        self.assertIsInstance(err, constrict.Error)
+        self.assertEqual(err.code, "TooFewPoints")
+
+
+class Files(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def test_read_points(self):
+        pts = sample_data.shell(30, 7)
+        sample_data.save(self.path("a.xyz"), pts)
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz")), pts))
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz"), dim=2), pts[:, :2]))
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz"), columns=(0, 2)), pts[:, [0, 2]]))
+        sample_data.save(self.path("d.xyz"), np.vstack([pts, pts[4:5]]))
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.read_points(self.path("d.xyz"))
+        self.assertEqual(ctx.exception.code, "Duplicate")
+        self.assertIn("merge_duplicates=True", str(ctx.exception))
+        merged, info = constrict.read_points_info(self.path("d.xyz"), merge_duplicates=True)
+        self.assertTrue(np.array_equal(merged, pts))
+        self.assertEqual(info["merged_duplicates"], 1)
+        self.assertEqual(info["points_read"], 31)
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.read_points(self.path("missing.xyz"))
+        self.assertEqual(ctx.exception.code, "FileNotFound")
+        with open(self.path("bad.xy"), "w") as f:
+            f.write("0 0\n1 x\n")
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.read_points(self.path("bad.xy"))
+        self.assertEqual(ctx.exception.code, "ParseError")
+        self.assertIn("bad.xy:2", str(ctx.exception))
+
+    def test_writers_round_trip(self):
+        pts3 = sample_data.shell(40, 8)
+        s = constrict.reconstruct3(pts3)
+        for ext in ("off", "ply", "obj"):
+            constrict.write_mesh(self.path("s." + ext), pts3, s.triangles)
+            v, t = constrict.read_mesh(self.path("s." + ext))
+            self.assertTrue(np.array_equal(v, pts3), ext)
+            self.assertTrue(np.array_equal(t, s.triangles), ext)
+        constrict.write_body(self.path("b.vtk"), pts3, s.tetrahedra)
+        with open(self.path("b.vtk")) as f:
+            self.assertIn("UNSTRUCTURED_GRID", f.read())
+        pts = sample_data.curve(30, 8)
+        p = constrict.reconstruct2(pts)
+        constrict.write_polygon(self.path("p.idx"), pts, p.boundary)
+        self.assertEqual(np.loadtxt(self.path("p.idx"), dtype=int).tolist(), p.boundary.tolist())
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.write_polygon(self.path("p.docx"), pts, p.boundary)
+        self.assertIn(ctx.exception.code, ("InvalidArgument", "WriteFailed"))
+
+
+@unittest.skipIf(cli() is None, "built without the CLI")
+class SameAsTheCli(unittest.TestCase):
+    """Every keyword against the CLI flag it stands for: the output files are byte-identical."""
+
+    CASES2 = [({}, []), ({"refine": False}, ["--refine", "none"]),
+              ({"fallback": "none"}, ["--fallback", "none"]),
+              ({"fallback": "degree4", "method": "boissonnat"}, ["--fallback", "degree4", "--method", "boissonnat"]),
+              ({"method": "min-area-change"}, ["--method", "min-area-change"]),
+              ({"method": "voronoi-skeleton", "seed_limit": 5}, ["--method", "voronoi-skeleton", "--seed-limit", "5"]),
+              ({"stop_after": 7}, ["--stop-after", "7"])]
+    CASES3 = [({}, []), ({"grow": False}, ["--no-grow"]), ({"grow": False, "fast": True}, ["--no-grow", "--fast"]),
+              ({"refine": False}, ["--refine", "none"]), ({"fallback": "none", "grow": False}, ["--fallback", "none", "--no-grow"]),
+              ({"method": "min-area-change"}, ["--method", "min-area-change"]),
+              ({"stop_after": 20, "grow": False}, ["--stop-after", "20", "--no-grow"])]
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def run_cli(self, argv, exe=None):
+        cmd = [exe] if exe else [cli()]
+        return subprocess.run(cmd + argv, capture_output=True, text=True)
+
+    def check_cases(self, pts, cases, out_ext, write):
+        inp = os.path.join(self.dir, "in.txt")
+        sample_data.save(inp, pts)
+        for i, (kw, flags) in enumerate(cases):
+            out = os.path.join(self.dir, f"cli{i}.{out_ext}")
+            done = self.run_cli(["reconstruct", inp, "-o", out, "-q"] + flags)
+            self.assertIn(done.returncode, (0, 13), (flags, done.stderr))  # 13: Incomplete
+            r = constrict.reconstruct(inp, **kw)
+            self.assertEqual(r.complete, done.returncode == 0, flags)
+            mine = os.path.join(self.dir, f"py{i}.{out_ext}")
+            write(mine, pts, r)
+            with open(out, "rb") as a, open(mine, "rb") as b:
+                self.assertEqual(a.read(), b.read(), flags)
+
+    def test_2d_keywords(self):
+        pts = np.vstack([sample_data.curve(70, 9), [[0.1, 0.05], [-0.2, 0.1], [0.05, -0.3]]])
+        self.check_cases(pts, self.CASES2, "idx", lambda p, x, r: constrict.write_polygon(p, x, r.boundary))
+
+    def test_3d_keywords(self):
+        pts = np.vstack([sample_data.shell(120, 9), [[0, 0, 0], [0.2, 0.1, 0], [0, -0.3, 0.2]]])
+        self.check_cases(pts, self.CASES3, "off", lambda p, x, r: constrict.write_mesh(p, x, r.triangles))
+
+    def test_python_m_constrict_is_the_cli(self):
+        inp = os.path.join(self.dir, "in.xyz")
+        sample_data.save(inp, sample_data.shell(80, 10))
+        outs = []
+        for who in ("cli", "module"):
+            out = os.path.join(self.dir, who + ".ply")
+            argv = ["reconstruct", inp, "-o", out, "-q", "--fast"]
+            if who == "cli":
+                done = self.run_cli(argv)
+            else:
+                done = subprocess.run([sys.executable, "-m", "constrict"] + argv, capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(out, "rb") as f:
+                outs.append(f.read())
+        self.assertEqual(outs[0], outs[1])
+        bad = subprocess.run([sys.executable, "-m", "constrict", "reconstruct", os.path.join(self.dir, "none.xy"),
+                              "-o", "x.idx"], capture_output=True, text=True)
+        ref = self.run_cli(["reconstruct", os.path.join(self.dir, "none.xy"), "-o", "x.idx"])
+        self.assertEqual((bad.returncode, bad.stderr), (ref.returncode, ref.stderr))
+        self.assertNotEqual(bad.returncode, 0)
+
+
+class Conversions(unittest.TestCase):
+    @unittest.skipIf(importlib.util.find_spec("shapely") is None, "python3-shapely is not installed")
+    def test_shapely(self):
+        pts = sample_data.curve(50, 11)
+        p = constrict.reconstruct2(pts)
+        g = p.to_shapely(pts)
+        self.assertTrue(g.is_valid)
+        self.assertAlmostEqual(g.area, p.area)
+        self.assertAlmostEqual(g.length, p.perimeter)
+
+    @unittest.skipIf(importlib.util.find_spec("meshio") is None, "python3-meshio is not installed")
+    def test_meshio(self):
+        pts = sample_data.shell(40, 11)
+        s = constrict.reconstruct3(pts)
+        m = s.to_meshio(pts, body=True)
+        self.assertTrue(np.array_equal(m.cells_dict["triangle"], s.triangles))
+        self.assertTrue(np.array_equal(m.cells_dict["tetra"], s.tetrahedra))
+
+    def test_missing_module_says_what_to_install(self):
+        if importlib.util.find_spec("open3d") is not None:
+            self.skipTest("open3d is installed")
+        pts = sample_data.shell(30, 12)
+        with self.assertRaisesRegex(ImportError, "open3d"):
+            constrict.reconstruct3(pts).to_open3d(pts)
+
+
+class Threads(unittest.TestCase):
+    def test_the_gil_is_released_during_a_reconstruction(self):
+        pts = sample_data.shell(12000, 13)
+        ticks = []
+        stop = threading.Event()
+
+        def ticker():
+            while not stop.is_set():
+                ticks.append(time.perf_counter())
+                time.sleep(0.001)
+
+        t = threading.Thread(target=ticker)
+        t.start()
+        time.sleep(0.01)
+        t0 = time.perf_counter()
+        constrict.reconstruct3(pts, fast=True)
+        t1 = time.perf_counter()
+        stop.set()
+        t.join()
+        # Holding the GIL would freeze the ticker for the whole call (sys.getswitchinterval()
+        # lets it in only between Python bytecodes of this thread).
+        margin = 0.2 * (t1 - t0)
+        inside = [x for x in ticks if t0 + margin < x < t1 - margin]
+        self.assertGreater(t1 - t0, 0.05, "too fast to tell")
+        self.assertGreater(len(inside), 5, (t1 - t0, len(ticks)))
+
+    def test_threads_give_the_sequential_results(self):
+        from concurrent.futures import ThreadPoolExecutor
+        inputs = [sample_data.curve(50 + 5 * k, k) for k in range(4)] + [sample_data.shell(60, k) for k in range(2)]
+        seq = [constrict.reconstruct(x) for x in inputs]
+        with ThreadPoolExecutor(max_workers=3) as pool:
+            par = list(pool.map(constrict.reconstruct, inputs))
+        self.assertEqual(par, seq)
+
+
+if __name__ == "__main__":
+    unittest.main()
