@@ -25,8 +25,10 @@ enum class Toggle { Remove, Add };  // carve: take tetrahedra out of the body; f
 
 class Regions {
  public:
-  Regions(Body3& b, const Labels3& l, double min_conf, Toggle dir, Carve3Stats& st)
-      : b_(b), l_(l), min_conf_(min_conf), add_(dir == Toggle::Add), s_(st) {}
+  // Candidates: the Delaunay tetrahedra with sign * score >= threshold (carve: label >= min_conf;
+  // fill: -label >= min_conf; bridges: edge ratio >= the bridge ratio), most scored first.
+  Regions(Body3& b, const std::vector<float>& score, float sign, double threshold, Toggle dir, Carve3Stats& st)
+      : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st) {}
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
   bool run() {
@@ -56,13 +58,13 @@ class Regions {
   }
 
  private:
-  bool outside_label(std::size_t t) const { return t < b_.T0 && l_.label[t] >= min_conf_; }
+  bool outside_label(std::size_t t) const { return t < b_.T0 && sign_ * score_[t] >= min_conf_; }
   bool cand(int t) const {
-    if (add_) return uz(t) < b_.T0 && b_.state[uz(t)] == kOutside && l_.label[uz(t)] <= -min_conf_;
+    if (add_) return uz(t) < b_.T0 && b_.state[uz(t)] == kOutside && outside_label(uz(t));
     return b_.alive(t) && outside_label(uz(t)) && !anchor_[uz(t)];
   }
   // Label order: most confident first (outside: largest label; inside: smallest).
-  float prio(int t) const { return add_ ? -l_.label[uz(t)] : l_.label[uz(t)]; }
+  float prio(int t) const { return sign_ * score_[uz(t)]; }
   // Carve: a body tetrahedron with a surface face; fill: an outside one glued to the body (it has
   // fewer than 4 surface faces).
   bool at_front(int t) const {
@@ -256,7 +258,8 @@ class Regions {
   }
 
   Body3& b_;
-  const Labels3& l_;
+  const std::vector<float>& score_;
+  const float sign_;
   const double min_conf_;
   const bool add_;
   Carve3Stats& s_;
@@ -279,7 +282,7 @@ std::size_t count_changed(const std::vector<std::uint8_t>& before, const std::ve
 
 std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats) {
   const std::vector<std::uint8_t> state0 = body.state;
-  if (!Regions(body, labels, min_conf, Toggle::Remove, stats).run()) return 0;
+  if (!Regions(body, labels.label, 1.0f, min_conf, Toggle::Remove, stats).run()) return 0;
   // Every region ends valid and genus 0 (2N-4 faces); a split into a sphere and a torus would
   // also have 2N-4 faces: excluded here (then the whole pass is undone).
   if (!body.side_connected(kAlive)) {
@@ -299,7 +302,7 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
   }
   if (!any) return 0;
   const std::vector<std::uint8_t> state0 = body.state;
-  if (!Regions(body, labels, min_conf, Toggle::Add, stats).run()) return 0;
+  if (!Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, stats).run()) return 0;
   // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void would
   // also have 2N-4 faces in total: excluded here (then the whole pass is undone).
   stats.changed = count_changed(state0, body.state, true);
