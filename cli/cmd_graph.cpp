@@ -51,7 +51,14 @@ int run_graph(const GraphArgs& a) {
   GraphStats stats;
   if (Status s = build_gamma_graph(pts, spec, faces, &stats); !s) return fail(s);
   const auto t2 = Clock::now();
-  if (Status s = write_graph(a.out, pts, faces, spec.describe(), fmt); !s) return fail(s);
+  // Indices written are the file's rows, also after --merge-duplicates (docs/cli.md); the map is
+  // increasing, so the faces stay sorted.
+  if (!rep.merged.empty())
+    for (int& id : faces.vertices) id = file_row(rep, id);
+  PointSet merged_rows;
+  if (!rep.merged.empty()) merged_rows = file_row_points(pts, rep);
+  const PointSet& rows = rep.merged.empty() ? pts : merged_rows;
+  if (Status s = write_graph(a.out, rows, faces, spec.describe(), fmt); !s) return fail(s);
   const auto t3 = Clock::now();
 
   const char* what = pts.dim == 2 ? "edges" : "triangles";
@@ -73,6 +80,7 @@ int run_graph(const GraphArgs& a) {
     j["output"] = a.out;
     j["timings_ms"] = {{"read", ms(t0, t1)}, {"delaunay_gamma", stats.ms_gamma}, {"extra", stats.ms_extra},
                        {"graph", ms(t1, t2)}, {"write", ms(t2, t3)}, {"total", ms(t0, t3)}};
+    j["merged"] = merged_json(rep);
     j["warnings"] = rep.warnings;
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }

@@ -83,11 +83,65 @@ void add_common_json(const ReconstructArgs& a, const ReadReport& rep, int dim, s
   j["points_read"] = rep.points_read;
   j["merged_duplicates"] = rep.merged_duplicates;
   j["boundary_points"] = nb;
+  j["merged"] = merged_json(rep);
   j["warnings"] = rep.warnings;
 }
 const char* incomplete_why(const ReconstructArgs& a, const std::string& method) {
   if (is_skeleton(a)) return "voronoi skeleton: no tried seed grew through every point";
   return method == "stopped" ? "stopped early (--stop-after)" : "constriction locked (--fallback none)";
+}
+
+// Options of one dimension given for an input of the other are refused, not ignored (issue 18).
+Status check_dimension_options(const ReconstructArgs& a, int dim) {
+  if (dim == 2) {
+    if (!a.body.empty()) return wrong_dimension("--body", 2, a.in.path);
+    if (a.ascii) return wrong_dimension("--ascii", 2, a.in.path);
+    if (a.fast) return wrong_dimension("--fast", 2, a.in.path);
+    if (a.no_grow) return wrong_dimension("--no-grow", 2, a.in.path);
+  } else if (a.fallback == "gamma0" || a.fallback == "degree4") {
+    return {StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback, but " + a.in.path +
+                                             " is 3D; 3D has auto (star cavities) or none"};
+  }
+  return Status::ok();
+}
+
+// Indices written are the file's rows, also after --merge-duplicates (docs/cli.md): only .idx
+// holds indices; the other formats write coordinates, the same either way.
+Status write_polygon_rows(const std::string& path, const PointSet& pts, const ReadReport& rep,
+                          const std::vector<int>& boundary, PolygonFormat fmt, const PolygonSvgLayers* layers) {
+  if (rep.merged.empty() || fmt != PolygonFormat::Idx) return write_polygon2(path, pts, boundary, fmt, layers);
+  std::vector<int> rows(boundary.size());
+  for (std::size_t i = 0; i < boundary.size(); ++i) rows[i] = file_row(rep, boundary[i]);
+  return write_polygon2(path, file_row_points(pts, rep), rows, fmt, layers);
+}
+
+// The surface (and body) with the file's points as vertices, so that face indices are file rows
+// (a merged copy is an unused vertex), and the input's normals and colours on PLY vertices.
+Status write_surface_rows(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, const Mesh3Result& r) {
+  const PointAttributes& in = rep.attributes;
+  const bool has_attributes = !in.normals.empty() || !in.colors.empty();
+  if (has_attributes && lower_ext(a.out) != "ply")
+    std::fprintf(stderr, "constrict: warning: %s: the input's normals and colours are written to .ply output only\n",
+                 a.out.c_str());
+  MeshWriteOptions wopt;
+  wopt.ply_ascii = a.ascii;
+  if (rep.merged.empty()) {
+    wopt.attributes = has_attributes ? &in : nullptr;
+    if (Status s = write_mesh(a.out, pts, r.mesh, wopt); !s) return s;
+    return a.body.empty() ? Status::ok() : write_body_vtk(a.body, pts, r.tets);
+  }
+  const PointSet rows = file_row_points(pts, rep);
+  const PointAttributes row_attributes = file_row_attributes(rep);
+  wopt.attributes = has_attributes ? &row_attributes : nullptr;
+  TriMesh3 mesh = r.mesh;
+  for (auto& t : mesh.triangles)
+    for (int& v : t) v = file_row(rep, v);
+  if (Status s = write_mesh(a.out, rows, mesh, wopt); !s) return s;
+  if (a.body.empty()) return Status::ok();
+  std::vector<std::array<int, 4>> tets = r.tets;
+  for (auto& t : tets)
+    for (int& v : t) v = file_row(rep, v);
+  return write_body_vtk(a.body, rows, tets);
 }
 
 int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
@@ -154,7 +208,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     layers.highlight_edges = r.fallback_edges;
     layers.title = "constrict: " + a.in.path + " (" + r.method + ")";
   }
-  if (Status s = write_polygon2(a.out, pts, r.boundary, fmt, &layers); !s) return fail(s);
+  if (Status s = write_polygon_rows(a.out, pts, rep, r.boundary, fmt, &layers); !s) return fail(s);
   if (int rc = a.render.empty() ? 0 : render_reconstruction2(a.render, pts, r)) return rc;
   const auto t4 = Clock::now();
 
@@ -222,8 +276,6 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 3D surface (use .off, .ply, .obj or .stl)"});
   if (!a.body.empty() && lower_ext(a.body) != "vtk")
     return fail({StatusCode::InvalidArgument, a.body + ": the body is written as VTK legacy (.vtk)"});
-  if (a.fallback == "gamma0" || a.fallback == "degree4")
-    return fail({StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback; 3D has auto (star cavities) or none"});
   // --refine none: the paper's algorithm (Constrict3Options::paper()); --fast: one variant run.
   Constrict3Options opt;
   (void)Constrict3Options::from_preset(a.refine == "none" ? "paper" : a.fast ? "fast" : "default", opt);
@@ -275,11 +327,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 
   progress.phase("writing");
   const auto tw = Clock::now();
-  MeshWriteOptions wopt;
-  wopt.ply_ascii = a.ascii;
-  if (Status s = write_mesh(a.out, pts, r.mesh, wopt); !s) return fail(s);
-  if (!a.body.empty())
-    if (Status s = write_body_vtk(a.body, pts, r.tets); !s) return fail(s);
+  if (Status s = write_surface_rows(a, pts, rep, r); !s) return fail(s);
   if (int rc = a.render.empty() ? 0 : render_reconstruction3(a.render, pts, r.mesh)) return rc;
   const double ms_write = ms(tw, Clock::now());
 
@@ -324,6 +372,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   ReadReport rep;
   if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
   const auto t1 = Clock::now();
+  if (Status s = check_dimension_options(a, pts.dim); !s) return fail(s);
   if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);
   return run_reconstruct3(a, pts, rep, progress, t0, t1);
 }

@@ -239,7 +239,6 @@ int render_mesh_file(const RenderArgs& a, const PointSet& pts, const TriMesh3& m
 }
 
 int render_points3(const RenderArgs& a, const PointSet& pts) {
-  if (!a.animate.empty()) return fail({StatusCode::InvalidArgument, "--animate is for 2D inputs"});
   std::vector<View> views;
   if (Status s = views_of(a, views); !s) return fail(s);
   Constrict3Options opt;
@@ -277,6 +276,21 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
   return 0;
 }
 
+// Options of one dimension given for an input of the other are refused, not ignored (issue 18).
+// --up's default (z) cannot be told from an explicit `--up z`, which is let through.
+Status check_dimension_options(const RenderArgs& a, int dim) {
+  if (dim == 2) {
+    if (!a.view.empty()) return wrong_dimension("--view", 2, a.in.path);
+    if (a.views != 0) return wrong_dimension("--views", 2, a.in.path);
+    if (a.wireframe) return wrong_dimension("--wireframe", 2, a.in.path);
+    if (a.up != "z") return wrong_dimension("--up", 2, a.in.path);
+  } else {
+    if (a.no_graph) return wrong_dimension("--no-graph", 3, a.in.path);
+    if (!a.animate.empty()) return wrong_dimension("--animate", 3, a.in.path);
+  }
+  return Status::ok();
+}
+
 int run_render(const RenderArgs& a) {
   const std::string oe = lower_ext(a.out);
   if (oe != "png" && oe != "svg") return fail({StatusCode::InvalidArgument, a.out + ": the picture is .png or .svg"});
@@ -293,6 +307,7 @@ int run_render(const RenderArgs& a) {
     if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
     std::vector<int> poly;
     if (Status s = read_polygon_result(a.in.path, pts, poly); !s) return fail(s);
+    if (Status s = check_dimension_options(a, 2); !s) return fail(s);
     GammaFaces dt;
     if (!a.no_graph)
       if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
@@ -311,6 +326,7 @@ int run_render(const RenderArgs& a) {
     if (s) {
       if (!a.stages.empty() || !a.animate.empty() || a.stop_after != SIZE_MAX)
         return fail({StatusCode::InvalidArgument, "--stages, --animate and --stop-after need a point set, not a mesh"});
+      if (Status cs = check_dimension_options(a, 3); !cs) return fail(cs);
       return render_mesh_file(a, pts, mesh);
     }
     if (s.code() != StatusCode::EmptyInput) return fail(s);
@@ -318,6 +334,7 @@ int run_render(const RenderArgs& a) {
   PointSet pts;
   ReadReport rep;
   if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
+  if (Status s = check_dimension_options(a, pts.dim); !s) return fail(s);
   return pts.dim == 2 ? render_points2(a, pts) : render_points3(a, pts);
 }
 
@@ -349,7 +366,7 @@ Command add_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
       "render", "draw a reconstruction (from points), a 2D polygon result (--points) or a 3D mesh as PNG/SVG");
-  add_input_options(cmd, a->in);
+  add_input_options(cmd, a->in, false);  // --columns is the sheet's here
   cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required();
   cmd->add_option("--points", a->points, "INPUT is a 2D polygon result (.idx .csv .gt) over these points");
   cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)");

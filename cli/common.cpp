@@ -12,11 +12,16 @@ int fail(const Status& s) {
   return exit_code(s.code());
 }
 
-void add_input_options(CLI::App* cmd, InputArgs& in) {
-  cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj)")->required();
+void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
+  cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")->required();
   cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")->check(CLI::IsMember({2, 3}));
   cmd->add_flag("--merge-duplicates", in.merge_duplicates,
-                "keep the first of identical points (default: duplicates are an error)");
+                "keep the first of identical points (default: duplicates are an error); output indices stay file rows");
+  cmd->add_option("--format", in.format, "input format, overrides the extension: text | ply | off | obj | stl | geojson")
+      ->check(CLI::IsMember({"auto", "text", "ply", "off", "obj", "stl", "geojson"}));
+  if (columns)
+    cmd->add_option("--columns", in.columns,
+                  "text input: the x,y[,z] columns, 1-based numbers (2,3,4) or header names (x,y,z)");
 }
 
 // Warnings (e.g. merged duplicates) are printed even with --quiet: dropping data is never silent.
@@ -24,10 +29,25 @@ Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep) {
   ReadOptions opt;
   opt.dim = in.dim;
   opt.merge_duplicates = in.merge_duplicates;
+  if (Status s = point_format_from_name(in.format, opt.format); !s) return s;
+  if (!in.columns.empty())
+    if (Status s = parse_columns(in.columns, opt.columns); !s) return s;
   Status s = read_points(in.path, opt, pts, &rep);
   if (s)
     for (const auto& w : rep.warnings) std::fprintf(stderr, "constrict: warning: %s\n", w.c_str());
   return s;
+}
+
+nlohmann::json merged_json(const ReadReport& rep) {
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const auto& p : rep.merged) pairs.push_back({p[0], p[1]});
+  return pairs;
+}
+
+Status wrong_dimension(const std::string& option, int dim, const std::string& input) {
+  const int other = dim == 2 ? 3 : 2;
+  return {StatusCode::InvalidArgument, option + " is a " + std::to_string(other) + "D option, but " + input +
+                                           " is " + std::to_string(dim) + "D; leave it out (or check --dim)"};
 }
 
 std::string lower_ext(const std::string& path) {

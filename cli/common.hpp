@@ -32,10 +32,24 @@ struct InputArgs {
   std::string path;
   int dim = 0;
   bool merge_duplicates = false;
+  std::string format = "auto";  // --format, a PointFormat name
+  std::string columns;          // --columns, "2,3,4" or "x,y,z" (parse_columns)
 };
 
-void add_input_options(CLI::App* cmd, InputArgs& in);
+/// INPUT, --dim, --merge-duplicates, --format and (unless @p columns is false: `render` has its own
+/// --columns, the sheet's) --columns.
+void add_input_options(CLI::App* cmd, InputArgs& in, bool columns = true);
 Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep);
+
+/// Output indices are the file's rows (docs/cli.md "Duplicates"): result point @p i is file row
+/// rep.original_index[i]; the identity when nothing was merged.
+inline int file_row(const ReadReport& rep, int i) {
+  return static_cast<int>(rep.original_index[static_cast<std::size_t>(i)]);
+}
+/// The report's "merged": [[kept_row, dropped_row], ...] (empty when nothing was merged).
+nlohmann::json merged_json(const ReadReport& rep);
+/// InvalidArgument for an option that does not apply to an input of dimension @p dim.
+Status wrong_dimension(const std::string& option, int dim, const std::string& input);
 
 /// Splits "a,b,c" into exactly @p count doubles; false on a malformed list or another count.
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out);

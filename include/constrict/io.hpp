@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 /// @file io.hpp
-/// @brief Reading point sets (XYZ/CSV/TXT, PLY ascii/binary, OFF, OBJ).
+/// @brief Reading point sets (XYZ/CSV/TXT, PLY ascii/binary, OFF, OBJ, STL, GeoJSON).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -13,13 +14,42 @@
 
 namespace constrict {
 
-/// Input file formats. Auto picks by extension: .ply, .off, .obj; anything else is text columns.
-enum class PointFormat { Auto, Text, Ply, Off, Obj };
+/// Input file formats. Auto picks by extension: .ply, .off, .obj, .stl, .geojson/.json; anything
+/// else is text columns. LAS/LAZ and E57 (by extension or their magic bytes) are refused with
+/// Unsupported and a conversion hint, whatever the format.
+enum class PointFormat { Auto, Text, Ply, Off, Obj, Stl, GeoJson };
+
+/// Short stable name of a format: "auto", "text", "ply", "off", "obj", "stl", "geojson".
+const char* to_string(PointFormat format) noexcept;
+
+/// The format of a name as the CLI's --format takes it: "auto", "text", "ply", "off", "obj",
+/// "stl", "geojson" (lower case).
+/// @return Ok, or InvalidArgument naming the accepted names
+Status point_format_from_name(const std::string& name, PointFormat& out);
+
+/// Which text columns hold x, y[, z] (ReadOptions::columns). Exactly one of the two lists is set,
+/// with 2 or 3 entries in coordinate order.
+struct ColumnSelection {
+  std::vector<std::size_t> numbers;  ///< 1-based column numbers, e.g. {2, 3, 4}
+  std::vector<std::string> names;    ///< header names (case-insensitive), e.g. {"x", "y", "z"}
+  bool empty() const noexcept { return numbers.empty() && names.empty(); }
+};
+
+/// Parses a column list as the CLI's --columns takes it: "2,3,4" (1-based numbers) or "x,y,z"
+/// (header names); 2 or 3 distinct entries, all numbers or all names.
+/// @return Ok, or InvalidArgument saying what is wrong with @p text
+Status parse_columns(const std::string& text, ColumnSelection& out);
 
 /// Options of read_points().
 struct ReadOptions {
   int dim = 0;                    ///< 0: from the data (2 columns -> 2D, 3 -> 3D); 2 or 3: forced
   PointFormat format = PointFormat::Auto;  ///< Auto: by file extension
+  /// Text columns holding x, y[, z]. Empty (default): a header naming x and y (and z) selects
+  /// those columns (case-insensitive); otherwise the first 2 or 3 fields, and more than 3 fields
+  /// per line is a ParseError asking for a selection. Set: these columns, any number of fields
+  /// per line; the entry count is the dimension (a forced dim 2 keeps the first two). Only for
+  /// text input (InvalidArgument for the other formats).
+  ColumnSelection columns;
   /// false: duplicates are an error (Duplicate, when `check`); true: keep the first occurrence of
   /// each point, drop later copies and add a warning (done even when `check` is false)
   bool merge_duplicates = false;
@@ -46,6 +76,9 @@ struct ReadReport {
   std::size_t merged_duplicates = 0;        ///< copies dropped by merge_duplicates
   /// For each point of the result, its 0-based index in the file (identity unless merged).
   std::vector<std::size_t> original_index;
+  /// One {kept_row, dropped_row} pair per copy dropped by merge_duplicates (0-based file rows,
+  /// kept_row the first occurrence), ascending by dropped_row; empty when nothing was merged.
+  std::vector<std::array<std::size_t, 2>> merged;
   std::vector<std::string> warnings;        ///< one line each (e.g. merged duplicates)
   PointAttributes attributes;               ///< normals and colours (PLY), when the file has them
 };
@@ -53,21 +86,30 @@ struct ReadReport {
 /// Reads a point set (full rules and every error message: docs/input-formats.md).
 /// Text: one point per line, fields separated by whitespace, ',', ';' or tab; '#' starts a
 /// comment (full-line or trailing); blank lines ignored; CRLF accepted; one optional non-numeric
-/// header line before the first point. Every line must have the same number of fields. With
-/// dim = 0 the field count (2 or 3) is the dimension; a forced dim takes the first `dim` fields of
-/// each line (so --dim 2 drops z) and fewer fields than `dim` is a ParseError.
+/// header line before the first point. Every line must have the same number of fields. The
+/// coordinate columns: options.columns, else the header's x, y[, z] columns, else the first
+/// fields: with dim = 0 the field count (2 or 3) is the dimension; a forced dim takes the first
+/// `dim` fields of each line (so --dim 2 drops z) and fewer fields than `dim` is a ParseError;
+/// more than 3 fields without a selection is a ParseError that says how to select.
 /// PLY: ascii, binary_little_endian, binary_big_endian; `vertex` element with float/double (or
 /// integer) properties x, y[, z]; normals nx ny nz and colours red green blue [alpha] go to
 /// report->attributes; other elements and properties (lists too) are skipped. 3D if the vertex
 /// has z, else 2D; a forced dim 2 drops z. A header count larger than the rest of the file can
 /// hold is a ParseError before anything is allocated.
 /// OFF (also COFF, NOFF...) / OBJ (`v` lines): the vertices only, 3D unless dim 2 is forced.
+/// STL (binary or ASCII): the distinct facet corners (STL repeats a shared vertex in every facet;
+/// identical corners are one point, first occurrence order, and a warning says so), 3D unless
+/// dim 2 is forced.
+/// GeoJSON: the Point and MultiPoint coordinates of a FeatureCollection, a Feature or a bare
+/// geometry (a GeometryCollection too), in document order; 2 or 3 coordinates per position, the
+/// same count for all; features with a null geometry are skipped, other geometry types are a
+/// ParseError.
 /// @param[in] path file to read
 /// @param[in] options see ReadOptions
 /// @param[out] out the points (dimension set); left unchanged when an error is returned
 /// @param[out] report optional details; reset at the start, complete only on success
 /// @return Ok, or FileNotFound (with the system's reason), InvalidArgument (options.dim not 0, 2
-///         or 3), ParseError ("file:LINE: ..."), EmptyInput, NonFinite ("file:LINE: ..." or
+///         or 3; options.columns not fitting the file), Unsupported (LAS/LAZ, E57), ParseError ("file:LINE: ..."), EmptyInput, NonFinite ("file:LINE: ..." or
 ///         "file: PLY vertex I: ..." for binary PLY), Duplicate (first few index pairs listed),
 ///         TooFewPoints, Collinear, Coplanar. Every message is one line starting with @p path.
 /// @note O(N) parsing with fast_float (no iostreams) on a memory-mapped file, plus O(N log N)
@@ -75,6 +117,19 @@ struct ReadReport {
 ///       being read is undefined (SIGBUS), as for any mmap reader.
 Status read_points(const std::string& path, const ReadOptions& options, PointSet& out,
                    ReadReport* report = nullptr);
+
+/// The points of the file in file order, from a result of read_points(): result point i at row
+/// report.original_index[i], each copy dropped by merge_duplicates at its own row with the
+/// coordinates of the point it duplicates. Equal to @p points when nothing was merged. Writers use
+/// it so that indices in their output are the file's rows (map result index i to
+/// report.original_index[i]).
+/// @pre @p points and @p report come from the same successful read_points() call
+/// @return the points of all report.points_read rows; O(N)
+PointSet file_row_points(const PointSet& points, const ReadReport& report);
+
+/// report.attributes in file order, the same way as file_row_points() (a dropped copy gets the
+/// attributes of the point it duplicates). O(N).
+PointAttributes file_row_attributes(const ReadReport& report);
 
 /// Same as read_points() on an in-memory buffer (e.g. standard input).
 /// @param[in] data the file contents

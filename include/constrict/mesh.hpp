@@ -88,16 +88,24 @@ double mesh_volume(const PointSet& points, const TriMesh3& mesh);
 /// Total area of the triangles (double arithmetic). O(F).
 double mesh_area(const PointSet& points, const TriMesh3& mesh);
 
+struct PointAttributes;  // constrict/io.hpp
+
 /// Options of write_mesh().
 struct MeshWriteOptions {
   bool ply_ascii = false;  ///< PLY: ASCII instead of binary little-endian
+  /// PLY only (the other formats have no per-vertex attributes and ignore it): per-vertex normals
+  /// (`nx ny nz`, float) and colours (`red green blue [alpha]`, uchar: round(255 c), c clamped to
+  /// [0, 1]) of the points, in point order, e.g. ReadReport::attributes. nullptr or empty arrays:
+  /// x y z only. Array sizes other than 3 or color_channels per point are InvalidArgument.
+  const PointAttributes* attributes = nullptr;
 };
 
 /// Writes a mesh. The format follows the extension: .off (ASCII), .ply (binary little-endian
 /// double vertices and int32 face lists unless ply_ascii), .obj (ASCII, 1-based), .stl (binary,
 /// float32; STL has no shared vertices). Vertices are all input points in input order, so face
 /// indices are input indices. ASCII numbers are the shortest round-trip decimals.
-/// @return Ok, or WriteFailed with a one-line reason (unknown extension, cannot open, I/O error)
+/// @return Ok, InvalidArgument (attribute arrays not matching the points), or WriteFailed with a
+///         one-line reason (unknown extension, cannot open, I/O error)
 Status write_mesh(const std::string& path, const PointSet& points, const TriMesh3& mesh,
                   const MeshWriteOptions& options = {});
 

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Triangle mesh input (reference meshes for `constrict compare` and `constrict render`): OFF, PLY
-// (ascii, binary little/big endian), OBJ and STL (binary and ascii). OFF, PLY and OBJ go through
-// the same readers as the point input (io/detail/off, ply, obj), so both accept the same files and
-// refuse the same lies; STL is read here. Polygons with more than three vertices are split into a
+// (ascii, binary little/big endian), OBJ and STL (binary and ascii). Every format goes through
+// the same reader as the point input (io/detail/off, ply, obj, stl), so both accept the same files
+// and refuse the same lies. Polygons with more than three vertices are split into a
 // fan. Errors name the file and the 1-based line (binary files: the element and its index).
-#include <fast_float/fast_float.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -13,7 +11,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -23,6 +20,7 @@
 #include "io/detail/obj.hpp"
 #include "io/detail/off.hpp"
 #include "io/detail/ply.hpp"
+#include "io/detail/stl.hpp"
 #include "io/detail/write_util.hpp"
 
 namespace constrict {
@@ -45,40 +43,6 @@ struct Builder {
 
 Status at(StatusCode c, const std::string& name, std::size_t line, const std::string& what) {
   return {c, name + ":" + std::to_string(line) + ": " + what};
-}
-
-bool to_double(std::string_view t, double& v) {
-  const auto r = fast_float::from_chars(t.data(), t.data() + t.size(), v);
-  return r.ec == std::errc() && r.ptr == t.data() + t.size();
-}
-
-// Splits a text buffer into lines (without '\n', '\r' stripped) and words (ASCII STL).
-struct Lines {
-  std::string_view data;
-  std::size_t pos = 0, line = 0;
-  bool next(std::string_view& out) {
-    if (pos >= data.size()) return false;
-    std::size_t e = data.find('\n', pos);
-    if (e == std::string_view::npos) e = data.size();
-    out = data.substr(pos, e - pos);
-    if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
-    pos = e + 1;
-    ++line;
-    return true;
-  }
-};
-
-void words(std::string_view s, std::vector<std::string_view>& w) {
-  w.clear();
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
-    if (i >= s.size() || s[i] == '#') break;
-    std::size_t j = i;
-    while (j < s.size() && s[j] != ' ' && s[j] != '\t') ++j;
-    w.push_back(s.substr(i, j - i));
-    i = j;
-  }
 }
 
 Status check_ids(Builder& b, const std::vector<std::int64_t>& ids, std::size_t line) {
@@ -177,72 +141,18 @@ Status parse_ply(std::string_view data, Builder& b) {
   return Status::ok();
 }
 
-template <class T>
-T load(const unsigned char* p, bool swap) {
-  unsigned char buf[sizeof(T)];
-  std::memcpy(buf, p, sizeof(T));
-  if (swap) std::reverse(buf, buf + sizeof(T));
-  T v;
-  std::memcpy(&v, buf, sizeof(T));
-  return v;
-}
+// ---- STL: the shared reader identifies equal corners (io/detail/stl.hpp) --------------------
 
-// ---- STL: shared vertices are identified by exact coordinates (first occurrence order) -----
-int stl_vertex(Builder& b, std::map<std::array<double, 3>, int>& ids, const std::array<double, 3>& p) {
-  auto [it, fresh] = ids.emplace(p, static_cast<int>(b.pts.size()));
-  if (fresh) b.pts.coords.insert(b.pts.coords.end(), p.begin(), p.end());
-  return it->second;
-}
+struct StlFaces final : detail::StlFacetSink {
+  Builder& b;
+  explicit StlFaces(Builder& builder) : b(builder) {}
+  void facet(const std::vector<std::int64_t>& ids) override { b.polygon(ids); }
+};
 
 Status parse_stl(std::string_view data, Builder& b) {
-  std::map<std::array<double, 3>, int> ids;
-  const auto* base = reinterpret_cast<const unsigned char*>(data.data());
-  const bool little_host = [] { const std::uint16_t x = 1; unsigned char c; std::memcpy(&c, &x, 1); return c == 1; }();
-  if (data.size() >= 84) {
-    const auto n = load<std::uint32_t>(base + 80, !little_host);
-    if (84 + 50ull * n == data.size()) {  // binary
-      for (std::uint32_t f = 0; f < n; ++f) {
-        std::vector<std::int64_t> tri;
-        for (int v = 0; v < 3; ++v) {
-          std::array<double, 3> p{};
-          for (int k = 0; k < 3; ++k)
-            p[static_cast<std::size_t>(k)] = static_cast<double>(load<float>(base + 84 + 50ull * f + 12 + 12 * v + 4 * k, !little_host));
-          for (double c : p)
-            if (!std::isfinite(c)) return {StatusCode::NonFinite, b.name + ": STL triangle " + std::to_string(f) + ": non-finite coordinate"};
-          tri.push_back(stl_vertex(b, ids, p));
-        }
-        b.polygon(tri);
-      }
-      return Status::ok();
-    }
-  }
-  Lines L{data};
-  std::string_view s;
-  std::vector<std::string_view> w;
-  std::vector<std::int64_t> tri;
-  bool solid = false;
-  while (L.next(s)) {
-    words(s, w);
-    if (w.empty()) continue;
-    if (!solid) {
-      if (w[0] != "solid") return at(StatusCode::ParseError, b.name, L.line, "not a binary STL (size mismatch) and not ASCII STL ('solid')");
-      solid = true;
-    } else if (w[0] == "vertex") {
-      std::array<double, 3> p{};
-      if (w.size() != 4) return at(StatusCode::ParseError, b.name, L.line, "a vertex needs 3 coordinates");
-      for (int k = 0; k < 3; ++k)
-        if (!to_double(w[static_cast<std::size_t>(k + 1)], p[static_cast<std::size_t>(k)]))
-          return at(StatusCode::ParseError, b.name, L.line, "malformed number");
-      for (double c : p)
-        if (!std::isfinite(c)) return at(StatusCode::NonFinite, b.name, L.line, "non-finite vertex coordinate");
-      tri.push_back(stl_vertex(b, ids, p));
-    } else if (w[0] == "endloop") {
-      if (tri.size() < 3) return at(StatusCode::ParseError, b.name, L.line, "a facet needs at least 3 vertices");
-      b.polygon(tri);
-      tri.clear();
-    }
-  }
-  return Status::ok();
+  StlFaces faces(b);
+  std::size_t corners = 0;
+  return detail::read_stl(data, b.name, b.pts.coords, &faces, corners);
 }
 
 }  // namespace

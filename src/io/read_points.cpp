@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Point input: text columns (XYZ/CSV/TXT), PLY (ascii and binary), OFF and OBJ vertices.
-// The file is mapped (or read) into memory once and handed to the format's one reader
-// (io/detail/: text_points, ply, off, obj; the mesh reader uses the same ones). Every defect is
+// Point input: text columns (XYZ/CSV/TXT), PLY (ascii and binary), OFF, OBJ and STL vertices,
+// GeoJSON points. The file is mapped (or read) into memory once and handed to the format's one
+// reader (io/detail/: text_points, ply, off, obj, stl, geojson; the mesh reader uses the same
+// ones). LAS/LAZ and E57 are recognised and refused with a conversion hint. Every defect is
 // reported as a Status naming the file and the 1-based line (or the 0-based vertex index for
 // binary PLY, which has no lines).
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -34,11 +36,14 @@
 #include "constrict/io.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
+#include "io/detail/geojson.hpp"
 #include "io/detail/obj.hpp"
 #include "io/detail/off.hpp"
 #include "io/detail/ply.hpp"
 #include "io/detail/scan.hpp"
+#include "io/detail/stl.hpp"
 #include "io/detail/text_points.hpp"
+#include "io/detail/write_util.hpp"
 
 namespace constrict {
 namespace {
@@ -65,6 +70,28 @@ Status parse_obj(std::string_view data, const std::string& name, int forced_dim,
   Status st = detail::read_obj(data, name, dim, out.coords, nullptr);
   if (st) out.dim = dim;
   return st;
+}
+
+// ---- STL: the distinct corners ---------------------------------------------------------------
+
+Status parse_stl(std::string_view data, const std::string& name, int forced_dim, PointSet& out,
+                 std::vector<std::string>& warnings) {
+  std::vector<double> xyz;
+  std::size_t corners = 0;
+  Status st = detail::read_stl(data, name, xyz, nullptr, corners);
+  if (!st) return st;
+  const std::size_t distinct = xyz.size() / 3;
+  out.dim = forced_dim == 0 ? 3 : forced_dim;
+  if (out.dim == 3) {
+    out.coords = std::move(xyz);
+  } else {
+    for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.coords.insert(out.coords.end(), {xyz[i], xyz[i + 1]});
+  }
+  if (corners > distinct)
+    warnings.push_back(name + ": STL repeats shared vertices in every facet: " +
+                       plural(corners, "facet corner") + " read, " + plural(distinct, "distinct point") +
+                       " kept (exactly equal corners are one point)");
+  return Status::ok();
 }
 
 // ---- PLY -------------------------------------------------------------------------------------
@@ -209,7 +236,51 @@ PointFormat format_from_name(const std::string& name) {
   if (ext == "ply") return PointFormat::Ply;
   if (ext == "off") return PointFormat::Off;
   if (ext == "obj") return PointFormat::Obj;
+  if (ext == "stl") return PointFormat::Stl;
+  if (ext == "geojson" || ext == "json") return PointFormat::GeoJson;
   return PointFormat::Text;
+}
+
+// LAS/LAZ ("LASF" file signature) and E57 ("ASTM-E57" signature) are binary scanner formats
+// this library has no reader for; read as text they gave "no points". Refused by their magic
+// bytes whatever the format asked for, and by extension when the format is Auto.
+Status refuse_scanner_formats(std::string_view data, const std::string& name, bool by_extension) {
+  const std::string ext = by_extension ? detail::extension(name) : std::string();
+  const auto starts = [data](const char* magic) {
+    return data.size() >= std::strlen(magic) && std::memcmp(data.data(), magic, std::strlen(magic)) == 0;
+  };
+  if (ext == "las" || ext == "laz" || starts("LASF"))
+    return error_in(StatusCode::Unsupported, name,
+                    "LAS/LAZ point clouds cannot be read; convert to text or PLY first, e.g. 'pdal "
+                    "translate " + name + " points.xyz' or 'las2txt -i " + name + " -parse xyz -o points.xyz'");
+  if (ext == "e57" || starts("ASTM-E57"))
+    return error_in(StatusCode::Unsupported, name,
+                    "E57 scans cannot be read; convert to PLY or text first, e.g. 'pdal translate " +
+                        name + " points.ply' (PDAL's E57 reader) or CloudCompare");
+  return Status::ok();
+}
+
+// One {kept_row, dropped_row} pair per copy merge_duplicates dropped: the rows sorted by their
+// coordinates (ties by row), so each run of equal points starts with its first occurrence. The
+// comparison is the one of check_points() (-0.0 == 0.0).
+std::vector<std::array<std::size_t, 2>> merged_pairs(const PointSet& rows) {
+  const auto dim = static_cast<std::size_t>(rows.dim);
+  std::vector<std::size_t> order(rows.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto less = [&rows, dim](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(rows[a], rows[a] + dim, rows[b], rows[b] + dim);
+  };
+  std::stable_sort(order.begin(), order.end(), less);
+  std::vector<std::array<std::size_t, 2>> pairs;
+  for (std::size_t i = 1, first = order[0]; i < order.size(); ++i) {
+    if (less(order[i - 1], order[i])) {
+      first = order[i];
+    } else {
+      pairs.push_back({first, order[i]});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a[1] < b[1]; });
+  return pairs;
 }
 
 bool is_blank(std::string_view data) {
@@ -335,17 +406,23 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
         StatusCode::InvalidArgument, name,
         "dimension must be 0 (from the data), 2 or 3, got " + std::to_string(options.dim));
   if (format == PointFormat::Auto) format = options.format;
+  Status st = refuse_scanner_formats(data, name, format == PointFormat::Auto);
+  if (!st) return st;
   if (format == PointFormat::Auto) format = format_from_name(name);
+  if (!options.columns.empty() && format != PointFormat::Text)
+    return error_in(StatusCode::InvalidArgument, name,
+                    "columns can be chosen only for text input (XYZ/CSV/TXT), this is read as " +
+                        std::string(to_string(format)));
   if (is_blank(data)) return error_in(StatusCode::EmptyInput, name, "empty file");
 
   PointSet points;
   points.dim = options.dim == 0 ? 3 : options.dim;
   PointAttributes attributes;
-  Status st;
+  std::vector<std::string> warnings;
   switch (format) {
     case PointFormat::Auto:
     case PointFormat::Text:
-      st = detail::read_text_points(data, name, options.dim, points);
+      st = detail::read_text_points(data, name, options.dim, options.columns, points);
       break;
     case PointFormat::Ply:
       st = parse_ply(data, name, options.dim, points, report != nullptr ? &attributes : nullptr);
@@ -356,6 +433,12 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
     case PointFormat::Obj:
       st = parse_obj(data, name, options.dim, points);
       break;
+    case PointFormat::Stl:
+      st = parse_stl(data, name, options.dim, points, warnings);
+      break;
+    case PointFormat::GeoJson:
+      st = detail::read_geojson_points(data, name, options.dim, points);
+      break;
   }
   if (!st) return st;
   const std::size_t n_read = points.size();
@@ -363,11 +446,13 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
   if (n_read == 0) return error_in(StatusCode::EmptyInput, name, "no points");
 
   std::vector<std::size_t> kept;
+  std::vector<std::array<std::size_t, 2>> pairs;
   if (options.merge_duplicates) {
     PointSet merged = merge_duplicates(points, &kept);
     if (merged.size() == n_read) {
       kept.clear();
     } else {
+      if (report != nullptr) pairs = merged_pairs(points);
       points = std::move(merged);
     }
   }
@@ -380,11 +465,13 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
 
   if (report != nullptr) {
     report->merged_duplicates = n_merged;
+    report->warnings = std::move(warnings);
     if (n_merged > 0) {
       keep_attributes(kept, attributes);
       report->original_index = std::move(kept);
+      report->merged = std::move(pairs);
       report->warnings.push_back(name + ": merged " + plural(n_merged, "duplicate point") +
-                                 " (kept the first occurrence of each)");
+                                 " (kept the first occurrence of each; output indices are file rows)");
     } else {
       report->original_index.resize(n_read);
       std::iota(report->original_index.begin(), report->original_index.end(), std::size_t{0});
@@ -395,15 +482,112 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
   return Status::ok();
 }
 
+const char* to_string(PointFormat format) noexcept {
+  switch (format) {
+    case PointFormat::Auto:
+      return "auto";
+    case PointFormat::Text:
+      return "text";
+    case PointFormat::Ply:
+      return "ply";
+    case PointFormat::Off:
+      return "off";
+    case PointFormat::Obj:
+      return "obj";
+    case PointFormat::Stl:
+      return "stl";
+    case PointFormat::GeoJson:
+      return "geojson";
+  }
+  return "auto";
+}
+
+Status point_format_from_name(const std::string& name, PointFormat& out) {
+  for (PointFormat f : {PointFormat::Auto, PointFormat::Text, PointFormat::Ply, PointFormat::Off,
+                        PointFormat::Obj, PointFormat::Stl, PointFormat::GeoJson})
+    if (name == to_string(f)) {
+      out = f;
+      return Status::ok();
+    }
+  return {StatusCode::InvalidArgument,
+          "unknown input format '" + name + "' (use auto, text, ply, off, obj, stl or geojson)"};
+}
+
+Status parse_columns(const std::string& text, ColumnSelection& out) {
+  const auto bad = [&text](const std::string& what) {
+    return Status{StatusCode::InvalidArgument, "--columns '" + text + "': " + what};
+  };
+  ColumnSelection c;
+  std::size_t pos = 0;
+  for (;;) {
+    const std::size_t comma = std::min(text.find(',', pos), text.size());
+    std::string item = text.substr(pos, comma - pos);
+    while (!item.empty() && is_space(item.back())) item.pop_back();
+    item.erase(0, std::min(item.size(), item.find_first_not_of(" \t")));
+    if (item.empty()) return bad("empty entry; give 2 or 3 column numbers or header names, e.g. 2,3,4 or x,y,z");
+    std::size_t number = 0;
+    const auto r = std::from_chars(item.data(), item.data() + item.size(), number);
+    if (r.ec == std::errc() && r.ptr == item.data() + item.size()) {
+      if (number == 0) return bad("column numbers are 1-based (the first column is 1)");
+      c.numbers.push_back(number);
+    } else {
+      c.names.push_back(item);
+    }
+    if (comma == text.size()) break;
+    pos = comma + 1;
+  }
+  if (!c.numbers.empty() && !c.names.empty())
+    return bad("mix of column numbers and names; give either numbers (2,3,4) or names (x,y,z)");
+  const std::size_t n = c.numbers.size() + c.names.size();
+  if (n != 2 && n != 3) return bad("expected 2 or 3 columns (x,y or x,y,z), got " + std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (c.numbers.empty() ? c.names[i] == c.names[j] : c.numbers[i] == c.numbers[j])
+        return bad("a column is given twice");
+  out = std::move(c);
+  return Status::ok();
+}
+
+PointSet file_row_points(const PointSet& points, const ReadReport& report) {
+  if (report.merged.empty()) return points;
+  const auto dim = static_cast<std::size_t>(points.dim);
+  PointSet rows;
+  rows.dim = points.dim;
+  rows.coords.resize(report.points_read * dim);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    std::copy_n(points[i], dim, rows.coords.begin() + static_cast<std::ptrdiff_t>(report.original_index[i] * dim));
+  for (const auto& [kept, dropped] : report.merged)
+    std::copy_n(rows.coords.begin() + static_cast<std::ptrdiff_t>(kept * dim), dim,
+                rows.coords.begin() + static_cast<std::ptrdiff_t>(dropped * dim));
+  return rows;
+}
+
+PointAttributes file_row_attributes(const ReadReport& report) {
+  PointAttributes a = report.attributes;
+  if (report.merged.empty()) return a;
+  const auto spread = [&report](std::vector<double>& values, std::size_t width) {
+    if (values.empty()) return;
+    std::vector<double> rows(report.points_read * width);
+    for (std::size_t i = 0; i < report.original_index.size(); ++i)
+      std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(i * width), width,
+                  rows.begin() + static_cast<std::ptrdiff_t>(report.original_index[i] * width));
+    for (const auto& [kept, dropped] : report.merged)
+      std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(kept * width), width,
+                  rows.begin() + static_cast<std::ptrdiff_t>(dropped * width));
+    values = std::move(rows);
+  };
+  spread(a.normals, 3);
+  spread(a.colors, static_cast<std::size_t>(a.color_channels));
+  return a;
+}
+
 Status read_points(const std::string& path, const ReadOptions& options, PointSet& out,
                    ReadReport* report) {
   if (report != nullptr) *report = ReadReport{};
   FileContents contents;
   Status st = contents.open(path);
   if (!st) return st;
-  const PointFormat format =
-      options.format == PointFormat::Auto ? format_from_name(path) : options.format;
-  return read_points_from_buffer(contents.view(), path, format, options, out, report);
+  return read_points_from_buffer(contents.view(), path, options.format, options, out, report);
 }
 
 }  // namespace constrict

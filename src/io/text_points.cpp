@@ -1,21 +1,128 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Text columns (XYZ/CSV/TXT): one point per line, scanned once per line with fast_float.
+// The coordinate columns are, in this order: ReadOptions::columns, the header's x, y[, z], or the
+// first fields (the fast path, also taken when a selection is the first fields). A line with more
+// than 3 fields and no selection is refused: taking "the first two" of `id,x,y` used to give a
+// polygon through (id, x) without a word (issue 18).
 #include "io/detail/text_points.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <vector>
 
 #include "io/detail/scan.hpp"
 
 namespace constrict {
 namespace detail {
+namespace {
 
-Status read_text_points(std::string_view data, const std::string& name, int forced_dim,
-                        PointSet& out) {
+constexpr int kMaxDim = 3;
+
+// The optional header line: its 1-based line number (0: none) and its fields.
+struct Header {
+  std::size_t line = 0;
+  std::vector<std::string> names;
+};
+
+// A header field as compared: surrounding quotes (CSV exports write "x") dropped, lower case.
+std::string header_key(const char* b, const char* e) {
+  if (e - b >= 2 && (*b == '"' || *b == '\'') && e[-1] == *b) {
+    ++b;
+    --e;
+  }
+  std::string s(b, e);
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The header, if the first non-blank, non-comment line is one (no field of it is a number).
+Header find_header(std::string_view data) {
+  LineReader lines(data);
+  const char* b = nullptr;
+  const char* e = nullptr;
+  while (lines.next(b, e, true)) {
+    const std::size_t count = split_fields(b, e, [](std::size_t, const Span&) {});
+    if (count == 0) continue;
+    Header h;
+    if (count == kEmptyField || !is_header_line(b, e)) return h;
+    h.line = lines.line();
+    split_fields(b, e, [&h](std::size_t, const Span& f) { h.names.push_back(header_key(f.b, f.e)); });
+    return h;
+  }
+  return {};
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ",") + n;
+  return s;
+}
+
+constexpr const char* kHowToChoose =
+    "choose the coordinate columns with --columns (1-based numbers such as 2,3,4, or header "
+    "names such as x,y,z) or name them x, y, z in a header line";
+
+Status too_many_fields(const std::string& name, std::size_t line, std::size_t count) {
+  return error_at(StatusCode::ParseError, name, line,
+                  std::to_string(count) + " fields per line, more than x, y, z: " + kHowToChoose);
+}
+
+// 0-based field index of each coordinate; empty: the first fields (no selection made).
+Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
+                      const std::string& name, std::vector<std::size_t>& index) {
+  index.clear();
+  if (!c.numbers.empty()) {
+    for (std::size_t n : c.numbers) index.push_back(n - 1);
+  } else if (!c.names.empty()) {
+    if (h.line == 0)
+      return error_in(StatusCode::InvalidArgument, name,
+                      "columns chosen by header name, but the file has no header line; give "
+                      "1-based column numbers (e.g. --columns 2,3,4)");
+    for (const std::string& want : c.names) {
+      const auto it = std::find(h.names.begin(), h.names.end(), header_key(want.data(), want.data() + want.size()));
+      if (it == h.names.end())
+        return error_at(StatusCode::InvalidArgument, name, h.line,
+                        "no column named '" + want + "' in the header (" + joined(h.names) + ")");
+      index.push_back(static_cast<std::size_t>(it - h.names.begin()));
+    }
+  } else if (h.line != 0) {
+    static const char* const kAxes[kMaxDim] = {"x", "y", "z"};
+    for (const char* axis : kAxes) {
+      const auto it = std::find(h.names.begin(), h.names.end(), axis);
+      if (it == h.names.end()) break;
+      index.push_back(static_cast<std::size_t>(it - h.names.begin()));
+    }
+    if (index.size() < 2) {
+      index.clear();
+      if (h.names.size() > static_cast<std::size_t>(kMaxDim))
+        return error_at(StatusCode::ParseError, name, h.line,
+                        "the header names " + std::to_string(h.names.size()) +
+                            " columns, none of them x and y: " + kHowToChoose);
+      return Status::ok();  // "east,north,height": the first fields, as without a header
+    }
+    if (forced_dim == 3 && index.size() == 2)
+      return error_at(StatusCode::ParseError, name, h.line,
+                      "the header names x and y but no z column, and dimension 3 was requested; "
+                      "choose the columns with --columns");
+  }
+  if (index.empty()) return Status::ok();
+  if (forced_dim != 0 && index.size() > static_cast<std::size_t>(forced_dim))
+    index.resize(static_cast<std::size_t>(forced_dim));  // a forced dim 2 drops z
+  if (forced_dim != 0 && index.size() < static_cast<std::size_t>(forced_dim))
+    return error_in(StatusCode::InvalidArgument, name,
+                    std::to_string(index.size()) + " coordinate columns chosen, but dimension " +
+                        std::to_string(forced_dim) + " was requested");
+  return Status::ok();
+}
+
+// The fast path: the first `dim` fields of each line (dim 0: 2 or 3, from the first data line).
+// `chosen`: the columns were selected (by the header), so more fields than 3 are fine.
+Status read_first_fields(std::string_view data, const std::string& name, int dim, bool chosen,
+                         PointSet& out) {
   const char* p = data.data();
   const char* const end = data.data() + data.size();
   // A UTF-8 byte order mark (written by some spreadsheet exports) is not part of the data.
   if (data.size() >= 3 && std::memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3;
-  int dim = forced_dim;
   std::size_t expected_fields = 0;  // set by the first data line
   bool seen_content = false;
   ParsedLine f;
@@ -24,7 +131,7 @@ Status read_text_points(std::string_view data, const std::string& name, int forc
 
   for (std::size_t line = 1; p < end; ++line) {
     const char* const begin = p;
-    const char* const next = parse_line(p, end, dim == 0 ? 3 : dim, f);
+    const char* const next = parse_line(p, end, dim == 0 ? kMaxDim : dim, f);
     p = next < end ? next + 1 : end;
     const std::size_t count = f.count;
     if (count == 0) continue;  // blank or comment-only line
@@ -34,6 +141,7 @@ Status read_text_points(std::string_view data, const std::string& name, int forc
       if (f.first_malformed >= 0 && is_header_line(begin, f.content_end)) continue;
     }
     if (expected_fields == 0) {
+      if (count > static_cast<std::size_t>(kMaxDim) && !chosen) return too_many_fields(name, line, count);
       if (dim == 0) {
         if (count != 2 && count != 3)
           return error_at(StatusCode::ParseError, name, line,
@@ -56,6 +164,61 @@ Status read_text_points(std::string_view data, const std::string& name, int forc
   }
   out.dim = dim == 0 ? 2 : dim;
   return Status::ok();
+}
+
+// Any columns: the fields of each line are split first, then the chosen ones parsed.
+Status read_columns(std::string_view data, const std::string& name, std::size_t header_line,
+                    const std::vector<std::size_t>& index, PointSet& out) {
+  const std::size_t dim = index.size();
+  const std::size_t needed = *std::max_element(index.begin(), index.end()) + 1;
+  LineReader lines(data);
+  const char* b = nullptr;
+  const char* e = nullptr;
+  std::size_t expected_fields = 0;
+  Span field[kMaxDim];
+  while (lines.next(b, e, true)) {
+    const std::size_t count = split_fields(b, e, [&](std::size_t i, const Span& s) {
+      for (std::size_t k = 0; k < dim; ++k)
+        if (index[k] == i) field[k] = s;
+    });
+    const std::size_t line = lines.line();
+    if (count == 0 || line == header_line) continue;
+    if (count == kEmptyField) return empty_field_error(name, line);
+    if (expected_fields == 0) {
+      if (count < needed)
+        return error_at(StatusCode::ParseError, name, line,
+                        "column " + std::to_string(needed) + " is a coordinate, but the line has " +
+                            plural(count, "field"));
+      expected_fields = count;
+    } else if (count != expected_fields) {
+      return error_at(StatusCode::ParseError, name, line,
+                      "expected " + std::to_string(expected_fields) + " fields, found " +
+                          std::to_string(count));
+    }
+    for (std::size_t k = 0; k < dim; ++k) {
+      double v = 0.0;
+      Status st = parse_coordinate(field[k], name, line, v);
+      if (!st) return st;
+      out.coords.push_back(v);
+    }
+  }
+  out.dim = static_cast<int>(dim);
+  return Status::ok();
+}
+
+}  // namespace
+
+Status read_text_points(std::string_view data, const std::string& name, int forced_dim,
+                        const ColumnSelection& columns, PointSet& out) {
+  const Header header = find_header(data);
+  std::vector<std::size_t> index;
+  Status st = select_columns(header, columns, forced_dim, name, index);
+  if (!st) return st;
+  if (index.empty()) return read_first_fields(data, name, forced_dim, false, out);
+  bool leading = true;  // the first fields in order: the fast path reads them
+  for (std::size_t k = 0; k < index.size(); ++k) leading = leading && index[k] == k;
+  if (leading) return read_first_fields(data, name, static_cast<int>(index.size()), true, out);
+  return read_columns(data, name, header.line, index, out);
 }
 
 }  // namespace detail

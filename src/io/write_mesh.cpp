@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Mesh writers (OFF, PLY ascii/binary, OBJ, STL binary) and the VTK body writer. Vertices are the
 // input points in input order; ASCII numbers are shortest round-trip decimals (std::to_chars).
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -9,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "io/detail/write_util.hpp"
 
@@ -43,13 +46,7 @@ void put_point(std::string& s, const double* p, char sep) {
 
 // The ASCII vertex and face lines shared by OFF, OBJ and ASCII PLY: "<vprefix>x y z" per point,
 // "<fprefix>i j k" per triangle with indices shifted by `base` (1 for OBJ).
-void put_ascii_mesh(std::string& s, const PointSet& pts, const TriMesh3& m, const char* vprefix, const char* fprefix,
-                    long long base) {
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    s += vprefix;
-    put_point(s, pts[i], ' ');
-    s += '\n';
-  }
+void put_ascii_faces(std::string& s, const TriMesh3& m, const char* fprefix, long long base) {
   for (const auto& t : m.triangles) {
     s += fprefix;
     put_int(s, t[0] + base);
@@ -59,6 +56,16 @@ void put_ascii_mesh(std::string& s, const PointSet& pts, const TriMesh3& m, cons
     put_int(s, t[2] + base);
     s += '\n';
   }
+}
+
+void put_ascii_mesh(std::string& s, const PointSet& pts, const TriMesh3& m, const char* vprefix, const char* fprefix,
+                    long long base) {
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    s += vprefix;
+    put_point(s, pts[i], ' ');
+    s += '\n';
+  }
+  put_ascii_faces(s, m, fprefix, base);
 }
 
 std::string to_off(const PointSet& pts, const TriMesh3& m) {
@@ -77,24 +84,90 @@ std::string to_obj(const PointSet& pts, const TriMesh3& m) {
   return s;
 }
 
-std::string to_ply(const PointSet& pts, const TriMesh3& m, bool ascii) {
+// The optional per-vertex PLY properties: normals as float, colours as uchar.
+struct PlyAttributes {
+  const std::vector<double>* normals = nullptr;
+  const std::vector<double>* colors = nullptr;
+  int channels = 0;
+};
+
+std::uint8_t color_byte(double c) {
+  constexpr double kMax = 255.0;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(c, 0.0, 1.0) * kMax));
+}
+
+void put_float(std::string& s, float v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+
+Status ply_attributes(const std::string& path, const PointSet& pts, const PointAttributes* a, PlyAttributes& out) {
+  if (a == nullptr) return Status::ok();
+  const std::size_t n = pts.size();
+  if (!a->normals.empty()) {
+    if (a->normals.size() != 3 * n)
+      return {StatusCode::InvalidArgument, path + ": " + std::to_string(a->normals.size()) +
+                                               " normal values for " + std::to_string(n) + " points (3 per point expected)"};
+    out.normals = &a->normals;
+  }
+  if (!a->colors.empty()) {
+    const auto ch = static_cast<std::size_t>(a->color_channels);
+    if ((ch != 3 && ch != 4) || a->colors.size() != ch * n)
+      return {StatusCode::InvalidArgument, path + ": " + std::to_string(a->colors.size()) + " colour values in " +
+                                               std::to_string(ch) + " channels for " + std::to_string(n) + " points"};
+    out.colors = &a->colors;
+    out.channels = a->color_channels;
+  }
+  return Status::ok();
+}
+
+void put_ply_vertex(std::string& s, const PointSet& pts, std::size_t i, const PlyAttributes& a, bool ascii) {
+  const auto ch = static_cast<std::size_t>(a.channels);
+  if (ascii) {
+    put_point(s, pts[i], ' ');
+    for (std::size_t k = 0; a.normals != nullptr && k < 3; ++k) {
+      s += ' ';
+      put_float(s, static_cast<float>((*a.normals)[3 * i + k]));
+    }
+    for (std::size_t k = 0; a.colors != nullptr && k < ch; ++k) {
+      s += ' ';
+      put_int(s, color_byte((*a.colors)[ch * i + k]));
+    }
+    s += '\n';
+    return;
+  }
+  for (int k = 0; k < 3; ++k) put_le(s, pts[i][k]);
+  for (std::size_t k = 0; a.normals != nullptr && k < 3; ++k) put_le(s, static_cast<float>((*a.normals)[3 * i + k]));
+  for (std::size_t k = 0; a.colors != nullptr && k < ch; ++k) s += static_cast<char>(color_byte((*a.colors)[ch * i + k]));
+}
+
+std::string to_ply(const PointSet& pts, const TriMesh3& m, bool ascii, const PlyAttributes& a) {
   std::string s = "ply\nformat ";
   s += ascii ? "ascii 1.0\n" : "binary_little_endian 1.0\n";
   s += "comment constrict 3D reconstruction (vertices = input points in input order)\nelement vertex ";
   put_int(s, static_cast<long long>(pts.size()));
-  s += "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
+  s += "\nproperty double x\nproperty double y\nproperty double z\n";
+  if (a.normals != nullptr) s += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (a.colors != nullptr) s += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  if (a.channels == 4) s += "property uchar alpha\n";
+  s += "element face ";
   put_int(s, static_cast<long long>(m.triangles.size()));
   s += "\nproperty list uchar int vertex_indices\nend_header\n";
-  if (ascii) {
+  if (ascii && a.normals == nullptr && a.colors == nullptr) {
     put_ascii_mesh(s, pts, m, "", "3 ", 0);
-  } else {
-    s.reserve(s.size() + pts.size() * 24 + m.triangles.size() * 13);
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      for (int k = 0; k < 3; ++k) put_le(s, pts[i][k]);
-    for (const auto& t : m.triangles) {
-      s += static_cast<char>(t.size());  // the uchar corner count of the PLY face list
-      for (const std::int32_t v : t) put_le(s, v);
-    }
+    return s;
+  }
+  if (ascii) {
+    for (std::size_t i = 0; i < pts.size(); ++i) put_ply_vertex(s, pts, i, a, true);
+    put_ascii_faces(s, m, "3 ", 0);
+    return s;
+  }
+  s.reserve(s.size() + pts.size() * 24 + m.triangles.size() * 13);
+  for (std::size_t i = 0; i < pts.size(); ++i) put_ply_vertex(s, pts, i, a, false);
+  for (const auto& t : m.triangles) {
+    s += static_cast<char>(t.size());  // the uchar corner count of the PLY face list
+    for (const std::int32_t v : t) put_le(s, v);
   }
   return s;
 }
@@ -132,7 +205,11 @@ Status write_mesh(const std::string& path, const PointSet& points, const TriMesh
   const std::string ext = extension(path);
   if (ext == "off") return write_file(path, to_off(points, mesh));
   if (ext == "obj") return write_file(path, to_obj(points, mesh));
-  if (ext == "ply") return write_file(path, to_ply(points, mesh, options.ply_ascii));
+  if (ext == "ply") {
+    PlyAttributes attributes;
+    if (Status st = ply_attributes(path, points, options.attributes, attributes); !st) return st;
+    return write_file(path, to_ply(points, mesh, options.ply_ascii, attributes));
+  }
   if (ext == "stl") return write_file(path, to_stl(points, mesh));
   return {StatusCode::WriteFailed,
           path + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};

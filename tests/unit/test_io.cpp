@@ -186,12 +186,21 @@ TEST_F(IoText, ForcedDim2DropsZ) {
   EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1}));
 }
 
-TEST_F(IoText, ForcedDimTakesFirstFieldsOfWiderLines) {
+// Issue 18: wider lines used to give their first `dim` fields silently (`id x y` -> (id, x)); now
+// the columns must be chosen (ReadOptions::columns or a header naming x, y, z).
+TEST_F(IoText, ForcedDimOnWiderLinesNeedsChosenColumns) {
   PointSet p;
   ReadOptions o;
   o.dim = 3;
-  ASSERT_TRUE(read("t.txt", "0 0 0 red 1\n1 0 0 blue 2\n0 1 0 x 3\n0 0 1 y 4\n", p, o));
+  const std::string text = "0 0 0 red 1\n1 0 0 blue 2\n0 1 0 x 3\n0 0 1 y 4\n";
+  Status st = read("t.txt", text, p, o);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_TRUE(Contains(st.message(), "t.txt:1: 5 fields per line, more than x, y, z: choose the coordinate columns"));
+  ASSERT_TRUE(parse_columns("1,2,3", o.columns));
+  ASSERT_TRUE(read("t.txt", text, p, o));
   EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.coords, kTetraCoords);
+  ASSERT_TRUE(read("h.txt", "x y z name id\n" + text, p, ReadOptions{}));
   EXPECT_EQ(p.coords, kTetraCoords);
 }
 
@@ -209,7 +218,7 @@ TEST_F(IoText, FourColumnsWithoutDimIsParseError) {
   PointSet p;
   Status st = read("four.txt", "# c\n0 0 0 1\n1 0 0 1\n", p);
   EXPECT_EQ(st.code(), StatusCode::ParseError);
-  EXPECT_TRUE(Contains(st.message(), "four.txt:2: expected 2 or 3 fields"));
+  EXPECT_TRUE(Contains(st.message(), "four.txt:2: 4 fields per line, more than x, y, z: choose the coordinate columns with --columns"));
   st = read("one.txt", "5\n6\n", p);
   EXPECT_EQ(st.code(), StatusCode::ParseError);
   EXPECT_TRUE(Contains(st.message(), "one.txt:1: expected 2 or 3 fields (x y [z]), found 1"));

@@ -5,16 +5,19 @@
 #include <string>
 #include <string_view>
 
+#include "constrict/io.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
 
 namespace constrict {
 namespace detail {
 
-/// Reads text columns into @p out (dim 2 or 3; forced_dim 0: from the first data line).
-/// @return Ok, ParseError or NonFinite ("file:LINE: ...")
+/// Reads text columns into @p out (dim 2 or 3; forced_dim 0: from the first data line or from
+/// the selected columns).
+/// @return Ok, InvalidArgument (@p columns does not fit the file), ParseError or NonFinite
+///         ("file:LINE: ...")
 Status read_text_points(std::string_view data, const std::string& name, int forced_dim,
-                        PointSet& out);
+                        const ColumnSelection& columns, PointSet& out);
 
 }  // namespace detail
 }  // namespace constrict

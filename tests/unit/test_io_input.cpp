@@ -1,0 +1,267 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Issue 18 (input): coordinate columns by header name or ReadOptions::columns, more than 3 fields
+// refused with a way out, STL and GeoJSON points, LAS/LAZ/E57 refused with a conversion hint,
+// --format names, the merged pairs and the file-row views of a merged read, and PLY attributes
+// written by write_mesh() and read back.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "constrict/io.hpp"
+#include "constrict/mesh.hpp"
+
+namespace constrict {
+namespace {
+
+Status read_text(const std::string& text, PointSet& p, const ReadOptions& o = {}, const std::string& name = "t.csv",
+                 ReadReport* r = nullptr) {
+  return read_points_from_buffer(text, name, PointFormat::Auto, o, p, r);
+}
+
+ReadOptions with_columns(const std::string& spec, int dim = 0) {
+  ReadOptions o;
+  o.dim = dim;
+  EXPECT_TRUE(parse_columns(spec, o.columns));
+  return o;
+}
+
+const std::string kIdXY = "id,x,y\n7,0,0\n8,1,0\n9,0,1\n";
+
+TEST(IoColumns, HeaderNamesChooseTheColumns) {
+  // The issue: `id,x,y` with --dim 2 gave a polygon through (id, x).
+  for (int dim : {0, 2}) {
+    PointSet p;
+    ReadOptions o;
+    o.dim = dim;
+    ASSERT_TRUE(read_text(kIdXY, p, o));
+    EXPECT_EQ(p.dim, 2);
+    EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1}));
+  }
+  PointSet p;
+  ASSERT_TRUE(read_text("\"Z\";\"Y\";\"X\";label\n3;2;1;a\n6;5;4;b\n0;1;1;c\n1;0;0;d\n", p));
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.coords, (std::vector<double>{1, 2, 3, 4, 5, 6, 1, 1, 0, 0, 0, 1}));
+}
+
+TEST(IoColumns, HeaderWithoutXYKeepsTheFirstFields) {
+  PointSet p;
+  ASSERT_TRUE(read_text("east,north\n0,0\n1,0\n0,1\n", p));
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1}));
+}
+
+TEST(IoColumns, MoreThanThreeFieldsSaysHowToChoose) {
+  PointSet p;
+  Status st = read_text("1 2 3 4 5 6 7\n1 2 3 4 5 6 8\n", p, {}, "seven.txt");
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("seven.txt:1: 7 fields per line"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("--columns"), std::string::npos);
+  ReadOptions o;
+  o.dim = 3;  // a forced dim used to take the first 3 of them silently
+  EXPECT_EQ(read_text("1 2 3 4\n1 2 3 5\n", p, o).code(), StatusCode::ParseError);
+  st = read_text("id,a,b,c\n1,0,0,0\n", p, {}, "h.csv");
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("h.csv:1: the header names 4 columns, none of them x and y"), std::string::npos)
+      << st.message();
+}
+
+TEST(IoColumns, NumbersAndNames) {
+  PointSet p;
+  ASSERT_TRUE(read_text("a b c d\n9 0 0 5\n9 1 0 5\n9 0 1 5\n", p, with_columns("2,3")));
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1}));
+  ASSERT_TRUE(read_text("9 0 0 5 1\n9 1 0 5 1\n9 0 1 5 1\n9 0 0 5 0\n", p, with_columns("3,2,5")));
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 1, 1, 1, 0, 1, 0, 0, 0}));
+  ASSERT_TRUE(read_text("lon,lat,h\n0,0,9\n1,0,9\n0,1,9\n", p, with_columns("LON,lat")));
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1}));
+  // Forced dim 2 with three columns drops the third; dim 3 with two is refused.
+  ASSERT_TRUE(read_text("0 0 0\n1 0 0\n0 1 0\n", p, with_columns("1,2,3", 2)));
+  EXPECT_EQ(p.dim, 2);
+  EXPECT_EQ(read_text("0 0 0\n1 0 0\n0 1 0\n", p, with_columns("1,2", 3)).code(), StatusCode::InvalidArgument);
+  // A column past the end of the line, a name not in the header, names without a header.
+  Status st = read_text("0 0\n1 0\n0 1\n", p, with_columns("1,4"), "c.xy");
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("c.xy:1: column 4"), std::string::npos) << st.message();
+  EXPECT_EQ(read_text(kIdXY, p, with_columns("x,q")).code(), StatusCode::InvalidArgument);
+  EXPECT_EQ(read_text("0 0\n1 0\n0 1\n", p, with_columns("x,y")).code(), StatusCode::InvalidArgument);
+  // Selected columns are checked like any coordinate.
+  st = read_text("a b c\n0 0 0\n1 nan 0\n", p, with_columns("2,3"), "n.txt");
+  EXPECT_EQ(st.code(), StatusCode::NonFinite);
+  EXPECT_NE(st.message().find("n.txt:3:"), std::string::npos) << st.message();
+  // Only text input has columns.
+  EXPECT_EQ(read_points_from_buffer("OFF\n4 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n", "m.off", PointFormat::Auto,
+                                    with_columns("1,2,3"), p)
+                .code(),
+            StatusCode::InvalidArgument);
+}
+
+TEST(IoColumns, ParseColumns) {
+  ColumnSelection c;
+  ASSERT_TRUE(parse_columns("2, 3,4", c));
+  EXPECT_EQ(c.numbers, (std::vector<std::size_t>{2, 3, 4}));
+  ASSERT_TRUE(parse_columns("x,y", c));
+  EXPECT_EQ(c.names, (std::vector<std::string>{"x", "y"}));
+  for (const char* bad : {"", "1", "1,2,3,4", "0,1", "1,x", "1,1", "x,,y"})
+    EXPECT_EQ(parse_columns(bad, c).code(), StatusCode::InvalidArgument) << bad;
+}
+
+TEST(IoFormats, Names) {
+  PointFormat f = PointFormat::Auto;
+  for (const char* n : {"auto", "text", "ply", "off", "obj", "stl", "geojson"}) {
+    ASSERT_TRUE(point_format_from_name(n, f)) << n;
+    EXPECT_STREQ(to_string(f), n);
+  }
+  EXPECT_EQ(point_format_from_name("las", f).code(), StatusCode::InvalidArgument);
+}
+
+// A unit tetrahedron as ASCII STL: 4 facets, 12 corners, 4 distinct vertices.
+const std::string kTetraStl =
+    "solid t\n"
+    "facet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n"
+    "facet normal 0 -1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\nendfacet\n"
+    "facet normal -1 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 1\nvertex 0 1 0\nendloop\nendfacet\n"
+    "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\n"
+    "endsolid t\n";
+
+TEST(IoFormats, StlVerticesOnceEach) {
+  PointSet p;
+  ReadReport r;
+  ASSERT_TRUE(read_points_from_buffer(kTetraStl, "t.stl", PointFormat::Auto, {}, p, &r));
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(r.points_read, 4u);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("12 facet corners read, 4 distinct points kept"), std::string::npos) << r.warnings[0];
+  // Binary STL, named otherwise and read with an explicit format.
+  PointSet q;
+  TriMesh3 m;
+  ASSERT_TRUE(read_mesh_from_buffer(kTetraStl, "t.stl", q, m));
+  const std::string path = (std::filesystem::temp_directory_path() / "constrict_test_tetra_bin.stl").string();
+  ASSERT_TRUE(write_mesh(path, q, m));
+  std::ifstream f(path, std::ios::binary);
+  const std::string bin((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  PointSet b;
+  ASSERT_TRUE(read_points_from_buffer(bin, "t.dat", PointFormat::Stl, {}, b));
+  EXPECT_EQ(b.size(), 4u);
+  ReadOptions two;
+  two.dim = 2;
+  EXPECT_EQ(read_points_from_buffer(kTetraStl, "t.stl", PointFormat::Auto, two, p).code(), StatusCode::Duplicate);
+}
+
+TEST(IoFormats, GeoJsonPoints) {
+  const std::string fc =
+      R"({"type": "FeatureCollection", "features": [
+          {"type": "Feature", "properties": {"n": 1}, "geometry": {"type": "Point", "coordinates": [0, 0]}},
+          {"type": "Feature", "properties": null, "geometry": null},
+          {"type": "Feature", "geometry": {"type": "MultiPoint", "coordinates": [[1, 0], [0, 1.5]]}}]})";
+  PointSet p;
+  ASSERT_TRUE(read_points_from_buffer(fc, "p.geojson", PointFormat::Auto, {}, p));
+  EXPECT_EQ(p.dim, 2);
+  EXPECT_EQ(p.coords, (std::vector<double>{0, 0, 1, 0, 0, 1.5}));
+  ASSERT_TRUE(read_points_from_buffer(R"({"type": "MultiPoint", "coordinates": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]]})",
+                                      "m.json", PointFormat::Auto, {}, p));
+  EXPECT_EQ(p.dim, 3);
+  EXPECT_EQ(p.size(), 4u);
+  const auto code = [&p](const std::string& text) {
+    Status st = read_points_from_buffer(text, "e.geojson", PointFormat::Auto, {}, p);
+    EXPECT_EQ(st.message().find('\n'), std::string::npos) << st.message();
+    return st.code();
+  };
+  EXPECT_EQ(code(R"({"type": "Polygon", "coordinates": [[[0,0],[1,0],[0,1],[0,0]]]})"), StatusCode::ParseError);
+  EXPECT_EQ(code(R"({"type": "MultiPoint", "coordinates": [[0,0],[1,0,0]]})"), StatusCode::ParseError);
+  EXPECT_EQ(code(R"({"type": "Point", "coordinates": [0]})"), StatusCode::ParseError);
+  EXPECT_EQ(code(R"({"type": "Point", "coordinates": [0, 1e400]})"), StatusCode::NonFinite);
+  EXPECT_EQ(code("{\"type\": \"Point\",\n \"coordinates\": [0, x]}"), StatusCode::ParseError);
+  EXPECT_EQ(code(R"({"type": "FeatureCollection", "features": []})"), StatusCode::EmptyInput);
+  Status st = read_points_from_buffer(
+      R"({"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "LineString", "coordinates": []}}]})",
+      "l.geojson", PointFormat::Auto, {}, p);
+  EXPECT_NE(st.message().find("l.geojson: /features/0/geometry: geometry type 'LineString'"), std::string::npos)
+      << st.message();
+}
+
+TEST(IoFormats, ScannerFormatsRefusedWithAHint) {
+  PointSet p;
+  std::string las = "LASF";
+  las.append(300, '\0');
+  for (const auto& [data, name] : std::vector<std::pair<std::string, std::string>>{
+           {las, "scan.xyz"}, {"0 0\n1 0\n0 1\n", "scan.las"}, {las, "scan.laz"}, {"ASTM-E57xxxx", "scan.bin"},
+           {"", "scan.e57"}}) {
+    Status st = read_points_from_buffer(data, name, PointFormat::Auto, {}, p);
+    EXPECT_EQ(st.code(), StatusCode::Unsupported) << name;
+    EXPECT_NE(st.message().find(name + ": "), std::string::npos);
+    EXPECT_NE(st.message().find("pdal translate"), std::string::npos) << st.message();
+  }
+  // Magic bytes win over an explicit format; an extension does not.
+  EXPECT_EQ(read_points_from_buffer(las, "s.txt", PointFormat::Text, {}, p).code(), StatusCode::Unsupported);
+  EXPECT_TRUE(read_points_from_buffer("0 0\n1 0\n0 1\n", "s.las", PointFormat::Text, {}, p));
+}
+
+TEST(IoMerge, PairsAndFileRows) {
+  ReadOptions o;
+  o.merge_duplicates = true;
+  PointSet p;
+  ReadReport r;
+  // rows: 0 (0,0), 1 (1,0), 2 = row 0, 3 (0,1), 4 = row 1, 5 = row 0
+  ASSERT_TRUE(read_text("0 0\n1 0\n0 0\n0 1\n1 0\n-0 0\n", p, o, "m.xy", &r));
+  EXPECT_EQ(p.size(), 3u);
+  EXPECT_EQ(r.original_index, (std::vector<std::size_t>{0, 1, 3}));
+  using Pair = std::array<std::size_t, 2>;
+  EXPECT_EQ(r.merged, (std::vector<Pair>{{0, 2}, {1, 4}, {0, 5}}));
+  const PointSet rows = file_row_points(p, r);
+  EXPECT_EQ(rows.coords, (std::vector<double>{0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0}));
+  // Nothing merged: no pairs, the same points.
+  ASSERT_TRUE(read_text("0 0\n1 0\n0 1\n", p, o, "n.xy", &r));
+  EXPECT_TRUE(r.merged.empty());
+  EXPECT_EQ(file_row_points(p, r).coords, p.coords);
+}
+
+TEST(IoAttributesOut, ColouredPlyRoundTrip) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
+      "property float nx\nproperty float ny\nproperty float nz\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\nend_header\n"
+      "0 0 0 0 0 -1 255 0 0 255\n1 0 0 1 0 0 0 255 0 128\n0 1 0 0 1 0 0 0 255 0\n"
+      "0 0 1 0.25 0.5 0.75 10 20 30 40\n0 0 0 9 9 9 1 2 3 4\n";
+  ReadOptions o;
+  o.merge_duplicates = true;  // row 4 repeats row 0
+  PointSet p;
+  ReadReport r;
+  ASSERT_TRUE(read_points_from_buffer(ply, "c.ply", PointFormat::Auto, o, p, &r));
+  ASSERT_EQ(p.size(), 4u);
+  TriMesh3 m;
+  m.triangles = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 3}}};
+  const PointSet rows = file_row_points(p, r);
+  const PointAttributes attributes = file_row_attributes(r);
+  const auto dir = std::filesystem::temp_directory_path();
+  for (bool ascii : {false, true}) {
+    MeshWriteOptions w;
+    w.ply_ascii = ascii;
+    w.attributes = &attributes;
+    const std::string path = (dir / (ascii ? "constrict_rt_ascii.ply" : "constrict_rt_bin.ply")).string();
+    ASSERT_TRUE(write_mesh(path, rows, m, w));
+    PointSet back;
+    ReadReport rb;
+    ASSERT_TRUE(read_points(path, o, back, &rb));
+    std::filesystem::remove(path);
+    EXPECT_EQ(back.coords, p.coords);
+    EXPECT_EQ(rb.attributes.normals, r.attributes.normals) << ascii;
+    EXPECT_EQ(rb.attributes.color_channels, 4);
+    EXPECT_EQ(rb.attributes.colors, r.attributes.colors) << ascii;
+  }
+  // Arrays that do not match the points are refused.
+  PointAttributes bad = attributes;
+  bad.normals.pop_back();
+  MeshWriteOptions w;
+  w.attributes = &bad;
+  EXPECT_EQ(write_mesh((dir / "constrict_rt_bad.ply").string(), rows, m, w).code(), StatusCode::InvalidArgument);
+}
+
+}  // namespace
+}  // namespace constrict
