@@ -60,7 +60,7 @@ int compare_distance2(const double* p, const double* q, const double* r) noexcep
 
 /// A gap against a local spacing: the sign of k·|p-q|^2 - t^2·(|a_0-b_0|^2 + ... + |a_{k-1}-b_{k-1}|^2),
 /// i.e. whether the distance pq is at least t times the root mean square of the k lengths a_i b_i.
-/// Exact for any finite doubles (semi-static filter, then CGAL::Mpzf arithmetic). @pre 1 <= k <= 8
+/// Exact for any finite doubles (semi-static filter, then CGAL::Mpzf arithmetic). @pre k >= 1
 /// @param[in] a, b the k segments' endpoints (2D points)
 /// @param[in] t the factor (finite, >= 0)
 int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,

@@ -32,8 +32,8 @@ std::string to_json(const Polygon2Result& result, const Constrict2Options& optio
 /// complete, valid, validation, method "rings", area and perimeter summed with signs, timings_ms),
 /// plus `"rings": [{"role": "shell"|"hole", "parent": k or -1, "indices": [...], "gap_spacings",
 /// "nearest_ring"}, ...]` and `"topology": {"mode", "gap_threshold", "inferred": {"decision",
-/// "rings", "shells", "holes", "bad_degree_points", "first_bad_point", "min_gap_spacings",
-/// "ring_list"}}` (ring_list: the inferred rings when they differ from "rings"; gaps in local
+/// "rings", "shells", "holes", "parts", "parts_polygon", "bad_degree_points", "split_gap_spacings",
+/// "min_gap_spacings", "reason", "ring_list"}}` (ring_list: the inferred rings when they differ from "rings"; gaps in local
 /// spacings, null for none).
 std::string to_json(const Rings2Result& result, const Rings2Options& options);
 

@@ -44,40 +44,15 @@ struct Ring2 {
   int nearest_ring = -1;
 };
 
-/// The default of Rings2Options::topology_gap: measured on the shared data (docs/topology.md
-/// §"Threshold"): the topology sets have gaps of >= 2.4 spacings, the single-curve controls that
-/// split into several cycles have gaps <= 1.6.
+/// The default of Rings2Options::topology_gap, measured on the shared data (docs/topology.md
+/// §"Threshold"): the 43 ground-truth single-curve sets split at <= 1.27 local spacings, the 20
+/// topology sets' rings are >= 2.57 apart (sd_vase's inner loop 9.8).
 constexpr double kDefaultTopologyGap = 2.0;
 
-/// Why infer_rings2() gave its answer.
-enum class RingsDecision {
-  NotDegree2,   ///< some point has NN-crust degree != 2: no clean cycles (noise, area sample, corners)
-  OneCycle,     ///< the NN-crust is one cycle: one curve
-  GapTooSmall,  ///< several cycles, but two come closer than topology_gap local spacings
-  Rings,        ///< several cycles, every two separated by a clear gap: the multi-ring answer
-};
-const char* to_string(RingsDecision decision) noexcept;
-
-/// What the data show (infer_rings2()).
-struct RingsInference {
-  RingsDecision decision = RingsDecision::NotDegree2;
-  /// The cycles (OneCycle, GapTooSmall, Rings), ordered by their lexicographically smallest point
-  /// (so a parent precedes its children), oriented and nested; empty for NotDegree2.
-  std::vector<Ring2> rings;
-  std::size_t bad_degree_points = 0;  ///< points whose NN-crust degree is not 2
-  int first_bad_point = -1;           ///< the smallest such index, or -1
-  double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
-  /// The smallest gap between two rings in local spacings (double; infinity with < 2 rings).
-  double min_gap_spacings = std::numeric_limits<double>::infinity();
-  std::size_t shells() const noexcept;
-  std::size_t holes() const noexcept;
-  bool several() const noexcept { return decision == RingsDecision::Rings; }
-};
-
-/// Options of reconstruct_rings2().
+/// Options of reconstruct_rings2() and infer_rings2().
 struct Rings2Options {
   Topology2 topology = Topology2::Single;  ///< Single: today's polygon exactly
-  /// Several rings are accepted only when every two are at least this many local spacings apart
+  /// Parts of the data at least this many local spacings apart become separate rings
   /// (infer_rings2()). Default measured (kDefaultTopologyGap); larger splits less often.
   double topology_gap = kDefaultTopologyGap;
   /// Single mode: still infer the topology (one extra Delaunay triangulation, O(N log N)), so that
@@ -85,8 +60,18 @@ struct Rings2Options {
   bool infer_in_single = true;
   /// Validate the ring set exactly (validate_rings2()); a set that fails is a bug: Internal.
   bool validate = true;
-  Constrict2Options polygon;  ///< the options of the single polygon (reconstruct2())
+  Constrict2Options polygon;  ///< the options of the single polygon (reconstruct2()), also used
+                              ///< for the parts of the data that are not one clean cycle
 };
+
+/// Why infer_rings2() gave its answer.
+enum class RingsDecision {
+  OneCurve,   ///< the points form one part (no gap of topology_gap spacings splits them)
+  SmallPart,  ///< a part has fewer than 3 points or is collinear: no ring through it
+  Crossing,   ///< the rings of the parts would meet (validate_rings2() failed): not accepted
+  Rings,      ///< several parts, each a ring, disjoint: the multi-ring answer
+};
+const char* to_string(RingsDecision decision) noexcept;
 
 /// What validate_rings2() found.
 struct RingsCheck {
@@ -96,6 +81,28 @@ struct RingsCheck {
   bool oriented = false;    ///< shells counter-clockwise, holes clockwise
   bool nested = false;      ///< each parent is the innermost ring containing the ring; roles by depth
   std::string reason;       ///< one line; empty when valid
+};
+
+/// What the data show (infer_rings2()).
+struct RingsInference {
+  RingsDecision decision = RingsDecision::OneCurve;
+  /// The rings (Rings, Crossing), ordered by their lexicographically smallest point (a parent
+  /// precedes its children), oriented and nested; empty otherwise.
+  std::vector<Ring2> rings;
+  std::size_t parts = 0;              ///< parts found (1 for OneCurve)
+  std::size_t parts_polygon = 0;      ///< parts not one clean NN-crust cycle: reconstruct2() ran on them
+  std::size_t bad_degree_points = 0;  ///< points whose NN-crust degree is not 2 (noise, corners)
+  double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
+  /// The largest threshold at which the points would still split into several parts (double; the
+  /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data
+  /// split iff topology_gap <= split_gap_spacings (up to rounding of the report value).
+  double split_gap_spacings = 0;
+  /// The smallest gap between two parts in local spacings (double; infinity with one part).
+  double min_gap_spacings = std::numeric_limits<double>::infinity();
+  RingsCheck check;  ///< validate_rings2() of the rings (Rings, Crossing)
+  std::size_t shells() const noexcept;
+  std::size_t holes() const noexcept;
+  bool several() const noexcept { return decision == RingsDecision::Rings; }
 };
 
 /// Result of reconstruct_rings2().
@@ -118,23 +125,25 @@ struct Rings2Result {
   double ms_infer = 0, ms_validate = 0;  ///< infer_rings2() (with its Delaunay), validate_rings2()
 };
 
-/// Infers the rings the points show: the NN-crust of Dey and Kumar ("A simple provable algorithm
-/// for curve reconstruction", SODA 1999) on the Delaunay triangulation: each point p joins its
-/// nearest Delaunay neighbour q and its nearest Delaunay neighbour r with angle(q, p, r) > 90°
-/// (compare_distance2() and diametral_side2(), exact; ties by the lexicographic order of the
-/// points). When every point has degree 2 the edges are disjoint cycles. Their nesting follows from
-/// the faces of the triangulation they separate (an exact, combinatorial flood fill), their
-/// orientation from orient2 at the lexicographically smallest vertex. Several cycles are accepted
-/// (RingsDecision::Rings) only when every Delaunay edge between two cycles, pq, is at least
-/// @p gap times the local spacing: the root mean square of the four cycle edges at p and q
-/// (compare_gap2(), exact). Deterministic; the same rings for the points in any order.
+/// Infers the rings the points show (docs/topology.md §"Method"). (1) The NN-crust of Dey and
+/// Kumar ("A simple provable algorithm for curve reconstruction", SODA 1999) on the Delaunay
+/// triangulation: each point p chooses its nearest Delaunay neighbour q and its nearest Delaunay
+/// neighbour r with angle(q, p, r) > 90° (compare_distance2(), diametral_side2(); ties by the
+/// lexicographic order of the points). (2) Parts: the connected components of the graph of the
+/// mutual crust edges (chosen by both ends) and of the Delaunay edges pq shorter than topology_gap
+/// times the local spacing, the root mean square of the crust edges at p and q (compare_gap2()).
+/// So two parts are everywhere at least topology_gap local spacings apart. (3) A part that is one
+/// crust cycle is a ring as it is; any other part gets reconstruct2()'s polygon of its points.
+/// (4) Nesting by exact point-in-polygon tests, roles by depth parity, orientation fixed (orient2).
+/// (5) validate_rings2(). Deterministic; the same rings for the points in any order.
 /// @param[in] points 2D points (check_points() passed)
 /// @param[in] dt their Delaunay triangulation (build_delaunay2())
-/// @param[in] gap the threshold in local spacings (finite, >= 0)
+/// @param[in] options topology_gap and the polygon options for the parts
 /// @param[out] out the decision and the rings
-/// @return Ok; InvalidArgument for a bad @p gap or a triangulation of other points
-/// @note O(N log N) (sorting the edge lists), O(N) otherwise.
-Status infer_rings2(const PointSet& points, const Delaunay2& dt, double gap, RingsInference& out);
+/// @return Ok; InvalidArgument for a bad topology_gap or a triangulation of other points
+/// @note O(N log N) plus reconstruct2() on the parts that are not clean cycles; the nesting test
+///   is O(R · E_box) (validate_rings2()).
+Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out);
 
 /// Reconstructs the rings through all points (2D): Single: reconstruct2()'s polygon as one shell;
 /// Auto: infer_rings2()'s rings when it decides RingsDecision::Rings, else the Single polygon.
@@ -144,8 +153,8 @@ Status infer_rings2(const PointSet& points, const Delaunay2& dt, double gap, Rin
 /// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
 ///   Internal if a complete ring set fails validation (a bug)
 /// @note Guarantee: with validate, a complete result is a valid ring set (validate_rings2()).
-///   Auto costs one Delaunay triangulation and O(N) more than Single, and skips reconstruct2()
-///   when it finds several rings.
+///   Auto costs one Delaunay triangulation and O(N log N) more than Single, and runs reconstruct2()
+///   on the whole set only when it finds one part.
 Status reconstruct_rings2(const PointSet& points, const Rings2Options& options, Rings2Result& result,
                           Constrict2Visitor* visitor = nullptr);
 

@@ -124,7 +124,7 @@ int compare_distance2(const double* p, const double* q, const double* r) noexcep
 int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
                  double t) noexcept {
   // Semi-static filter (core/detail/semi_static.hpp): the expression k·|pq|^2 - t·t·Σ|a_i b_i|^2
-  // over exact double leaves has depth <= 3 + (2k - 1) + 3 <= 21 for k <= 8; the bound uses 24.
+  // over exact double leaves has depth <= 3 + (k - 1) + 3 + 2 = k + 7; the bound uses 2k + 8.
   const auto sq = [](const double* u, const double* v) {
     const double dx = u[0] - v[0], dy = u[1] - v[1];
     return dx * dx + dy * dy;
@@ -133,7 +133,8 @@ int compare_gap2(const double* p, const double* q, const double* const* a, const
   for (int i = 0; i < k; ++i) sum += sq(a[i], b[i]);
   const double lhs = static_cast<double>(k) * sq(p, q), rhs = t * t * sum;
   const double d = lhs - rhs, m = lhs + rhs;  // every leaf product is a square: m is the |tree|
-  if (std::isfinite(m) && detail::safe_range(m) && std::fabs(d) > 24 * detail::kU * m) return d > 0 ? 1 : -1;
+  const double depth = 2.0 * k + 8;
+  if (std::isfinite(m) && detail::safe_range(m) && std::fabs(d) > depth * detail::kU * m) return d > 0 ? 1 : -1;
   using Z = CGAL::Mpzf;
   const auto zsq = [](const double* u, const double* v) {
     const Z dx = Z(u[0]) - Z(v[0]), dy = Z(u[1]) - Z(v[1]);

@@ -122,9 +122,12 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
                      {"rings", in.rings.size()},
                      {"shells", in.shells()},
                      {"holes", in.holes()},
+                     {"parts", in.parts},
+                     {"parts_polygon", in.parts_polygon},
                      {"bad_degree_points", in.bad_degree_points},
-                     {"first_bad_point", in.first_bad_point},
+                     {"split_gap_spacings", in.split_gap_spacings},
                      {"min_gap_spacings", finite_or_null(in.min_gap_spacings)},
+                     {"reason", in.check.reason},
                      {"ring_list", r.from_polygon && in.rings.size() > 1 ? rings_json(in.rings) : nlohmann::json(nullptr)}};
   }
   j["topology"] = t;

@@ -1,18 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // infer_rings2(): the rings the points show (topology.hpp, docs/topology.md §"Method").
-// Exactness contract: every decision -- nearest neighbour, half neighbour, degree, cycles, nesting,
-// orientation and the gap test -- uses exact predicates (compare_distance2, diametral_side2,
-// orient2, compare_gap2) or combinatorics of the Delaunay triangulation; doubles are computed only
-// for the report (Ring2::gap_spacings). Ties are broken by the lexicographic order of the points,
-// never by their indices, so the rings do not depend on the file order.
+// Exactness contract: every decision -- nearest neighbour, half neighbour, mutual edges, the gap
+// test, cycles, nesting and orientation -- uses exact predicates (compare_distance2,
+// diametral_side2, compare_gap2, orient2) or combinatorics; doubles are computed only for the report
+// (gap_spacings, split_gap_spacings). Ties are broken by the lexicographic order of the points,
+// never by their indices, so the parts do not depend on the file order.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "topology/detail/ring_nesting.hpp"
 
 namespace constrict {
 namespace {
@@ -42,33 +44,44 @@ struct Adjacency {
   }
 };
 
-// The NN-crust (Dey–Kumar 1999, §3): p's nearest Delaunay neighbour q, and its nearest Delaunay
-// neighbour r in the open half-plane away from q (angle qpr > 90°: p strictly inside the circle
-// with diameter qr). "Nearer" is exact; equally near candidates are ordered lexicographically.
+// The NN-crust (Dey–Kumar 1999, §3): p chooses its nearest Delaunay neighbour q, and its nearest
+// Delaunay neighbour r in the open half-plane away from q (angle qpr > 90°: p strictly inside the
+// circle with diameter qr). "Nearer" is exact; equally near candidates go lexicographically.
 class NnCrust {
  public:
-  NnCrust(const PointSet& pts, const Adjacency& adj) : pts_(pts), adj_(adj) {}
-
-  // The crust edges as (min, max) pairs, sorted, no repeats.
-  std::vector<std::array<int, 2>> edges() const {
-    std::vector<std::array<int, 2>> e;
-    const std::size_t n = adj_.start.size() - 1;
-    e.reserve(2 * n);
-    for (std::size_t p = 0; p < n; ++p) {
-      const int ip = static_cast<int>(p);
-      const int q = nearest(ip, -1);
-      if (q < 0) continue;
-      e.push_back({std::min(ip, q), std::max(ip, q)});
-      const int r = nearest(ip, q);
-      if (r >= 0) e.push_back({std::min(ip, r), std::max(ip, r)});
+  NnCrust(const PointSet& pts, const Adjacency& adj) : pts_(pts), adj_(adj), chosen_(adj.start.size() - 1) {
+    for (std::size_t p = 0; p < chosen_.size(); ++p) {
+      const int q = nearest(static_cast<int>(p), -1);
+      chosen_[p] = {q, q < 0 ? -1 : nearest(static_cast<int>(p), q)};
     }
+    std::vector<std::array<int, 2>> e;  // the crust edges, both directions, no repeats
+    for (std::size_t p = 0; p < chosen_.size(); ++p)
+      for (int q : chosen_[p])
+        if (q >= 0) {
+          e.push_back({static_cast<int>(p), q});
+          e.push_back({q, static_cast<int>(p)});
+        }
     std::sort(e.begin(), e.end());
     e.erase(std::unique(e.begin(), e.end()), e.end());
-    return e;
+    start_.assign(chosen_.size() + 1, 0);
+    for (const auto& x : e) {
+      ++start_[static_cast<std::size_t>(x[0]) + 1];
+      nbr_.push_back(x[1]);
+    }
+    for (std::size_t v = 0; v + 1 < start_.size(); ++v) start_[v + 1] += start_[v];
   }
+  // Chosen by both ends.
+  bool mutual(int p, int q) const { return chose(p, q) && chose(q, p); }
+  std::size_t degree(int p) const { return start_[static_cast<std::size_t>(p) + 1] - start_[static_cast<std::size_t>(p)]; }
+  const int* begin(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p)]; }
+  const int* end(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p) + 1]; }
 
  private:
   const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
+  bool chose(int p, int q) const {
+    const auto& c = chosen_[static_cast<std::size_t>(p)];
+    return c[0] == q || c[1] == q;
+  }
   // Is a strictly preferred to b as p's neighbour? Nearer, or as near and lexicographically smaller.
   bool better(int p, int a, int b) const {
     const int c = compare_distance2(at(p), at(a), at(b));
@@ -87,79 +100,142 @@ class NnCrust {
   }
   const PointSet& pts_;
   const Adjacency& adj_;
+  std::vector<std::array<int, 2>> chosen_;
+  std::vector<std::size_t> start_;
+  std::vector<int> nbr_;
 };
 
-// The cycles of a 2-regular graph, each as a vertex sequence; ring_of / next_of / prev_of per vertex.
-struct Cycles {
-  std::vector<std::vector<int>> rings;
-  std::vector<int> ring_of, next_of, prev_of;
-};
-
-// Traces the cycles when every vertex has degree 2; returns false (and counts) otherwise.
-bool trace_cycles(std::size_t n, const std::vector<std::array<int, 2>>& edges, Cycles& c, RingsInference& out) {
-  std::vector<std::array<int, 2>> nb(n, {{-1, -1}});
-  std::vector<int> deg(n, 0);
-  for (const auto& e : edges)
-    for (int s = 0; s < 2; ++s) {
-      const auto v = static_cast<std::size_t>(e[static_cast<std::size_t>(s)]);
-      if (deg[v] < 2) nb[v][static_cast<std::size_t>(deg[v])] = e[static_cast<std::size_t>(1 - s)];
-      ++deg[v];
-    }
-  for (std::size_t v = 0; v < n; ++v)
-    if (deg[v] != 2) {
-      if (out.first_bad_point < 0) out.first_bad_point = static_cast<int>(v);
-      ++out.bad_degree_points;
-    }
-  if (out.bad_degree_points) return false;
-  c.ring_of.assign(n, -1);
-  c.next_of.assign(n, -1);
-  c.prev_of.assign(n, -1);
-  for (std::size_t s = 0; s < n; ++s) {
-    if (c.ring_of[s] >= 0) continue;
-    const int id = static_cast<int>(c.rings.size());
-    std::vector<int> ring;
-    int prev = -1, v = static_cast<int>(s);
-    while (c.ring_of[static_cast<std::size_t>(v)] < 0) {
-      c.ring_of[static_cast<std::size_t>(v)] = id;
-      ring.push_back(v);
-      const auto& w = nb[static_cast<std::size_t>(v)];
-      const int next = w[0] != prev ? w[0] : w[1];
-      prev = v;
-      v = next;
-    }
-    c.rings.push_back(std::move(ring));
+struct UnionFind {
+  std::vector<int> up;
+  explicit UnionFind(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
+  int find(int x) {
+    while (up[static_cast<std::size_t>(x)] != x) x = up[static_cast<std::size_t>(x)] = up[static_cast<std::size_t>(up[static_cast<std::size_t>(x)])];
+    return x;
   }
+  bool join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    up[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    return true;
+  }
+};
+
+// The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
+class Gaps {
+ public:
+  Gaps(const PointSet& pts, const NnCrust& crust) : pts_(pts), crust_(crust) {}
+  // |pq| < t · rms(crust edges at p and q)? Exact.
+  bool shorter(int p, int q, double t) {
+    a_.clear();
+    b_.clear();
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) {
+        a_.push_back(at(end));
+        b_.push_back(at(*r));
+      }
+    return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
+  }
+  // |pq| / rms(crust edges at p and q), double arithmetic (for the report).
+  double ratio(int p, int q) const {
+    double sum = 0;
+    std::size_t k = 0;
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r, ++k) sum += len2(end, *r);
+    return std::sqrt(len2(p, q) / (sum / static_cast<double>(k)));
+  }
+
+ private:
+  const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
+  double len2(int a, int b) const {
+    const double dx = at(a)[0] - at(b)[0], dy = at(a)[1] - at(b)[1];
+    return dx * dx + dy * dy;
+  }
+  const PointSet& pts_;
+  const NnCrust& crust_;
+  std::vector<const double*> a_, b_;
+};
+
+// The parts: components of the mutual crust edges and of the Delaunay edges shorter than
+// gap · local spacing. Also the split gap: the bottleneck of the single-linkage tree over the
+// mutual-crust pieces (the largest threshold that still splits), in double, for the report.
+std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
+                            RingsInference& out) {
+  const std::size_t n = pts.size();
+  UnionFind pieces(n), parts(n);
+  Gaps gaps(pts, crust);
+  std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
+      const int ip = static_cast<int>(p), q = adj.nbr[k];
+      if (q < ip) continue;
+      if (crust.mutual(ip, q)) {
+        pieces.join(ip, q);
+        parts.join(ip, q);
+      } else {
+        if (gaps.shorter(ip, q, gap)) parts.join(ip, q);
+        links.push_back({gaps.ratio(ip, q), {ip, q}});
+      }
+    }
+  std::sort(links.begin(), links.end());
+  for (const auto& [g, e] : links)
+    if (pieces.join(e[0], e[1])) out.split_gap_spacings = g;
+  std::vector<int> part_of(n);
+  for (std::size_t v = 0; v < n; ++v) part_of[v] = parts.find(static_cast<int>(v));
+  return part_of;
+}
+
+// The parts as point lists (ascending indices), ordered by their lexicographically smallest point.
+std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector<int>& part_of) {
+  std::vector<std::vector<int>> by_root(part_of.size());
+  for (std::size_t v = 0; v < part_of.size(); ++v) by_root[static_cast<std::size_t>(part_of[v])].push_back(static_cast<int>(v));
+  std::vector<std::vector<int>> parts;
+  for (auto& g : by_root)
+    if (!g.empty()) parts.push_back(std::move(g));
+  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  const auto lowest = [&](const std::vector<int>& g) { return *std::min_element(g.begin(), g.end(), [&](int a, int b) { return lex_less(at(a), at(b)); }); };
+  std::vector<int> low(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) low[k] = lowest(parts[k]);
+  std::vector<std::size_t> order(parts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lex_less(at(low[a]), at(low[b])); });
+  std::vector<std::vector<int>> sorted;
+  for (std::size_t k : order) sorted.push_back(std::move(parts[k]));
+  return sorted;
+}
+
+// The part as one crust cycle, if it is one (every point of degree 2, the trace covers the part).
+bool crust_cycle(const NnCrust& crust, const std::vector<int>& part, const std::vector<int>& part_of, std::vector<int>& ring) {
+  const auto same = [&](int a, int b) { return part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)]; };
+  for (int v : part)
+    if (crust.degree(v) != 2 || !same(v, crust.begin(v)[0]) || !same(v, crust.begin(v)[1])) return false;
+  ring.clear();
+  int prev = -1, v = part.front();
+  do {
+    ring.push_back(v);
+    const int* w = crust.begin(v);
+    const int next = w[0] != prev ? w[0] : w[1];
+    prev = v;
+    v = next;
+  } while (v != part.front() && ring.size() <= part.size());
+  return ring.size() == part.size();
+}
+
+// reconstruct2() on the points of a part; false when they hold no polygon (< 3, collinear).
+bool part_polygon(const PointSet& pts, const std::vector<int>& part, const Constrict2Options& o, std::vector<int>& ring) {
+  PointSet sub;
+  sub.dim = 2;
+  sub.coords.reserve(2 * part.size());
+  for (int v : part) sub.coords.insert(sub.coords.end(), pts[static_cast<std::size_t>(v)], pts[static_cast<std::size_t>(v)] + 2);
+  Polygon2Result r;
+  if (part.size() < 3 || !reconstruct2(sub, o, r) || !r.valid()) return false;
+  ring.clear();
+  for (int i : r.boundary) ring.push_back(part[static_cast<std::size_t>(i)]);
   return true;
 }
 
-// Orders the cycles by their lexicographically smallest point (a containing ring's smallest point
-// precedes every point inside it, so parents come first) and fills next_of / prev_of in the
-// traced direction.
-void order_cycles(const PointSet& pts, Cycles& c) {
-  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
-  std::vector<int> lowest(c.rings.size());
-  for (std::size_t k = 0; k < c.rings.size(); ++k)
-    lowest[k] = *std::min_element(c.rings[k].begin(), c.rings[k].end(), [&](int a, int b) { return lex_less(at(a), at(b)); });
-  std::vector<std::size_t> order(c.rings.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lex_less(at(lowest[a]), at(lowest[b])); });
-  std::vector<std::vector<int>> sorted;
-  sorted.reserve(order.size());
-  for (std::size_t k : order) sorted.push_back(std::move(c.rings[k]));
-  c.rings = std::move(sorted);
-  for (std::size_t k = 0; k < c.rings.size(); ++k) {
-    const auto& r = c.rings[k];
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const auto v = static_cast<std::size_t>(r[i]);
-      c.ring_of[v] = static_cast<int>(k);
-      c.next_of[v] = r[(i + 1) % r.size()];
-      c.prev_of[v] = r[(i + r.size() - 1) % r.size()];
-    }
-  }
-}
-
-// +1 if the ring (traced order) runs counter-clockwise: the turn at its lexicographically smallest
-// vertex (a convex vertex) is the orientation. Exact.
+// +1 if the ring runs counter-clockwise: the turn at its lexicographically smallest vertex (a
+// convex vertex of a simple ring). Exact.
 int ring_orientation(const PointSet& pts, const std::vector<int>& r) {
   const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
   std::size_t m = 0;
@@ -168,98 +244,33 @@ int ring_orientation(const PointSet& pts, const std::vector<int>& r) {
   return orient2(at(r[(m + r.size() - 1) % r.size()]), at(r[m]), at(r[(m + 1) % r.size()]));
 }
 
-// Nesting from the triangulation: the faces of the arrangement of the disjoint cycles are the
-// connected sets of triangles not separated by a cycle edge (region 0 is the unbounded face, with
-// the triangles behind a hull edge that is not a cycle edge). A cycle bounds exactly two faces; the
-// one on its interior side is bounded by no other cycle from outside, so parent(K) is the cycle whose
-// interior face is K's exterior face. O(N).
-std::vector<int> parents_from_faces(const Delaunay2& dt, const Cycles& c, const std::vector<int>& ccw) {
-  const std::size_t nt = dt.triangles.size();
-  const auto cycle_edge = [&](int a, int b) {
-    return c.next_of[static_cast<std::size_t>(a)] == b || c.next_of[static_cast<std::size_t>(b)] == a;
-  };
-  std::vector<int> region(nt, -1);
-  std::vector<std::size_t> stack;
-  int regions = 1;
-  // Seeds: region 0 first (behind open hull edges), then every unlabelled triangle.
-  const auto flood = [&](std::size_t seed, int id) {
-    region[seed] = id;
-    stack.push_back(seed);
-    while (!stack.empty()) {
-      const std::size_t t = stack.back();
-      stack.pop_back();
-      for (std::size_t i = 0; i < 3; ++i) {
-        const int u = dt.neighbors[t][i];
-        if (u < 0 || region[static_cast<std::size_t>(u)] >= 0) continue;
-        if (cycle_edge(dt.triangles[t][(i + 1) % 3], dt.triangles[t][(i + 2) % 3])) continue;
-        region[static_cast<std::size_t>(u)] = id;
-        stack.push_back(static_cast<std::size_t>(u));
-      }
-    }
-  };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (std::size_t i = 0; i < 3; ++i)
-      if (region[t] < 0 && dt.neighbors[t][i] < 0 && !cycle_edge(dt.triangles[t][(i + 1) % 3], dt.triangles[t][(i + 2) % 3]))
-        flood(t, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    if (region[t] < 0) flood(t, regions++);
-  // The faces left and right of each cycle in its traced direction (unbounded face by default: a
-  // cycle edge on the hull has no triangle on its outer side).
-  const std::size_t nr = c.rings.size();
-  std::vector<int> left(nr, 0), right(nr, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    for (std::size_t i = 0; i < 3; ++i) {
-      const int a = dt.triangles[t][i], b = dt.triangles[t][(i + 1) % 3];  // t is left of a->b
-      const auto ra = static_cast<std::size_t>(c.ring_of[static_cast<std::size_t>(a)]);
-      if (c.next_of[static_cast<std::size_t>(a)] == b) left[ra] = region[t];
-      if (c.next_of[static_cast<std::size_t>(b)] == a) right[ra] = region[t];
-    }
-  std::vector<int> owner(static_cast<std::size_t>(regions), -1);  // the cycle a face is interior to
-  for (std::size_t k = 0; k < nr; ++k) owner[static_cast<std::size_t>(ccw[k] > 0 ? left[k] : right[k])] = static_cast<int>(k);
-  std::vector<int> parent(nr, -1);
-  for (std::size_t k = 0; k < nr; ++k) {
-    const int outside = ccw[k] > 0 ? right[k] : left[k];
-    parent[k] = outside == 0 ? -1 : owner[static_cast<std::size_t>(outside)];
-  }
-  return parent;
-}
-
-// Roles by depth parity, orientation fixed (shells CCW, holes CW), each ring from its smallest index.
-void assign_roles(const Cycles& c, const std::vector<int>& ccw, const std::vector<int>& parent, RingsInference& out) {
-  out.rings.assign(c.rings.size(), Ring2{});
-  std::vector<int> depth(c.rings.size(), 0);
-  for (std::size_t k = 0; k < c.rings.size(); ++k) {  // parents precede children (order_cycles)
+// Parents (innermost container), roles by depth parity, orientation fixed (shells CCW, holes CW),
+// each ring from its smallest index.
+void nest(const PointSet& pts, std::vector<std::vector<int>>& rings, RingsInference& out) {
+  std::vector<const std::vector<int>*> view;
+  for (const auto& r : rings) view.push_back(&r);
+  const auto containers = detail::ring_containers(pts, view, true);
+  const auto parent = detail::innermost_parents(containers);
+  out.rings.assign(rings.size(), Ring2{});
+  for (std::size_t k = 0; k < rings.size(); ++k) {
     Ring2& r = out.rings[k];
     r.parent = parent[k];
-    depth[k] = r.parent < 0 ? 0 : depth[static_cast<std::size_t>(r.parent)] + 1;
-    r.role = depth[k] % 2 == 0 ? RingRole::Shell : RingRole::Hole;
-    r.indices = c.rings[k];
-    if ((ccw[k] > 0) != (r.role == RingRole::Shell)) std::reverse(r.indices.begin(), r.indices.end());
+    r.role = containers[k].size() % 2 == 0 ? RingRole::Shell : RingRole::Hole;
+    r.indices = std::move(rings[k]);
+    if ((ring_orientation(pts, r.indices) > 0) != (r.role == RingRole::Shell)) std::reverse(r.indices.begin(), r.indices.end());
     std::rotate(r.indices.begin(), std::min_element(r.indices.begin(), r.indices.end()), r.indices.end());
   }
 }
 
-// The gap test on every Delaunay edge pq between two cycles: |pq| >= gap · rms(the cycle edges at p
-// and q), exactly. Fills each ring's smallest gap (double, for the report). @return all clear
-bool gaps_clear(const PointSet& pts, const Adjacency& adj, const Cycles& c, double gap, RingsInference& out) {
-  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
-  const auto len2 = [&](int a, int b) {
-    const double dx = at(a)[0] - at(b)[0], dy = at(a)[1] - at(b)[1];
-    return dx * dx + dy * dy;
-  };
-  bool clear = true;
-  for (std::size_t p = 0; p + 1 < adj.start.size(); ++p)
+// Each ring's smallest gap to another part and the overall smallest (double, for the report).
+void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const std::vector<int>& ring_of, RingsInference& out) {
+  const Gaps gaps(pts, crust);
+  for (std::size_t p = 0; p < ring_of.size(); ++p)
     for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
       const int ip = static_cast<int>(p), q = adj.nbr[k];
-      const int rp = c.ring_of[p], rq = c.ring_of[static_cast<std::size_t>(q)];
+      const int rp = ring_of[p], rq = ring_of[static_cast<std::size_t>(q)];
       if (q < ip || rp == rq) continue;
-      const std::size_t qs = static_cast<std::size_t>(q);
-      const int ends[4] = {c.prev_of[p], c.next_of[p], c.prev_of[qs], c.next_of[qs]};
-      const double* a[4] = {at(ip), at(ip), at(q), at(q)};
-      const double* b[4] = {at(ends[0]), at(ends[1]), at(ends[2]), at(ends[3])};
-      if (compare_gap2(at(ip), at(q), a, b, 4, gap) < 0) clear = false;
-      const double rms = std::sqrt((len2(ip, ends[0]) + len2(ip, ends[1]) + len2(q, ends[2]) + len2(q, ends[3])) / 4);
-      const double g = std::sqrt(len2(ip, q)) / rms;
+      const double g = gaps.ratio(ip, q);
       for (const auto& [r, other] : {std::pair<int, int>{rp, rq}, std::pair<int, int>{rq, rp}}) {
         Ring2& ring = out.rings[static_cast<std::size_t>(r)];
         if (g < ring.gap_spacings) {
@@ -269,16 +280,15 @@ bool gaps_clear(const PointSet& pts, const Adjacency& adj, const Cycles& c, doub
       }
       out.min_gap_spacings = std::min(out.min_gap_spacings, g);
     }
-  return clear;
 }
 
 }  // namespace
 
 const char* to_string(RingsDecision d) noexcept {
   switch (d) {
-    case RingsDecision::NotDegree2: return "not-degree-2";
-    case RingsDecision::OneCycle: return "one-cycle";
-    case RingsDecision::GapTooSmall: return "gap-too-small";
+    case RingsDecision::OneCurve: return "one-curve";
+    case RingsDecision::SmallPart: return "small-part";
+    case RingsDecision::Crossing: return "crossing";
     case RingsDecision::Rings: return "rings";
   }
   return "?";
@@ -289,8 +299,9 @@ std::size_t RingsInference::shells() const noexcept {
 }
 std::size_t RingsInference::holes() const noexcept { return rings.size() - shells(); }
 
-Status infer_rings2(const PointSet& points, const Delaunay2& dt, double gap, RingsInference& out) {
+Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out) {
   out = RingsInference{};
+  const double gap = options.topology_gap;
   out.gap_threshold = gap;
   if (!(gap >= 0) || !std::isfinite(gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
@@ -298,17 +309,25 @@ Status infer_rings2(const PointSet& points, const Delaunay2& dt, double gap, Rin
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
   const Adjacency adj(dt);
   const NnCrust crust(points, adj);
-  Cycles c;
-  if (!trace_cycles(points.size(), crust.edges(), c, out)) return Status::ok();  // NotDegree2
-  order_cycles(points, c);
-  std::vector<int> ccw(c.rings.size());
-  for (std::size_t k = 0; k < c.rings.size(); ++k) ccw[k] = ring_orientation(points, c.rings[k]);
-  assign_roles(c, ccw, parents_from_faces(dt, c, ccw), out);
-  if (c.rings.size() == 1) {
-    out.decision = RingsDecision::OneCycle;
-    return Status::ok();
+  for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
+  const std::vector<int> part_of = find_parts(points, adj, crust, gap, out);
+  std::vector<std::vector<int>> parts = group_parts(points, part_of);
+  out.parts = parts.size();
+  if (parts.size() == 1) return Status::ok();  // OneCurve
+  std::vector<std::vector<int>> rings(parts.size());
+  std::vector<int> ring_of(points.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    for (int v : parts[k]) ring_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+    if (crust_cycle(crust, parts[k], part_of, rings[k])) continue;
+    ++out.parts_polygon;
+    if (!part_polygon(points, parts[k], options.polygon, rings[k])) {
+      out.decision = RingsDecision::SmallPart;
+      return Status::ok();
+    }
   }
-  out.decision = gaps_clear(points, adj, c, gap, out) ? RingsDecision::Rings : RingsDecision::GapTooSmall;
+  nest(points, rings, out);
+  report_gaps(points, adj, crust, ring_of, out);
+  out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
   return Status::ok();
 }
 

@@ -19,7 +19,7 @@ Status infer(const PointSet& points, const Rings2Options& o, Rings2Result& r) {
   const auto t = Clock::now();
   Delaunay2 dt;
   if (Status s = build_delaunay2(points, dt); !s) return s;
-  if (Status s = infer_rings2(points, dt, o.topology_gap, r.inferred); !s) return s;
+  if (Status s = infer_rings2(points, dt, o, r.inferred); !s) return s;
   r.inferred_run = true;
   r.ms_infer = ms_since(t);
   return Status::ok();
@@ -60,6 +60,8 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   if (o.topology == Topology2::Auto && r.inferred.several()) {
     r.rings = r.inferred.rings;
     r.from_polygon = false;
+    r.validated = true;  // infer_rings2() validated them (exactly: validate_rings2())
+    r.check = r.inferred.check;
     measure(points, r);
   } else {
     if (Status s = reconstruct2(points, o.polygon, r.polygon, visitor); !s) return s;
@@ -69,8 +71,8 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
     r.area = r.polygon.area;
     r.perimeter = r.polygon.perimeter;
   }
-  if (!o.validate || !r.complete()) return Status::ok();
-  if (r.from_polygon && r.polygon.validated) {  // reconstruct2() validated it: a simple CCW polygon
+  if (!o.validate || !r.complete() || !r.from_polygon) return Status::ok();
+  if (r.polygon.validated) {  // reconstruct2() validated it: a simple CCW polygon
     r.validated = true;
     r.check.reason = r.polygon.check.reason;
     r.check.indices_ok = r.polygon.check.indices_ok;

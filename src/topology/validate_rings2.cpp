@@ -11,6 +11,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "topology/detail/ring_nesting.hpp"
 
 namespace constrict {
 namespace {
@@ -199,56 +200,21 @@ Status check_orientation(const RingEdges& E, RingsCheck* d) {
   return Status::ok();
 }
 
-// Is p strictly inside ring k? Crossing number of the ray to +x with half-open edge rules, exact.
-// @pre p is not on ring k (the rings are disjoint).
-bool inside(const RingEdges& E, std::size_t k, const double* p) {
-  bool in = false;
-  for (std::size_t e = E.first[k]; e < E.first[k + 1]; ++e) {
-    const double *a = E.vtx(e), *b = E.vtx(E.nxt(e));
-    if ((a[1] > p[1]) == (b[1] > p[1])) continue;
-    // The edge crosses the line y = p.y; the crossing is right of p iff p is left of the upward edge.
-    const int o = a[1] < b[1] ? orient2(a, b, p) : orient2(b, a, p);
-    if (o > 0) in = !in;
-  }
-  return in;
-}
-
-// Nesting: ring k's containers are the rings that hold its first vertex. The parent must be the
-// innermost container (the one with the most containers itself), and the role the depth's parity.
+// Nesting: the parent must be the innermost ring around the ring, the role the depth's parity.
 Status check_nesting(const RingEdges& E, RingsCheck* d, bool use_boxes) {
-  const std::size_t nr = E.rings.size();
-  struct Box { double x0, x1, y0, y1; };
-  std::vector<Box> box(nr);
-  for (std::size_t k = 0; k < nr; ++k) {
-    Box b{E.vtx(E.first[k])[0], E.vtx(E.first[k])[0], E.vtx(E.first[k])[1], E.vtx(E.first[k])[1]};
-    for (std::size_t e = E.first[k]; e < E.first[k + 1]; ++e) {
-      b.x0 = std::min(b.x0, E.vtx(e)[0]);
-      b.x1 = std::max(b.x1, E.vtx(e)[0]);
-      b.y0 = std::min(b.y0, E.vtx(e)[1]);
-      b.y1 = std::max(b.y1, E.vtx(e)[1]);
-    }
-    box[k] = b;
-  }
-  std::vector<std::vector<int>> containers(nr);
-  for (std::size_t k = 0; k < nr; ++k) {
-    const double* p = E.vtx(E.first[k]);
-    for (std::size_t j = 0; j < nr; ++j) {
-      if (j == k) continue;
-      const Box& b = box[j];
-      if (use_boxes && (p[0] < b.x0 || p[0] > b.x1 || p[1] < b.y0 || p[1] > b.y1)) continue;
-      if (inside(E, j, p)) containers[k].push_back(static_cast<int>(j));
-    }
-  }
-  for (std::size_t k = 0; k < nr; ++k) {
-    int innermost = -1;
-    for (int j : containers[k])
-      if (innermost < 0 || containers[static_cast<std::size_t>(j)].size() > containers[static_cast<std::size_t>(innermost)].size()) innermost = j;
+  std::vector<const std::vector<int>*> rings;
+  for (const Ring2& r : E.rings) rings.push_back(&r.indices);
+  const auto containers = detail::ring_containers(E.pts, rings, use_boxes);
+  const auto innermost = detail::innermost_parents(containers);
+  for (std::size_t k = 0; k < E.rings.size(); ++k) {
     const Ring2& r = E.rings[k];
-    if (r.parent != innermost)
-      return fail(d, "ring " + std::to_string(k) + ": parent " + std::to_string(r.parent) + ", but the innermost ring around it is " + std::to_string(innermost));
+    if (r.parent != innermost[k])
+      return fail(d, "ring " + std::to_string(k) + ": parent " + std::to_string(r.parent) + ", but the innermost ring around it is " +
+                         std::to_string(innermost[k]));
     const RingRole want = containers[k].size() % 2 == 0 ? RingRole::Shell : RingRole::Hole;
     if (r.role != want)
-      return fail(d, "ring " + std::to_string(k) + " is at depth " + std::to_string(containers[k].size()) + ", so a " + to_string(want) + ", not a " + to_string(r.role));
+      return fail(d, "ring " + std::to_string(k) + " is at depth " + std::to_string(containers[k].size()) + ", so a " + to_string(want) +
+                         ", not a " + to_string(r.role));
   }
   if (d) d->nested = true;
   return Status::ok();
