@@ -21,26 +21,32 @@ namespace {
 
 bool lex_less(const double* p, const double* q) { return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]); }
 
-// The Delaunay neighbours of every vertex (CSR, each list sorted by index, no repeats).
+// The Delaunay neighbours of every vertex (CSR). Each edge is taken once, from the triangle with
+// the smaller id (or the hull triangle): O(N), no sorting. The order within a list does not matter:
+// every choice made from a list is by exact comparisons with lexicographic ties.
 struct Adjacency {
   std::vector<std::size_t> start;
   std::vector<int> nbr;
-  explicit Adjacency(const Delaunay2& dt) : start(dt.n_vertices + 1, 0) {
-    std::vector<std::pair<int, int>> e;
-    e.reserve(dt.triangles.size() * 6);
-    for (const auto& t : dt.triangles)
-      for (int i = 0; i < 3; ++i) {
-        e.emplace_back(t[static_cast<std::size_t>(i)], t[static_cast<std::size_t>((i + 1) % 3)]);
-        e.emplace_back(t[static_cast<std::size_t>((i + 1) % 3)], t[static_cast<std::size_t>(i)]);
-      }
-    std::sort(e.begin(), e.end());
-    e.erase(std::unique(e.begin(), e.end()), e.end());
-    nbr.reserve(e.size());
-    for (const auto& [a, b] : e) {
-      ++start[static_cast<std::size_t>(a) + 1];
-      nbr.push_back(b);
-    }
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+  explicit Adjacency(const Delaunay2& dt) : start(dt.n_vertices + 2, 0) {
+    const auto for_edges = [&](const auto& f) {
+      for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+        for (std::size_t i = 0; i < 3; ++i) {
+          const int u = dt.neighbors[t][i];
+          if (u >= 0 && static_cast<std::size_t>(u) < t) continue;
+          f(dt.triangles[t][(i + 1) % 3], dt.triangles[t][(i + 2) % 3]);
+        }
+    };
+    for_edges([&](int a, int b) {
+      ++start[static_cast<std::size_t>(a) + 2];
+      ++start[static_cast<std::size_t>(b) + 2];
+    });
+    for (std::size_t v = 2; v < start.size(); ++v) start[v] += start[v - 1];
+    nbr.resize(start.back());
+    for_edges([&](int a, int b) {
+      nbr[start[static_cast<std::size_t>(a) + 1]++] = b;
+      nbr[start[static_cast<std::size_t>(b) + 1]++] = a;
+    });
+    start.pop_back();
   }
 };
 
@@ -54,21 +60,34 @@ class NnCrust {
       const int q = nearest(static_cast<int>(p), -1);
       chosen_[p] = {q, q < 0 ? -1 : nearest(static_cast<int>(p), q)};
     }
-    std::vector<std::array<int, 2>> e;  // the crust edges, both directions, no repeats
-    for (std::size_t p = 0; p < chosen_.size(); ++p)
-      for (int q : chosen_[p])
-        if (q >= 0) {
-          e.push_back({static_cast<int>(p), q});
-          e.push_back({q, static_cast<int>(p)});
-        }
-    std::sort(e.begin(), e.end());
-    e.erase(std::unique(e.begin(), e.end()), e.end());
-    start_.assign(chosen_.size() + 1, 0);
-    for (const auto& x : e) {
-      ++start_[static_cast<std::size_t>(x[0]) + 1];
-      nbr_.push_back(x[1]);
+    // The crust edges at each point: its choices and the points that chose it, without repeats
+    // (CSR by counting; each list holds a few entries, deduplicated in place).
+    start_.assign(chosen_.size() + 2, 0);
+    const auto for_choices = [&](const auto& f) {
+      for (std::size_t p = 0; p < chosen_.size(); ++p)
+        for (int q : chosen_[p])
+          if (q >= 0) f(static_cast<int>(p), q);
+    };
+    for_choices([&](int p, int q) {
+      ++start_[static_cast<std::size_t>(p) + 2];
+      ++start_[static_cast<std::size_t>(q) + 2];
+    });
+    for (std::size_t v = 2; v < start_.size(); ++v) start_[v] += start_[v - 1];
+    std::vector<int> all(start_.back());
+    for_choices([&](int p, int q) {
+      all[start_[static_cast<std::size_t>(p) + 1]++] = q;
+      all[start_[static_cast<std::size_t>(q) + 1]++] = p;
+    });
+    start_.pop_back();
+    nbr_.reserve(all.size());
+    std::vector<std::size_t> compact(start_.size(), 0);
+    for (std::size_t v = 0; v + 1 < start_.size(); ++v) {
+      const auto b = all.begin() + static_cast<std::ptrdiff_t>(start_[v]), e = all.begin() + static_cast<std::ptrdiff_t>(start_[v + 1]);
+      std::sort(b, e);
+      nbr_.insert(nbr_.end(), b, std::unique(b, e));
+      compact[v + 1] = nbr_.size();
     }
-    for (std::size_t v = 0; v + 1 < start_.size(); ++v) start_[v + 1] += start_[v];
+    start_ = std::move(compact);
   }
   // Chosen by both ends.
   bool mutual(int p, int q) const { return chose(p, q) && chose(q, p); }
@@ -165,18 +184,23 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnC
   UnionFind pieces(n), parts(n);
   Gaps gaps(pts, crust);
   std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
-  for (std::size_t p = 0; p < n; ++p)
-    for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
-      const int ip = static_cast<int>(p), q = adj.nbr[k];
-      if (q < ip) continue;
-      if (crust.mutual(ip, q)) {
-        pieces.join(ip, q);
-        parts.join(ip, q);
-      } else {
-        if (gaps.shorter(ip, q, gap)) parts.join(ip, q);
-        links.push_back({gaps.ratio(ip, q), {ip, q}});
-      }
+  const auto for_edges = [&](const auto& f) {
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k)
+        if (adj.nbr[k] > static_cast<int>(p)) f(static_cast<int>(p), adj.nbr[k]);
+  };
+  for_edges([&](int p, int q) {
+    if (crust.mutual(p, q)) {
+      pieces.join(p, q);
+      parts.join(p, q);
     }
+  });
+  // Only edges between two pieces can split: the gap test runs on those alone.
+  for_edges([&](int p, int q) {
+    if (pieces.find(p) == pieces.find(q)) return;
+    if (gaps.shorter(p, q, gap)) parts.join(p, q);
+    links.push_back({gaps.ratio(p, q), {p, q}});
+  });
   std::sort(links.begin(), links.end());
   for (const auto& [g, e] : links)
     if (pieces.join(e[0], e[1])) out.split_gap_spacings = g;
