@@ -13,6 +13,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/report.hpp"
+#include "constrict/topology.hpp"
 #include "constrict/validate.hpp"
 #include "constrict/voronoi_skeleton.hpp"
 
@@ -30,6 +31,8 @@ struct ReconstructArgs {
   bool no_grow = false;  // 3D: constriction from the convex hull only
   std::size_t stop_after = SIZE_MAX;
   bool quiet = false;
+  std::string topology = "single";  // 2D: single | auto (topology.hpp)
+  double topology_gap = kDefaultTopologyGap;
 };
 
 // Feeds the constriction's events to the progress printer.
@@ -98,6 +101,9 @@ Status check_dimension_options(const ReconstructArgs& a, int dim) {
     if (a.ascii) return wrong_dimension("--ascii", 2, a.in.path);
     if (a.fast) return wrong_dimension("--fast", 2, a.in.path);
     if (a.no_grow) return wrong_dimension("--no-grow", 2, a.in.path);
+  } else if (a.topology != "single") {
+    return {StatusCode::InvalidArgument, "--topology " + a.topology + " is 2D only so far, but " + a.in.path +
+                                             " is 3D (3D gives one closed genus-0 surface)"};
   } else if (a.fallback == "gamma0" || a.fallback == "degree4") {
     return {StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback, but " + a.in.path +
                                              " is 3D; 3D has auto (star cavities) or none"};
@@ -144,11 +150,71 @@ Status write_surface_rows(const ReconstructArgs& a, const PointSet& pts, const R
   return write_body_vtk(a.body, rows, tets);
 }
 
+// --topology: the library's ring options around the polygon options.
+Rings2Options rings_options(const ReconstructArgs& a, const Constrict2Options& polygon, std::size_t n) {
+  Rings2Options o;
+  (void)topology_from_name(a.topology, o.topology);
+  o.topology_gap = a.topology_gap;
+  o.infer_in_single = n <= kNoteMaxPoints;  // the note of single mode, where it is cheap
+  o.polygon = polygon;
+  return o;
+}
+
+// Single mode: one line on stderr when the data show several rings (so that auto is found).
+void note_inferred(const ReconstructArgs& a, const Rings2Result& rr) {
+  if (a.quiet || rr.topology != Topology2::Single || !rr.inferred.several()) return;
+  const std::size_t sh = rr.inferred.shells(), ho = rr.inferred.holes();
+  std::fprintf(stderr, "note: the points show %zu rings (%zu shell%s, %zu hole%s); try --topology auto\n",
+               rr.inferred.rings.size(), sh, sh == 1 ? "" : "s", ho, ho == 1 ? "" : "s");
+}
+
+// The SVG layers of a 2D result: the Delaunay edges dashed under it.
+Status svg_layers(const ReconstructArgs& a, const PointSet& pts, const std::string& method, GammaFaces& dt_edges,
+                  PolygonSvgLayers& layers) {
+  GraphSpec spec;
+  (void)GraphSpec::from_preset("delaunay", spec);
+  if (Status s = build_gamma_graph(pts, spec, dt_edges); !s) return s;
+  layers.graph = &dt_edges;
+  layers.title = "constrict: " + a.in.path + " (" + method + ")";
+  return Status::ok();
+}
+
+// --topology auto found several rings: write them (rings formats), report, summary.
+int finish_rings2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, const Rings2Result& rr,
+                  const Rings2Options& ropt, PolygonFormat fmt, Progress& progress, Clock::time_point t0, Clock::time_point t1) {
+  if (!a.render.empty())
+    return fail({StatusCode::InvalidArgument, "--render draws one polygon; for rings write -o NAME.svg"});
+  progress.phase("writing");
+  const auto tw = Clock::now();
+  PolygonSvgLayers layers;
+  GammaFaces dt_edges;
+  if (fmt == PolygonFormat::Svg)
+    if (Status s = svg_layers(a, pts, "rings", dt_edges, layers); !s) return fail(s);
+  if (Status s = write_rings2(a.out, pts, rr.rings, fmt, &layers); !s) return fail(s);
+  const auto t4 = Clock::now();
+  const std::size_t n = pts.size(), sh = rr.inferred.shells(), ho = rr.inferred.holes();
+  if (!a.report.empty()) {
+    nlohmann::json j = nlohmann::json::parse(to_json(rr, ropt));
+    add_common_json(a, rep, 2, n, n, j);
+    add_method_json(a, VoronoiSkeletonStats{}, j);
+    j["timings_ms"].update({{"read", ms(t0, t1)}, {"write", ms(tw, t4)}, {"total", ms(t0, Clock::now())}});
+    if (Status s = write_report(a.report, j); !s) return fail(s);
+  }
+  if (!a.quiet)
+    std::printf("%zu rings (%zu shell%s, %zu hole%s) through %zu/%zu points: valid (each simple, disjoint, oriented, nested; "
+                "smallest gap %.2f spacings) -> %s (%.0f ms)\n",
+                rr.rings.size(), sh, sh == 1 ? "" : "s", ho, ho == 1 ? "" : "s", n, n, rr.inferred.min_gap_spacings,
+                a.out.c_str(), ms(t0, Clock::now()));
+  return 0;
+}
+
 int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, Progress& progress,
                      Clock::time_point t0, Clock::time_point t1) {
   const PolygonFormat fmt = polygon_format_from_path(a.out);
   if (fmt == PolygonFormat::Auto)
-    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt or .svg)"});
+    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt, .svg or .rings)"});
+  if (is_skeleton(a) && a.topology != "single")
+    return fail({StatusCode::InvalidArgument, "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon)"});
   Constrict2Options opt;  // --refine none: the paper's algorithm (Constrict2Options::paper())
   (void)Constrict2Options::from_preset(a.refine == "none" ? "paper" : "default", opt);
   (void)fallback_from_name(a.fallback, opt.fallback);
@@ -156,7 +222,9 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   (void)criterion_from_name(a.method, opt.criterion);
   progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay + gamma-values");
   ProgressVisitor visitor(progress, pts.size());
-  Polygon2Result r;
+  const Rings2Options ropt = rings_options(a, opt, pts.size());
+  Rings2Result rr;
+  Polygon2Result& r = rr.polygon;
   VoronoiSkeletonStats skel;
   if (is_skeleton(a)) {
     VoronoiSkeletonOptions vo;
@@ -175,9 +243,13 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     r.ms_constrict = v.stats.ms_grow;
     r.ms_validate = v.stats.ms_validate;
     skel = v.stats;
-  } else if (Status s = reconstruct2(pts, opt, r, &visitor); !s) {
+  } else if (Status s = reconstruct_rings2(pts, ropt, rr, &visitor); !s) {
     return fail(s);
+  } else if (!rr.from_polygon) {
+    return finish_rings2(a, pts, rep, rr, ropt, fmt, progress, t0, t1);
   }
+  note_inferred(a, rr);
+  if (is_skeleton(a)) rr.rings = {Ring2{RingRole::Shell, -1, r.boundary}};
 
   // reconstruct2 validated the polygon exactly (options.validate); an incomplete polygon is
   // checked again by the general sweep so that the report says whether it is at least simple.
@@ -200,13 +272,9 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   PolygonSvgLayers layers;
   GammaFaces dt_edges;
   if (fmt == PolygonFormat::Svg) {
-    GraphSpec spec;
-    (void)GraphSpec::from_preset("delaunay", spec);
-    if (Status s = build_gamma_graph(pts, spec, dt_edges); !s) return fail(s);
-    layers.graph = &dt_edges;
+    if (Status s = svg_layers(a, pts, r.method, dt_edges, layers); !s) return fail(s);
     layers.highlight_points = r.stuck_points;
     layers.highlight_edges = r.fallback_edges;
-    layers.title = "constrict: " + a.in.path + " (" + r.method + ")";
   }
   if (Status s = write_polygon_rows(a.out, pts, rep, r.boundary, fmt, &layers); !s) return fail(s);
   if (int rc = a.render.empty() ? 0 : render_reconstruction2(a.render, pts, r)) return rc;
@@ -214,11 +282,11 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 
   const std::size_t n = pts.size(), nb = r.boundary.size();
   if (!a.report.empty()) {
-    nlohmann::json j = nlohmann::json::parse(to_json(r, opt));
+    nlohmann::json j = nlohmann::json::parse(to_json(rr, ropt));
     add_common_json(a, rep, 2, n, nb, j);
     j["valid"] = valid && r.complete;
-    j["validation"] = {{"simple", chk.simple}, {"counter_clockwise", chk.ccw}, {"all_points_once", chk.all_points},
-                       {"reason", chk.reason}};
+    j["validation"].update({{"simple", chk.simple}, {"counter_clockwise", chk.ccw}, {"all_points_once", chk.all_points},
+                            {"reason", chk.reason}});
     add_method_json(a, skel, j);
     if (is_skeleton(a)) j["fallback"] = nullptr;
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms(t3, t4)}, {"total", ms(t0, Clock::now())}});
@@ -401,6 +469,12 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")
       ->check(CLI::IsMember({"gamma", "min-area-change", "boissonnat", "voronoi-skeleton"}));
   cmd->add_option("--seed-limit", a->seed_limit, "voronoi-skeleton: try at most N seeds (0 = all)");
+  cmd->add_option("--topology", a->topology,
+                  "2D: single (default: one polygon) | auto (the rings the data show: shells, holes, parts; docs/topology.md)")
+      ->check(CLI::IsMember({"single", "auto"}));
+  cmd->add_option("--topology-gap", a->topology_gap,
+                  "2D auto: accept several rings only when every two are at least T local spacings apart (default 2)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};
 }

@@ -172,9 +172,9 @@ Status write_graph(const std::string& path, const PointSet& points, const GammaF
 namespace constrict {
 
 /// Output formats of write_polygon2(). Auto picks by extension.
-enum class PolygonFormat { Auto, Idx, Csv, GeoJson, Wkt, Svg };
+enum class PolygonFormat { Auto, Idx, Csv, GeoJson, Wkt, Svg, Rings };
 
-/// Format from a file name's extension (.idx .csv .geojson/.json .wkt .svg); Auto if unknown.
+/// Format from a file name's extension (.idx .csv .geojson/.json .wkt .svg .rings); Auto if unknown.
 PolygonFormat polygon_format_from_path(const std::string& path) noexcept;
 
 /// Optional layers of the SVG picture of a polygon (paper Figure 4 style).
@@ -191,10 +191,37 @@ struct PolygonSvgLayers {
 /// - .geojson (.json): a Feature with a Polygon geometry, the ring closed (first point repeated).
 /// - .wkt: `POLYGON ((x y, ..., x y))`, ring closed.
 /// - .svg: the points, the polygon solid, optional layers.
+/// - .rings: the ring-set format of write_rings2() with the polygon as one shell.
 /// @param[in] boundary polygon vertices as input indices (at least 3 for the polygon formats)
 /// @param[in] layers optional SVG layers (ignored by the other formats)
 /// @return Ok, InvalidArgument (unknown extension, not 2D, index out of range), WriteFailed
 Status write_polygon2(const std::string& path, const PointSet& points, const std::vector<int>& boundary,
                       PolygonFormat format = PolygonFormat::Auto, const PolygonSvgLayers* layers = nullptr);
+
+}  // namespace constrict
+
+#include "constrict/topology.hpp"
+
+namespace constrict {
+
+/// Writes a ring set (reconstruct_rings2(), topology.hpp) given as input indices. One ring is written
+/// exactly as write_polygon2() writes its polygon. Several rings:
+/// - .rings: the ground-truth format of the shared topology data (docs/topology.md §"Formats"):
+///   a comment line `# constrict rings R shells S holes H points N`, then one comment line per ring
+///   `# ring K shell|hole parent P`, then one line per ring, in the same order, `c i0 i1 ... ik`
+///   (0-based input indices, the ring closed implicitly). Shells run counter-clockwise, holes
+///   clockwise.
+/// - .geojson (.json): a Feature with a Polygon (one shell) or MultiPolygon geometry (RFC 7946
+///   §3.1.6: each polygon its shell, counter-clockwise, then the holes directly inside it,
+///   clockwise; every ring closed). An island in a lake is a polygon of its own.
+/// - .wkt: `POLYGON ((shell), (hole), ...)` or `MULTIPOLYGON (((shell), (hole)), ((shell)))`, rings
+///   closed: valid by the OGC Simple Features rules when the rings are (validate_rings2()).
+/// - .svg: the points and the rings as one path (fill-rule evenodd), holes drawn dashed.
+/// - .idx, .csv hold one polygon: InvalidArgument for several rings.
+/// @param[in] rings the rings (roles, parents and indices; at least 3 indices each)
+/// @return Ok, InvalidArgument (unknown extension, not 2D, index or parent out of range, a
+///   one-polygon format for several rings), WriteFailed
+Status write_rings2(const std::string& path, const PointSet& points, const std::vector<Ring2>& rings,
+                    PolygonFormat format = PolygonFormat::Auto, const PolygonSvgLayers* layers = nullptr);
 
 }  // namespace constrict

@@ -54,4 +54,16 @@ int in_circle_coplanar3(const double* a, const double* b, const double* c, const
 /// @param[in] xyz coordinates, 3 per point; @param[in] tris 3 point indices per triangle
 int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept;
 
+/// Compares the distances from p: sign(|p-q|^2 - |p-r|^2): -1 if q is nearer to p than r, 0 if
+/// equally near, +1 if farther. Exact (CGAL's filtered compare_distance_to_point).
+int compare_distance2(const double* p, const double* q, const double* r) noexcept;
+
+/// A gap against a local spacing: the sign of k·|p-q|^2 - t^2·(|a_0-b_0|^2 + ... + |a_{k-1}-b_{k-1}|^2),
+/// i.e. whether the distance pq is at least t times the root mean square of the k lengths a_i b_i.
+/// Exact for any finite doubles (semi-static filter, then CGAL::Mpzf arithmetic). @pre k >= 1
+/// @param[in] a, b the k segments' endpoints (2D points)
+/// @param[in] t the factor (finite, >= 0)
+int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
+                 double t) noexcept;
+
 }  // namespace constrict

@@ -8,6 +8,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
+#include "constrict/topology.hpp"
 
 namespace constrict {
 
@@ -25,5 +26,15 @@ std::string to_json(const Mesh3Result& result, const Constrict3Options& options)
 /// fallback, locked, stuck_points, stages, removed_simplices, fallback_insertions,
 /// fallback_edges, area, perimeter, refine and timings_ms.
 std::string to_json(const Polygon2Result& result, const Constrict2Options& options);
+
+/// The library's part of a 2D report with rings (reconstruct_rings2()): the fields of the
+/// Polygon2Result report when the rings are the single polygon (else those fields for a ring set:
+/// complete, valid, validation, method "rings", area and perimeter summed with signs, timings_ms),
+/// plus `"rings": [{"role": "shell"|"hole", "parent": k or -1, "indices": [...], "gap_spacings",
+/// "nearest_ring"}, ...]` and `"topology": {"mode", "gap_threshold", "inferred": {"decision",
+/// "rings", "shells", "holes", "parts", "parts_polygon", "bad_degree_points", "split_gap_spacings",
+/// "min_gap_spacings", "reason", "ring_list"}}` (ring_list: the inferred rings when they differ from "rings"; gaps in local
+/// spacings, null for none).
+std::string to_json(const Rings2Result& result, const Rings2Options& options);
 
 }  // namespace constrict

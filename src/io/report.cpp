@@ -2,6 +2,8 @@
 // The JSON reports of reconstruct2 / reconstruct3 (report.hpp): one writer for every caller.
 #include "constrict/report.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 namespace constrict {
@@ -18,6 +20,16 @@ nlohmann::json variants_json(const std::vector<Constrict3Candidate>& cand) {
   for (const auto& c : cand)
     a.push_back({{"size_bias", c.size_bias}, {"label_weight", c.label_weight}, {"surface_area", c.surface_area},
                  {"complete", c.complete}, {"ms", c.ms}});
+  return a;
+}
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json rings_json(const std::vector<Ring2>& rings) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const Ring2& r : rings)
+    a.push_back({{"role", to_string(r.role)}, {"parent", r.parent}, {"indices", r.indices},
+                 {"gap_spacings", finite_or_null(r.gap_spacings)}, {"nearest_ring", r.nearest_ring}});
   return a;
 }
 
@@ -82,6 +94,43 @@ std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
                  {"perimeter_before", r.perimeter_before_refine}};
   j["timings_ms"] = {{"delaunay", r.ms_delaunay}, {"gamma", 0.0},        {"constrict", r.ms_constrict},
                      {"fallback", r.ms_fallback}, {"refine", r.ms_refine}, {"validate", r.ms_validate}};
+  return j.dump();
+}
+
+std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
+  nlohmann::json j;
+  if (r.from_polygon) {
+    j = nlohmann::json::parse(to_json(r.polygon, opt.polygon));
+  } else {
+    j["complete"] = r.complete();
+    j["valid"] = r.valid();
+    j["method"] = "rings";
+    j["area"] = r.area;
+    j["perimeter"] = r.perimeter;
+    j["timings_ms"] = {{"validate", r.ms_validate}};
+  }
+  j["validation"]["rings_disjoint"] = r.check.simple;
+  j["validation"]["rings_oriented"] = r.check.oriented;
+  j["validation"]["rings_nested"] = r.check.nested;
+  if (!r.from_polygon) j["validation"]["reason"] = r.check.reason;
+  j["timings_ms"]["topology"] = r.ms_infer;
+  j["rings"] = rings_json(r.rings);
+  nlohmann::json t = {{"mode", to_string(r.topology)}, {"gap_threshold", opt.topology_gap}, {"inferred", nullptr}};
+  if (r.inferred_run) {
+    const RingsInference& in = r.inferred;
+    t["inferred"] = {{"decision", to_string(in.decision)},
+                     {"rings", in.rings.size()},
+                     {"shells", in.shells()},
+                     {"holes", in.holes()},
+                     {"parts", in.parts},
+                     {"parts_polygon", in.parts_polygon},
+                     {"bad_degree_points", in.bad_degree_points},
+                     {"split_gap_spacings", in.split_gap_spacings},
+                     {"min_gap_spacings", finite_or_null(in.min_gap_spacings)},
+                     {"reason", in.check.reason},
+                     {"ring_list", r.from_polygon && in.rings.size() > 1 ? rings_json(in.rings) : nlohmann::json(nullptr)}};
+  }
+  j["topology"] = t;
   return j.dump();
 }
 

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file topology.hpp
+/// @brief 2D reconstruction with the topology the data show (issue 16): a set of rings (shells and
+/// holes, nested to any depth) through all points, or the single polygon of reconstruct2() when the
+/// data show one curve. Method, threshold and measurements: docs/topology.md.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "constrict/constrict.hpp"
+#include "constrict/delaunay.hpp"
+#include "constrict/points.hpp"
+#include "constrict/status.hpp"
+
+namespace constrict {
+
+/// What topology a reconstruction may give.
+enum class Topology2 {
+  Single,  ///< one simple polygon through all points: reconstruct2(), the paper's problem
+  Auto,    ///< the rings the data show (infer_rings2()); one ring: the Single polygon
+};
+
+/// Topology by name: "single", "auto". @return false for another name
+bool topology_from_name(const std::string& name, Topology2& out) noexcept;
+const char* to_string(Topology2 topology) noexcept;
+
+/// Role of a ring: a shell bounds the region on its left (counter-clockwise), a hole the region on
+/// its right (clockwise); rings alternate shell / hole with the nesting depth.
+enum class RingRole { Shell, Hole };
+const char* to_string(RingRole role) noexcept;
+
+/// One ring of a ring set.
+struct Ring2 {
+  RingRole role = RingRole::Shell;
+  int parent = -1;           ///< the ring that directly contains this one (index in the set), or -1
+  std::vector<int> indices;  ///< input indices in order, closed implicitly; starts at the smallest
+  /// The smallest gap between this ring and another, in units of the local spacing (see
+  /// infer_rings2()), and that ring; infinity and -1 when there is no other ring. Double
+  /// arithmetic, for the report: the decision itself is exact (compare_gap2()).
+  double gap_spacings = std::numeric_limits<double>::infinity();
+  int nearest_ring = -1;
+};
+
+/// The default of Rings2Options::topology_gap, measured on the shared data (docs/topology.md
+/// §"Threshold"): the 43 ground-truth single-curve sets split at <= 1.27 local spacings, the 20
+/// topology sets' rings are >= 2.57 apart (sd_vase's inner loop 9.8).
+constexpr double kDefaultTopologyGap = 2.0;
+/// The CLI's single mode infers the topology (for its note) up to this many points.
+constexpr std::size_t kNoteMaxPoints = 20000;
+
+/// Options of reconstruct_rings2() and infer_rings2().
+struct Rings2Options {
+  Topology2 topology = Topology2::Single;  ///< Single: today's polygon exactly
+  /// Parts of the data at least this many local spacings apart become separate rings
+  /// (infer_rings2()). Default measured (kDefaultTopologyGap); larger splits less often.
+  double topology_gap = kDefaultTopologyGap;
+  /// Single mode: still infer the topology (one extra Delaunay triangulation, O(N log N): about
+  /// 0.2 s at 10^5 points), so that the caller can tell the user when the data show several rings
+  /// (Rings2Result::inferred). Off by default (single mode costs what it did); the CLI turns it on
+  /// up to kNoteMaxPoints points.
+  bool infer_in_single = false;
+  /// Validate the ring set exactly (validate_rings2()); a set that fails is a bug: Internal.
+  bool validate = true;
+  Constrict2Options polygon;  ///< the options of the single polygon (reconstruct2()), also used
+                              ///< for the parts of the data that are not one clean cycle
+};
+
+/// Why infer_rings2() gave its answer.
+enum class RingsDecision {
+  OneCurve,   ///< the points form one part (no gap of topology_gap spacings splits them)
+  SmallPart,  ///< a part has fewer than 3 points or is collinear: no ring through it
+  Crossing,   ///< the rings of the parts would meet (validate_rings2() failed): not accepted
+  Rings,      ///< several parts, each a ring, disjoint: the multi-ring answer
+};
+const char* to_string(RingsDecision decision) noexcept;
+
+/// What validate_rings2() found.
+struct RingsCheck {
+  bool indices_ok = false;  ///< every entry in [0, N), every parent -1 or another ring's index
+  bool all_points = false;  ///< every input point in exactly one ring, once
+  bool simple = false;      ///< every ring simple, and no two rings meet (not even touch)
+  bool oriented = false;    ///< shells counter-clockwise, holes clockwise
+  bool nested = false;      ///< each parent is the innermost ring containing the ring; roles by depth
+  std::string reason;       ///< one line; empty when valid
+};
+
+/// What the data show (infer_rings2()).
+struct RingsInference {
+  RingsDecision decision = RingsDecision::OneCurve;
+  /// The rings (Rings, Crossing), ordered by their lexicographically smallest point (a parent
+  /// precedes its children), oriented and nested; empty otherwise.
+  std::vector<Ring2> rings;
+  std::size_t parts = 0;              ///< parts found (1 for OneCurve)
+  std::size_t parts_polygon = 0;      ///< parts not one clean NN-crust cycle: reconstruct2() ran on them
+  std::size_t bad_degree_points = 0;  ///< points whose NN-crust degree is not 2 (noise, corners)
+  double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
+  /// The largest threshold at which the points would still split into several parts (double; the
+  /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data
+  /// split iff topology_gap <= split_gap_spacings (up to rounding of the report value).
+  double split_gap_spacings = 0;
+  /// The smallest gap between two parts in local spacings (double; infinity with one part).
+  double min_gap_spacings = std::numeric_limits<double>::infinity();
+  RingsCheck check;  ///< validate_rings2() of the rings (Rings, Crossing)
+  std::size_t shells() const noexcept;
+  std::size_t holes() const noexcept;
+  bool several() const noexcept { return decision == RingsDecision::Rings; }
+};
+
+/// Result of reconstruct_rings2().
+struct Rings2Result {
+  Topology2 topology = Topology2::Single;  ///< the mode that ran
+  /// The rings: Single mode, or Auto when the data show one curve: one shell, the polygon of
+  /// reconstruct2() (`polygon.boundary`); Auto with RingsDecision::Rings: inferred.rings.
+  std::vector<Ring2> rings;
+  bool from_polygon = true;  ///< rings[0] is the reconstruct2() polygon (polygon is filled)
+  Polygon2Result polygon;    ///< the reconstruct2() run (empty when Auto found several rings)
+  RingsInference inferred;   ///< what the data show (Auto, or Single with infer_in_single)
+  bool inferred_run = false;  ///< infer_rings2() ran
+  bool validated = false;
+  RingsCheck check;
+  bool complete() const noexcept { return from_polygon ? polygon.complete : true; }
+  /// Complete and validated: every point in exactly one ring, rings simple, disjoint, oriented, nested.
+  bool valid() const noexcept { return complete() && validated && check.reason.empty(); }
+  /// Area (holes subtract) and total perimeter of the rings, double arithmetic.
+  double area = 0, perimeter = 0;
+  double ms_infer = 0, ms_validate = 0;  ///< infer_rings2() (with its Delaunay), validate_rings2()
+};
+
+/// Infers the rings the points show (docs/topology.md §"Method"). (1) The NN-crust of Dey and
+/// Kumar ("A simple provable algorithm for curve reconstruction", SODA 1999) on the Delaunay
+/// triangulation: each point p chooses its nearest Delaunay neighbour q and its nearest Delaunay
+/// neighbour r with angle(q, p, r) > 90° (compare_distance2(), diametral_side2(); ties by the
+/// lexicographic order of the points). (2) Parts: the connected components of the graph of the
+/// mutual crust edges (chosen by both ends) and of the Delaunay edges pq shorter than topology_gap
+/// times the local spacing, the root mean square of the crust edges at p and q (compare_gap2()).
+/// So two parts are everywhere at least topology_gap local spacings apart. (3) A part that is one
+/// crust cycle is a ring as it is; any other part gets reconstruct2()'s polygon of its points.
+/// (4) Nesting by exact point-in-polygon tests, roles by depth parity, orientation fixed (orient2).
+/// (5) validate_rings2(). Deterministic; the same rings for the points in any order.
+/// @param[in] points 2D points (check_points() passed)
+/// @param[in] dt their Delaunay triangulation (build_delaunay2())
+/// @param[in] options topology_gap and the polygon options for the parts
+/// @param[out] out the decision and the rings
+/// @return Ok; InvalidArgument for a bad topology_gap or a triangulation of other points
+/// @note O(N log N) plus reconstruct2() on the parts that are not clean cycles; the nesting test
+///   is O(R · E_box) (validate_rings2()).
+Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out);
+
+/// Reconstructs the rings through all points (2D): Single: reconstruct2()'s polygon as one shell;
+/// Auto: infer_rings2()'s rings when it decides RingsDecision::Rings, else the Single polygon.
+/// @param[in] points dim == 2, at least 3 points, no duplicates, not all collinear
+/// @param[out] result the rings, the single-mode run and the inference
+/// @param[in] visitor observes the reconstruct2() run
+/// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
+///   Internal if a complete ring set fails validation (a bug)
+/// @note Guarantee: with validate, a complete result is a valid ring set (validate_rings2()).
+///   Auto costs one Delaunay triangulation and O(N log N) more than Single, and runs reconstruct2()
+///   on the whole set only when it finds one part.
+Status reconstruct_rings2(const PointSet& points, const Rings2Options& options, Rings2Result& result,
+                          Constrict2Visitor* visitor = nullptr);
+
+/// Checks a ring set exactly: indices, every point in exactly one ring once, each ring >= 3 points
+/// and simple, no two rings meet (closed segments: touching counts), shells counter-clockwise and
+/// holes clockwise, each parent the innermost ring that contains the ring (exact point-in-polygon)
+/// and the roles alternating with depth (depth 0 a shell).
+/// @return Ok, or InvalidArgument with the reason (also in details->reason)
+/// @note O(E log E) sweep over all ring edges for the intersections; the nesting test is
+///   O(R · E_box), E_box the edges of the rings whose bounding box holds a ring's first vertex.
+Status validate_rings2(const PointSet& points, const std::vector<Ring2>& rings, RingsCheck* details = nullptr);
+
+/// Same checks by testing all edge pairs and all ring pairs: O(E^2). Meant for tests.
+Status validate_rings2_brute_force(const PointSet& points, const std::vector<Ring2>& rings,
+                                   RingsCheck* details = nullptr);
+
+}  // namespace constrict

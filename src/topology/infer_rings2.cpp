@@ -1,0 +1,358 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// infer_rings2(): the rings the points show (topology.hpp, docs/topology.md §"Method").
+// Exactness contract: every decision -- nearest neighbour, half neighbour, mutual edges, the gap
+// test, cycles, nesting and orientation -- uses exact predicates (compare_distance2,
+// diametral_side2, compare_gap2, orient2) or combinatorics; doubles are computed only for the report
+// (gap_spacings, split_gap_spacings). Ties are broken by the lexicographic order of the points,
+// never by their indices, so the parts do not depend on the file order.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "constrict/predicates.hpp"
+#include "constrict/topology.hpp"
+#include "topology/detail/ring_nesting.hpp"
+
+namespace constrict {
+namespace {
+
+bool lex_less(const double* p, const double* q) { return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]); }
+
+// The Delaunay neighbours of every vertex (CSR). Each edge is taken once, from the triangle with
+// the smaller id (or the hull triangle): O(N), no sorting. The order within a list does not matter:
+// every choice made from a list is by exact comparisons with lexicographic ties.
+struct Adjacency {
+  std::vector<std::size_t> start;
+  std::vector<int> nbr;
+  explicit Adjacency(const Delaunay2& dt) : start(dt.n_vertices + 2, 0) {
+    const auto for_edges = [&](const auto& f) {
+      for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+        for (std::size_t i = 0; i < 3; ++i) {
+          const int u = dt.neighbors[t][i];
+          if (u >= 0 && static_cast<std::size_t>(u) < t) continue;
+          f(dt.triangles[t][(i + 1) % 3], dt.triangles[t][(i + 2) % 3]);
+        }
+    };
+    for_edges([&](int a, int b) {
+      ++start[static_cast<std::size_t>(a) + 2];
+      ++start[static_cast<std::size_t>(b) + 2];
+    });
+    for (std::size_t v = 2; v < start.size(); ++v) start[v] += start[v - 1];
+    nbr.resize(start.back());
+    for_edges([&](int a, int b) {
+      nbr[start[static_cast<std::size_t>(a) + 1]++] = b;
+      nbr[start[static_cast<std::size_t>(b) + 1]++] = a;
+    });
+    start.pop_back();
+  }
+};
+
+// The NN-crust (Dey–Kumar 1999, §3): p chooses its nearest Delaunay neighbour q, and its nearest
+// Delaunay neighbour r in the open half-plane away from q (angle qpr > 90°: p strictly inside the
+// circle with diameter qr). "Nearer" is exact; equally near candidates go lexicographically.
+class NnCrust {
+ public:
+  NnCrust(const PointSet& pts, const Adjacency& adj) : pts_(pts), adj_(adj), chosen_(adj.start.size() - 1) {
+    for (std::size_t p = 0; p < chosen_.size(); ++p) {
+      const int q = nearest(static_cast<int>(p), -1);
+      chosen_[p] = {q, q < 0 ? -1 : nearest(static_cast<int>(p), q)};
+    }
+    // The crust edges at each point: its choices and the points that chose it, without repeats
+    // (CSR by counting; each list holds a few entries, deduplicated in place).
+    start_.assign(chosen_.size() + 2, 0);
+    const auto for_choices = [&](const auto& f) {
+      for (std::size_t p = 0; p < chosen_.size(); ++p)
+        for (int q : chosen_[p])
+          if (q >= 0) f(static_cast<int>(p), q);
+    };
+    for_choices([&](int p, int q) {
+      ++start_[static_cast<std::size_t>(p) + 2];
+      ++start_[static_cast<std::size_t>(q) + 2];
+    });
+    for (std::size_t v = 2; v < start_.size(); ++v) start_[v] += start_[v - 1];
+    std::vector<int> all(start_.back());
+    for_choices([&](int p, int q) {
+      all[start_[static_cast<std::size_t>(p) + 1]++] = q;
+      all[start_[static_cast<std::size_t>(q) + 1]++] = p;
+    });
+    start_.pop_back();
+    nbr_.reserve(all.size());
+    std::vector<std::size_t> compact(start_.size(), 0);
+    for (std::size_t v = 0; v + 1 < start_.size(); ++v) {
+      const auto b = all.begin() + static_cast<std::ptrdiff_t>(start_[v]), e = all.begin() + static_cast<std::ptrdiff_t>(start_[v + 1]);
+      std::sort(b, e);
+      nbr_.insert(nbr_.end(), b, std::unique(b, e));
+      compact[v + 1] = nbr_.size();
+    }
+    start_ = std::move(compact);
+  }
+  // Chosen by both ends.
+  bool mutual(int p, int q) const { return chose(p, q) && chose(q, p); }
+  std::size_t degree(int p) const { return start_[static_cast<std::size_t>(p) + 1] - start_[static_cast<std::size_t>(p)]; }
+  const int* begin(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p)]; }
+  const int* end(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p) + 1]; }
+
+ private:
+  const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
+  bool chose(int p, int q) const {
+    const auto& c = chosen_[static_cast<std::size_t>(p)];
+    return c[0] == q || c[1] == q;
+  }
+  // Is a strictly preferred to b as p's neighbour? Nearer, or as near and lexicographically smaller.
+  bool better(int p, int a, int b) const {
+    const int c = compare_distance2(at(p), at(a), at(b));
+    return c < 0 || (c == 0 && lex_less(at(a), at(b)));
+  }
+  // The nearest neighbour of p (away == -1), or the nearest with angle(away, p, r) > 90°.
+  int nearest(int p, int away) const {
+    int best = -1;
+    const std::size_t p_ = static_cast<std::size_t>(p);
+    for (std::size_t k = adj_.start[p_]; k < adj_.start[p_ + 1]; ++k) {
+      const int r = adj_.nbr[k];
+      if (away >= 0 && diametral_side2(at(away), at(r), at(p)) >= 0) continue;
+      if (best < 0 || better(p, r, best)) best = r;
+    }
+    return best;
+  }
+  const PointSet& pts_;
+  const Adjacency& adj_;
+  std::vector<std::array<int, 2>> chosen_;
+  std::vector<std::size_t> start_;
+  std::vector<int> nbr_;
+};
+
+struct UnionFind {
+  std::vector<int> up;
+  explicit UnionFind(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
+  int find(int x) {
+    while (up[static_cast<std::size_t>(x)] != x) x = up[static_cast<std::size_t>(x)] = up[static_cast<std::size_t>(up[static_cast<std::size_t>(x)])];
+    return x;
+  }
+  bool join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    up[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    return true;
+  }
+};
+
+// The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
+class Gaps {
+ public:
+  Gaps(const PointSet& pts, const NnCrust& crust) : pts_(pts), crust_(crust) {}
+  // |pq| < t · rms(crust edges at p and q)? Exact.
+  bool shorter(int p, int q, double t) {
+    a_.clear();
+    b_.clear();
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) {
+        a_.push_back(at(end));
+        b_.push_back(at(*r));
+      }
+    return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
+  }
+  // |pq| / rms(crust edges at p and q), double arithmetic (for the report).
+  double ratio(int p, int q) const {
+    double sum = 0;
+    std::size_t k = 0;
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r, ++k) sum += len2(end, *r);
+    return std::sqrt(len2(p, q) / (sum / static_cast<double>(k)));
+  }
+
+ private:
+  const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
+  double len2(int a, int b) const {
+    const double dx = at(a)[0] - at(b)[0], dy = at(a)[1] - at(b)[1];
+    return dx * dx + dy * dy;
+  }
+  const PointSet& pts_;
+  const NnCrust& crust_;
+  std::vector<const double*> a_, b_;
+};
+
+// The parts: components of the mutual crust edges and of the Delaunay edges shorter than
+// gap · local spacing. Also the split gap: the bottleneck of the single-linkage tree over the
+// mutual-crust pieces (the largest threshold that still splits), in double, for the report.
+std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
+                            RingsInference& out) {
+  const std::size_t n = pts.size();
+  UnionFind pieces(n), parts(n);
+  Gaps gaps(pts, crust);
+  std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
+  const auto for_edges = [&](const auto& f) {
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k)
+        if (adj.nbr[k] > static_cast<int>(p)) f(static_cast<int>(p), adj.nbr[k]);
+  };
+  for_edges([&](int p, int q) {
+    if (crust.mutual(p, q)) {
+      pieces.join(p, q);
+      parts.join(p, q);
+    }
+  });
+  // Only edges between two pieces can split: the gap test runs on those alone.
+  for_edges([&](int p, int q) {
+    if (pieces.find(p) == pieces.find(q)) return;
+    if (gaps.shorter(p, q, gap)) parts.join(p, q);
+    links.push_back({gaps.ratio(p, q), {p, q}});
+  });
+  std::sort(links.begin(), links.end());
+  for (const auto& [g, e] : links)
+    if (pieces.join(e[0], e[1])) out.split_gap_spacings = g;
+  std::vector<int> part_of(n);
+  for (std::size_t v = 0; v < n; ++v) part_of[v] = parts.find(static_cast<int>(v));
+  return part_of;
+}
+
+// The parts as point lists (ascending indices), ordered by their lexicographically smallest point.
+std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector<int>& part_of) {
+  std::vector<std::vector<int>> by_root(part_of.size());
+  for (std::size_t v = 0; v < part_of.size(); ++v) by_root[static_cast<std::size_t>(part_of[v])].push_back(static_cast<int>(v));
+  std::vector<std::vector<int>> parts;
+  for (auto& g : by_root)
+    if (!g.empty()) parts.push_back(std::move(g));
+  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  const auto lowest = [&](const std::vector<int>& g) { return *std::min_element(g.begin(), g.end(), [&](int a, int b) { return lex_less(at(a), at(b)); }); };
+  std::vector<int> low(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) low[k] = lowest(parts[k]);
+  std::vector<std::size_t> order(parts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lex_less(at(low[a]), at(low[b])); });
+  std::vector<std::vector<int>> sorted;
+  for (std::size_t k : order) sorted.push_back(std::move(parts[k]));
+  return sorted;
+}
+
+// The part as one crust cycle, if it is one (every point of degree 2, the trace covers the part).
+bool crust_cycle(const NnCrust& crust, const std::vector<int>& part, const std::vector<int>& part_of, std::vector<int>& ring) {
+  const auto same = [&](int a, int b) { return part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)]; };
+  for (int v : part)
+    if (crust.degree(v) != 2 || !same(v, crust.begin(v)[0]) || !same(v, crust.begin(v)[1])) return false;
+  ring.clear();
+  int prev = -1, v = part.front();
+  do {
+    ring.push_back(v);
+    const int* w = crust.begin(v);
+    const int next = w[0] != prev ? w[0] : w[1];
+    prev = v;
+    v = next;
+  } while (v != part.front() && ring.size() <= part.size());
+  return ring.size() == part.size();
+}
+
+// reconstruct2() on the points of a part; false when they hold no polygon (< 3, collinear).
+bool part_polygon(const PointSet& pts, const std::vector<int>& part, const Constrict2Options& o, std::vector<int>& ring) {
+  PointSet sub;
+  sub.dim = 2;
+  sub.coords.reserve(2 * part.size());
+  for (int v : part) sub.coords.insert(sub.coords.end(), pts[static_cast<std::size_t>(v)], pts[static_cast<std::size_t>(v)] + 2);
+  Polygon2Result r;
+  if (part.size() < 3 || !reconstruct2(sub, o, r) || !r.valid()) return false;
+  ring.clear();
+  for (int i : r.boundary) ring.push_back(part[static_cast<std::size_t>(i)]);
+  return true;
+}
+
+// +1 if the ring runs counter-clockwise: the turn at its lexicographically smallest vertex (a
+// convex vertex of a simple ring). Exact.
+int ring_orientation(const PointSet& pts, const std::vector<int>& r) {
+  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  std::size_t m = 0;
+  for (std::size_t i = 1; i < r.size(); ++i)
+    if (lex_less(at(r[i]), at(r[m]))) m = i;
+  return orient2(at(r[(m + r.size() - 1) % r.size()]), at(r[m]), at(r[(m + 1) % r.size()]));
+}
+
+// Parents (innermost container), roles by depth parity, orientation fixed (shells CCW, holes CW),
+// each ring from its smallest index.
+void nest(const PointSet& pts, std::vector<std::vector<int>>& rings, RingsInference& out) {
+  std::vector<const std::vector<int>*> view;
+  for (const auto& r : rings) view.push_back(&r);
+  const auto containers = detail::ring_containers(pts, view, true);
+  const auto parent = detail::innermost_parents(containers);
+  out.rings.assign(rings.size(), Ring2{});
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    Ring2& r = out.rings[k];
+    r.parent = parent[k];
+    r.role = containers[k].size() % 2 == 0 ? RingRole::Shell : RingRole::Hole;
+    r.indices = std::move(rings[k]);
+    if ((ring_orientation(pts, r.indices) > 0) != (r.role == RingRole::Shell)) std::reverse(r.indices.begin(), r.indices.end());
+    std::rotate(r.indices.begin(), std::min_element(r.indices.begin(), r.indices.end()), r.indices.end());
+  }
+}
+
+// Each ring's smallest gap to another part and the overall smallest (double, for the report).
+void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const std::vector<int>& ring_of, RingsInference& out) {
+  const Gaps gaps(pts, crust);
+  for (std::size_t p = 0; p < ring_of.size(); ++p)
+    for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
+      const int ip = static_cast<int>(p), q = adj.nbr[k];
+      const int rp = ring_of[p], rq = ring_of[static_cast<std::size_t>(q)];
+      if (q < ip || rp == rq) continue;
+      const double g = gaps.ratio(ip, q);
+      for (const auto& [r, other] : {std::pair<int, int>{rp, rq}, std::pair<int, int>{rq, rp}}) {
+        Ring2& ring = out.rings[static_cast<std::size_t>(r)];
+        if (g < ring.gap_spacings) {
+          ring.gap_spacings = g;
+          ring.nearest_ring = other;
+        }
+      }
+      out.min_gap_spacings = std::min(out.min_gap_spacings, g);
+    }
+}
+
+}  // namespace
+
+const char* to_string(RingsDecision d) noexcept {
+  switch (d) {
+    case RingsDecision::OneCurve: return "one-curve";
+    case RingsDecision::SmallPart: return "small-part";
+    case RingsDecision::Crossing: return "crossing";
+    case RingsDecision::Rings: return "rings";
+  }
+  return "?";
+}
+
+std::size_t RingsInference::shells() const noexcept {
+  return static_cast<std::size_t>(std::count_if(rings.begin(), rings.end(), [](const Ring2& r) { return r.role == RingRole::Shell; }));
+}
+std::size_t RingsInference::holes() const noexcept { return rings.size() - shells(); }
+
+Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out) {
+  out = RingsInference{};
+  const double gap = options.topology_gap;
+  out.gap_threshold = gap;
+  if (!(gap >= 0) || !std::isfinite(gap))
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
+  if (points.dim != 2 || dt.n_vertices != points.size() || dt.triangles.size() != dt.neighbors.size())
+    return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
+  const Adjacency adj(dt);
+  const NnCrust crust(points, adj);
+  for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
+  const std::vector<int> part_of = find_parts(points, adj, crust, gap, out);
+  std::vector<std::vector<int>> parts = group_parts(points, part_of);
+  out.parts = parts.size();
+  if (parts.size() == 1) return Status::ok();  // OneCurve
+  std::vector<std::vector<int>> rings(parts.size());
+  std::vector<int> ring_of(points.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    for (int v : parts[k]) ring_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+    if (crust_cycle(crust, parts[k], part_of, rings[k])) continue;
+    ++out.parts_polygon;
+    if (!part_polygon(points, parts[k], options.polygon, rings[k])) {
+      out.decision = RingsDecision::SmallPart;
+      return Status::ok();
+    }
+  }
+  nest(points, rings, out);
+  report_gaps(points, adj, crust, ring_of, out);
+  out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
+  return Status::ok();
+}
+
+}  // namespace constrict

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// reconstruct_rings2(): the ladder of topology.hpp -- infer the rings; several with clear gaps
+// (Auto) -> the rings; otherwise -> the single polygon of reconstruct2() as one shell. Then the
+// exact validation of whatever ring set came out.
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "constrict/delaunay.hpp"
+#include "constrict/points.hpp"
+#include "constrict/topology.hpp"
+
+namespace constrict {
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+Status infer(const PointSet& points, const Rings2Options& o, Rings2Result& r) {
+  const auto t = Clock::now();
+  Delaunay2 dt;
+  if (Status s = build_delaunay2(points, dt); !s) return s;
+  if (Status s = infer_rings2(points, dt, o, r.inferred); !s) return s;
+  r.inferred_run = true;
+  r.ms_infer = ms_since(t);
+  return Status::ok();
+}
+
+// Shoelace area (holes run clockwise: they subtract) and perimeter, double arithmetic.
+void measure(const PointSet& pts, Rings2Result& r) {
+  r.area = r.perimeter = 0;
+  for (const Ring2& ring : r.rings)
+    for (std::size_t i = 0; i < ring.indices.size(); ++i) {
+      const double* a = pts[static_cast<std::size_t>(ring.indices[i])];
+      const double* b = pts[static_cast<std::size_t>(ring.indices[(i + 1) % ring.indices.size()])];
+      r.area += 0.5 * (a[0] * b[1] - a[1] * b[0]);
+      r.perimeter += std::hypot(b[0] - a[0], b[1] - a[1]);
+    }
+}
+
+}  // namespace
+
+bool topology_from_name(const std::string& name, Topology2& out) noexcept {
+  if (name == "single") out = Topology2::Single;
+  else if (name == "auto") out = Topology2::Auto;
+  else return false;
+  return true;
+}
+
+const char* to_string(Topology2 t) noexcept { return t == Topology2::Single ? "single" : "auto"; }
+const char* to_string(RingRole r) noexcept { return r == RingRole::Shell ? "shell" : "hole"; }
+
+Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2Result& r, Constrict2Visitor* visitor) {
+  r = Rings2Result{};
+  r.topology = o.topology;
+  if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
+  if (Status s = check_points(points); !s) return s;
+  if (o.topology == Topology2::Auto || o.infer_in_single)
+    if (Status s = infer(points, o, r); !s) return s;
+  if (o.topology == Topology2::Auto && r.inferred.several()) {
+    r.rings = r.inferred.rings;
+    r.from_polygon = false;
+    r.validated = true;  // infer_rings2() validated them (exactly: validate_rings2())
+    r.check = r.inferred.check;
+    measure(points, r);
+  } else {
+    if (Status s = reconstruct2(points, o.polygon, r.polygon, visitor); !s) return s;
+    Ring2 shell;
+    shell.indices = r.polygon.boundary;
+    r.rings.push_back(std::move(shell));
+    r.area = r.polygon.area;
+    r.perimeter = r.polygon.perimeter;
+  }
+  if (!o.validate || !r.complete() || !r.from_polygon) return Status::ok();
+  if (r.polygon.validated) {  // reconstruct2() validated it: a simple CCW polygon
+    r.validated = true;
+    r.check.reason = r.polygon.check.reason;
+    r.check.indices_ok = r.polygon.check.indices_ok;
+    r.check.all_points = r.polygon.check.all_points;
+    r.check.simple = r.check.nested = r.polygon.check.simple;
+    r.check.oriented = r.polygon.check.ccw;
+    return Status::ok();
+  }
+  const auto t = Clock::now();
+  const Status v = validate_rings2(points, r.rings, &r.check);
+  r.validated = true;
+  r.ms_validate = ms_since(t);
+  if (!v) return {StatusCode::Internal, "the reconstructed rings failed validation (please report): " + r.check.reason};
+  return Status::ok();
+}
+
+}  // namespace constrict

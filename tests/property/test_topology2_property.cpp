@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Topology from the data in 2D (topology.hpp): generated annuli, holes, parts and nested rings
+// against their truth, brute-force validity, invariance of the decision, the validators on broken
+// ring sets, and the exact gap predicate. Seeds are printed with every failure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "constrict/delaunay.hpp"
+#include "constrict/predicates.hpp"
+#include "constrict/topology.hpp"
+#include "topology_gen.hpp"
+
+namespace constrict {
+namespace {
+using test::TopoFamily;
+
+const char* name(TopoFamily f) {
+  switch (f) {
+    case TopoFamily::Annulus: return "annulus";
+    case TopoFamily::Holes: return "holes";
+    case TopoFamily::Parts: return "parts";
+    case TopoFamily::Nested: return "nested";
+  }
+  return "?";
+}
+
+Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGap) {
+  Rings2Options o;
+  o.topology = t;
+  o.topology_gap = gap;
+  o.infer_in_single = true;  // (the single mode's note is checked too)
+  Rings2Result r;
+  EXPECT_TRUE(reconstruct_rings2(p, o, r).is_ok());
+  return r;
+}
+
+// The rings as sets of points, each with its role and its parent's point set (comparable across
+// any renumbering of the rings).
+using RingKey = std::set<int>;
+std::map<RingKey, std::pair<bool, RingKey>> structure(const std::vector<Ring2>& rings, const std::vector<int>& relabel = {}) {
+  std::vector<RingKey> keys;
+  for (const Ring2& r : rings) {
+    RingKey k;
+    for (int v : r.indices) k.insert(relabel.empty() ? v : relabel[static_cast<std::size_t>(v)]);
+    keys.push_back(k);
+  }
+  std::map<RingKey, std::pair<bool, RingKey>> m;
+  for (std::size_t i = 0; i < rings.size(); ++i)
+    m[keys[i]] = {rings[i].role == RingRole::Shell, rings[i].parent < 0 ? RingKey{} : keys[static_cast<std::size_t>(rings[i].parent)]};
+  return m;
+}
+
+std::map<RingKey, std::pair<bool, RingKey>> truth(const test::TopoSample& s) {
+  std::map<RingKey, std::pair<bool, RingKey>> m;
+  for (const auto& r : s.rings) {
+    const RingKey parent = r.parent < 0 ? RingKey{} : RingKey(s.rings[static_cast<std::size_t>(r.parent)].points.begin(),
+                                                               s.rings[static_cast<std::size_t>(r.parent)].points.end());
+    m[RingKey(r.points.begin(), r.points.end())] = {r.shell, parent};
+  }
+  return m;
+}
+
+// Clear gaps (3-6 spacings): auto gives exactly the true rings, roles and parents, valid by both
+// validators; single gives one polygon and says that the data show several rings.
+TEST(Topology2Property, GeneratedFamiliesGiveTheTrueRings) {
+  for (TopoFamily f : {TopoFamily::Annulus, TopoFamily::Holes, TopoFamily::Parts, TopoFamily::Nested})
+    for (double gap : {3.0, 4.0, 6.0})
+      for (unsigned seed = 1; seed <= 3; ++seed) {
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        const auto s = test::make_topology(f, gap, seed);
+        const Rings2Result a = run(s.points, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        EXPECT_EQ(a.inferred.decision, RingsDecision::Rings);
+        EXPECT_EQ(structure(a.rings), truth(s));
+        RingsCheck bc;
+        EXPECT_TRUE(validate_rings2_brute_force(s.points, a.rings, &bc).is_ok()) << bc.reason;
+        const Rings2Result one = run(s.points, Topology2::Single);
+        ASSERT_EQ(one.rings.size(), 1u);
+        EXPECT_EQ(one.rings[0].indices, one.polygon.boundary);
+        EXPECT_TRUE(one.inferred.several());
+        EXPECT_EQ(one.inferred.rings.size(), s.rings.size());
+      }
+}
+
+// Any gap, 1-5 spacings: whatever auto decides is a valid ring set (brute force); at 5 spacings
+// the rings are the true ones.
+TEST(Topology2Property, EveryGapGivesAValidAnswer) {
+  for (TopoFamily f : {TopoFamily::Annulus, TopoFamily::Holes, TopoFamily::Parts, TopoFamily::Nested})
+    for (double gap : {1.0, 1.5, 2.0, 2.5, 5.0})
+      for (unsigned seed = 10; seed <= 11; ++seed) {
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        const auto s = test::make_topology(f, gap, seed);
+        const Rings2Result a = run(s.points, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        RingsCheck bc;
+        EXPECT_TRUE(validate_rings2_brute_force(s.points, a.rings, &bc).is_ok()) << bc.reason;
+        if (gap >= 5) {  // near the threshold a part may merge two curves (valid, fewer rings): docs/topology.md
+          EXPECT_EQ(structure(a.rings), truth(s));
+        }
+      }
+}
+
+// The decision and the rings do not depend on the point order, a rotation by 90° or a power-of-two
+// scale (all exact transformations).
+TEST(Topology2Property, InvariantUnderPermutationRotationAndScale) {
+  for (TopoFamily f : {TopoFamily::Annulus, TopoFamily::Nested, TopoFamily::Parts})
+    for (double gap : {1.5, 4.0})
+      for (unsigned seed = 20; seed <= 21; ++seed) {
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        const auto s = test::make_topology(f, gap, seed);
+        const Rings2Result base = run(s.points, Topology2::Auto);
+        const auto want = structure(base.rings);
+        const std::size_t n = s.points.size();
+        std::vector<int> perm(n);  // new index of point i
+        std::iota(perm.begin(), perm.end(), 0);
+        std::mt19937 rng(seed);
+        std::shuffle(perm.begin(), perm.end(), rng);
+        std::vector<int> back(n);
+        for (std::size_t i = 0; i < n; ++i) back[static_cast<std::size_t>(perm[i])] = static_cast<int>(i);
+        PointSet shuffled = s.points, rotated = s.points, scaled = s.points;
+        for (std::size_t i = 0; i < n; ++i) {
+          shuffled[static_cast<std::size_t>(perm[i])][0] = s.points[i][0];
+          shuffled[static_cast<std::size_t>(perm[i])][1] = s.points[i][1];
+          rotated[i][0] = -s.points[i][1];
+          rotated[i][1] = s.points[i][0];
+          scaled[i][0] = std::ldexp(s.points[i][0], -7);
+          scaled[i][1] = std::ldexp(s.points[i][1], -7);
+        }
+        const Rings2Result a = run(shuffled, Topology2::Auto), b = run(rotated, Topology2::Auto), c = run(scaled, Topology2::Auto);
+        EXPECT_EQ(a.inferred.decision, base.inferred.decision);
+        EXPECT_EQ(b.inferred.decision, base.inferred.decision);
+        EXPECT_EQ(c.inferred.decision, base.inferred.decision);
+        EXPECT_EQ(structure(a.rings, back), want);
+        if (base.rings.size() > 1) {  // the single polygon itself is reconstruct2()'s business
+          EXPECT_EQ(structure(b.rings), want);
+          EXPECT_EQ(structure(c.rings), want);
+        }
+      }
+}
+
+// Single mode is reconstruct2() exactly.
+TEST(Topology2Property, SingleIsReconstruct2) {
+  const auto s = test::make_topology(TopoFamily::Annulus, 4, 31);
+  Polygon2Result p;
+  ASSERT_TRUE(reconstruct2(s.points, Constrict2Options{}, p).is_ok());
+  const Rings2Result r = run(s.points, Topology2::Single);
+  ASSERT_EQ(r.rings.size(), 1u);
+  EXPECT_EQ(r.rings[0].indices, p.boundary);
+  EXPECT_EQ(r.rings[0].role, RingRole::Shell);
+  EXPECT_TRUE(r.valid());
+}
+
+// A huge gap threshold never splits; a bad one is refused.
+TEST(Topology2Property, GapOptionMovesTheThreshold) {
+  const auto s = test::make_topology(TopoFamily::Annulus, 4, 32);
+  EXPECT_EQ(run(s.points, Topology2::Auto, 1e9).rings.size(), 1u);
+  EXPECT_EQ(run(s.points, Topology2::Auto, 3.0).rings.size(), 2u);
+  Rings2Options o;
+  o.topology = Topology2::Auto;
+  o.topology_gap = -1;
+  Rings2Result r;
+  EXPECT_EQ(reconstruct_rings2(s.points, o, r).code(), StatusCode::InvalidArgument);
+}
+
+// The validators reject each defect, the sweep and the brute force alike.
+TEST(Topology2Property, ValidatorsRejectBrokenRingSets) {
+  const auto s = test::make_topology(TopoFamily::Nested, 4, 33);
+  const Rings2Result a = run(s.points, Topology2::Auto);
+  ASSERT_EQ(a.rings.size(), 4u);
+  const auto both_fail = [&](const std::vector<Ring2>& rings, const char* what) {
+    SCOPED_TRACE(what);
+    EXPECT_FALSE(validate_rings2(s.points, rings).is_ok());
+    EXPECT_FALSE(validate_rings2_brute_force(s.points, rings).is_ok());
+  };
+  auto bad = a.rings;
+  std::reverse(bad[1].indices.begin(), bad[1].indices.end());
+  both_fail(bad, "hole counter-clockwise");
+  bad = a.rings;
+  bad[2].parent = 0;
+  both_fail(bad, "parent not the innermost");
+  bad = a.rings;
+  bad[3].indices.pop_back();
+  both_fail(bad, "a point missing");
+  bad = a.rings;
+  std::swap(bad[0].indices[0], bad[0].indices[bad[0].indices.size() / 2]);
+  both_fail(bad, "shell not simple");
+  bad = a.rings;  // a hole and its island swapped as wholes: crossing-free but the roles are wrong
+  bad[1].role = RingRole::Shell;
+  std::reverse(bad[1].indices.begin(), bad[1].indices.end());
+  both_fail(bad, "role against the depth");
+  EXPECT_TRUE(validate_rings2(s.points, a.rings).is_ok());
+}
+
+// Two rings that touch (share a point on an edge) are rejected.
+TEST(Topology2Property, TouchingRingsRejected) {
+  PointSet p;
+  p.dim = 2;
+  p.coords = {0, 0, 4, 0, 4, 4, 0, 4, 4, 2, 6, 1, 6, 3};  // square, and a triangle touching x = 4 at (4, 2)
+  std::vector<Ring2> rings(2);
+  rings[0].indices = {0, 1, 2, 3};
+  rings[1].indices = {4, 5, 6};
+  EXPECT_FALSE(validate_rings2(p, rings).is_ok());
+  EXPECT_FALSE(validate_rings2_brute_force(p, rings).is_ok());
+  p.coords[8] = 4.5;  // moved off the square
+  EXPECT_TRUE(validate_rings2(p, rings).is_ok());
+  EXPECT_TRUE(validate_rings2_brute_force(p, rings).is_ok());
+}
+
+// compare_gap2 is exact where doubles would round: at the threshold, and at extreme scales.
+TEST(Topology2Property, GapPredicateExact) {
+  const double p[2] = {0, 0}, q[2] = {2, 0}, a0[2] = {0, 0}, b0[2] = {1, 0};
+  const double* a[1] = {a0};
+  const double* b[1] = {b0};
+  EXPECT_EQ(compare_gap2(p, q, a, b, 1, 2.0), 0);
+  EXPECT_EQ(compare_gap2(p, q, a, b, 1, std::nextafter(2.0, 3.0)), -1);
+  EXPECT_EQ(compare_gap2(p, q, a, b, 1, std::nextafter(2.0, 1.0)), 1);
+  const double tiny = 1e-200, pt[2] = {0, 0}, qt[2] = {2 * tiny, 0}, at0[2] = {0, 0}, bt0[2] = {tiny, 0};
+  const double* at[1] = {at0};
+  const double* bt[1] = {bt0};
+  EXPECT_EQ(compare_gap2(pt, qt, at, bt, 1, 2.0), 0);
+  const double x = 1 + std::ldexp(1.0, -52), pe[2] = {0, 0}, qe[2] = {x, 0}, be0[2] = {1, 0};
+  const double* be[1] = {be0};
+  EXPECT_EQ(compare_gap2(pe, qe, a, be, 1, 1.0), 1);  // |pq|^2 = 1 + 2^-51 + 2^-104 > 1
+  const double pa[2] = {0, 0}, qa[2] = {3, 0}, qb[2] = {0, 3};
+  EXPECT_EQ(compare_distance2(pa, qa, qb), 0);
+}
+
+}  // namespace
+}  // namespace constrict
