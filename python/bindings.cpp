@@ -22,6 +22,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
 #include "constrict/report.hpp"
+#include "constrict/topology.hpp"
 #include "constrict/validate.hpp"
 #include "constrict/version.hpp"
 #include "constrict/voronoi_skeleton.hpp"
@@ -437,6 +438,66 @@ py::tuple read_points_py(const std::string& path, int dim, bool merge, bool chec
 
 }  // namespace
 
+// --topology: the rings of reconstruct_rings2 (topology.hpp) as plain Python data.
+py::dict rings2_py(const py::handle& points, const std::string& topology, double gap, const std::string& fallback,
+                   const std::string& refine, const std::string& method, const py::object& stop_after) {
+  Criterion criterion = Criterion::Gamma;
+  if (parse_method(method, criterion))
+    raise({StatusCode::InvalidArgument, "topology: needs the constriction (method voronoi-skeleton gives one polygon)"});
+  Rings2Options o;
+  if (!topology_from_name(topology, o.topology))
+    raise({StatusCode::InvalidArgument, "topology must be 'single' or 'auto', not '" + topology + "'"});
+  o.topology_gap = gap;
+  o.polygon = options2(fallback, parse_refine(refine), criterion, parse_stop_after(stop_after));
+  const PointSet p = to_points(points, 2);
+  Rings2Result r;
+  run_nogil([&] { return reconstruct_rings2(p, o, r); });
+  py::list rings;
+  for (const Ring2& g : r.rings) {
+    py::dict d;
+    d["role"] = to_string(g.role);
+    d["parent"] = g.parent;
+    d["indices"] = ids(g.indices);
+    d["gap_spacings"] = g.gap_spacings;
+    rings.append(d);
+  }
+  py::dict d;
+  d["topology"] = to_string(r.topology);
+  d["rings"] = rings;
+  d["valid"] = r.valid();
+  d["decision"] = to_string(r.inferred.decision);
+  d["area"] = r.area;
+  d["perimeter"] = r.perimeter;
+  d["report_json"] = to_json(r, o);
+  return d;
+}
+
+// Rings from Python: a sequence of (role, parent, indices) or of dicts with those keys.
+std::vector<Ring2> to_rings(const py::handle& obj) {
+  std::vector<Ring2> out;
+  for (const py::handle& item : obj) {
+    Ring2 g;
+    py::object role, parent, indices;
+    if (py::isinstance<py::dict>(item)) {
+      const py::dict d = py::reinterpret_borrow<py::dict>(item);
+      role = d["role"];
+      parent = d["parent"];
+      indices = d["indices"];
+    } else {
+      role = item.attr("role");
+      parent = item.attr("parent");
+      indices = item.attr("indices");
+    }
+    const std::string r = role.cast<std::string>();
+    if (r != "shell" && r != "hole") raise({StatusCode::InvalidArgument, "a ring's role is 'shell' or 'hole', not '" + r + "'"});
+    g.role = r == "shell" ? RingRole::Shell : RingRole::Hole;
+    g.parent = parent.cast<int>();
+    g.indices = to_ids(indices);
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "The compiled part of constrict (pybind11); use the package `constrict`, not this module.";
   m.attr("__version__") = CONSTRICT_VERSION_STRING;
@@ -464,6 +525,22 @@ PYBIND11_MODULE(_core, m) {
         return verdict(st, c.reason);
       },
       py::arg("points"), py::arg("boundary"));
+  m.def("rings2", &rings2_py, py::arg("points"), py::arg("topology"), py::arg("topology_gap"), py::arg("fallback"),
+        py::arg("refine"), py::arg("method"), py::arg("stop_after"));
+  m.def(
+      "validate_rings",
+      [](const py::handle& points, const py::handle& rings) {
+        const PointSet p = to_points(points, 2);
+        const std::vector<Ring2> g = to_rings(rings);
+        RingsCheck c;
+        Status st;
+        {
+          py::gil_scoped_release nogil;
+          st = validate_rings2(p, g, &c);
+        }
+        return verdict(st, c.reason);
+      },
+      py::arg("points"), py::arg("rings"));
   m.def(
       "validate_surface",
       [](const py::handle& points, const py::handle& triangles) {

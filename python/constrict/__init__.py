@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -34,8 +35,8 @@ Error.__doc__ = (
 )
 
 __all__ = [
-    "Error", "Polygon", "Surface", "reconstruct", "reconstruct2", "reconstruct3", "gamma_graph",
-    "validate_polygon", "validate_surface", "read_points", "read_points_info", "read_mesh",
+    "Error", "Polygon", "Rings", "Ring", "Surface", "reconstruct", "reconstruct2", "reconstruct3", "gamma_graph",
+    "validate_polygon", "validate_rings", "validate_surface", "read_points", "read_points_info", "read_mesh",
     "write_mesh", "write_polygon", "write_body", "cli_path", "__version__",
 ]
 
@@ -106,6 +107,73 @@ class Polygon:
         reconstruct2). Needs shapely (Debian: python3-shapely)."""
         geometry = _optional("shapely.geometry", "Polygon.to_shapely()", "python3-shapely (pip: shapely)")
         return geometry.Polygon(self.coordinates(points))
+
+
+@dataclasses.dataclass
+class Ring:
+    """One ring of :class:`Rings`: a simple polygon over input rows."""
+
+    role: str  #: "shell" (counter-clockwise) or "hole" (clockwise)
+    parent: int  #: index of the ring that directly contains it, -1 for none
+    indices: np.ndarray  #: int64: input rows in order (closed implicitly)
+    gap_spacings: float = math.inf  #: the smallest gap to another ring, in local spacings
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Ring) and self.role == other.role and self.parent == other.parent
+                and np.array_equal(self.indices, other.indices))
+
+
+@dataclasses.dataclass(repr=False)
+class Rings:
+    """Result of :func:`reconstruct2` with ``topology="auto"``: the rings the data show.
+
+    Every input point is a vertex of exactly one ring; rings are simple and do not touch; shells
+    run counter-clockwise, holes clockwise, and each hole lies inside its parent (any depth).
+    Plain data: it pickles. docs/topology.md.
+    """
+
+    topology: str  #: "auto" or "single"
+    rings: List[Ring]
+    valid: bool  #: validated exactly (validate_rings)
+    decision: str  #: what decided it (see report()["topology"])
+    area: float  #: holes subtract
+    perimeter: float
+    report_json: str
+
+    def report(self) -> str:
+        """The library's JSON report (``rings`` and the ``topology`` block), a str."""
+        return self.report_json
+
+    def report_dict(self) -> Dict[str, Any]:
+        return json.loads(self.report_json)
+
+    @property
+    def shells(self) -> List[Ring]:
+        return [r for r in self.rings if r.role == "shell"]
+
+    @property
+    def holes(self) -> List[Ring]:
+        return [r for r in self.rings if r.role == "hole"]
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Rings) and self.topology == other.topology and self.rings == other.rings
+                and self.valid == other.valid)
+
+    def __repr__(self) -> str:
+        return (f"<constrict.Rings {len(self.shells)} shell(s), {len(self.holes)} hole(s), "
+                f"{'valid' if self.valid else 'invalid'}>")
+
+    def to_shapely(self, points: ArrayLike):
+        """The rings as a shapely Polygon or MultiPolygon (holes inside their shells). Needs shapely."""
+        geometry = _optional("shapely.geometry", "Rings.to_shapely()", "python3-shapely (pip: shapely)")
+        xy = np.asarray(points, dtype=float)
+        polys = []
+        for k, r in enumerate(self.rings):
+            if r.role != "shell":
+                continue
+            holes = [xy[h.indices] for h in self.rings if h.role == "hole" and h.parent == k]
+            polys.append(geometry.Polygon(xy[r.indices], holes))
+        return polys[0] if len(polys) == 1 else geometry.MultiPolygon(polys)
 
 
 @dataclasses.dataclass(repr=False)
@@ -264,9 +332,12 @@ def reconstruct2(
     stop_after: Optional[int] = None,
     seed_limit: int = 0,
     merge_duplicates: bool = False,
+    topology: str = "single",
+    topology_gap: float = 2.0,
     **unknown: Any,
-) -> Polygon:
-    """Simple polygon through every point of an (N, 2) array.
+) -> Union[Polygon, "Rings"]:
+    """Simple polygon through every point of an (N, 2) array (or, with ``topology="auto"``,
+    the rings the data show).
 
     The gamma-constriction of the Delaunay triangulation, local fallbacks after a lock, a
     length-decreasing refinement; validated exactly. The keywords are the options of
@@ -289,6 +360,10 @@ def reconstruct2(
         merge_duplicates: drop later copies of identical points instead of raising; indices in
             the result stay rows of ``points``, the dropped rows are in
             ``result.merged_duplicates``. CLI --merge-duplicates.
+        topology: "single" (default): one polygon, a :class:`Polygon`. "auto": the rings the
+            data show (holes, several parts, nesting), a :class:`Rings`. CLI --topology.
+        topology_gap: parts at least this many local spacings apart become separate rings
+            (topology="auto"). CLI --topology-gap.
 
     Returns:
         :class:`Polygon`.
@@ -300,6 +375,14 @@ def reconstruct2(
     """
     _reject("reconstruct2", unknown)
     ref = _refine_name(refine)
+    if topology != "single" or topology_gap != 2.0:
+        if merge_duplicates:
+            err = Error("topology: merge the duplicates first (merge_duplicates gives one polygon)")
+            err.code = "InvalidArgument"
+            raise err
+        d = _core.rings2(points, topology, float(topology_gap), fallback, ref, method, stop_after)
+        d["rings"] = [Ring(**r) for r in d["rings"]]
+        return Rings(**d)
     _skeleton_options(method, seed_limit, fallback=(fallback, "auto"), refine=(ref, "auto"),
                       stop_after=(stop_after, None))
     d = _core.reconstruct2(points, fallback, ref, method, stop_after, seed_limit, merge_duplicates)
@@ -406,6 +489,13 @@ def validate_polygon(points: ArrayLike, boundary: ArrayLike) -> Tuple[bool, str]
     """(ok, reason): is ``boundary`` a simple counter-clockwise polygon through every point
     exactly once? Exact predicates."""
     return _core.validate_polygon(points, boundary)
+
+
+def validate_rings(points: ArrayLike, rings: Any) -> Tuple[bool, str]:
+    """(ok, reason): is ``rings`` (a :class:`Rings`, or a list of :class:`Ring` / dicts with role,
+    parent, indices) a valid ring set: every point once, rings simple and disjoint, shells CCW,
+    holes CW, each parent the innermost containing ring? Exact predicates."""
+    return _core.validate_rings(points, rings.rings if isinstance(rings, Rings) else rings)
 
 
 def validate_surface(points: ArrayLike, triangles: ArrayLike) -> Tuple[bool, str]:

@@ -107,6 +107,40 @@ class Reconstruct2(unittest.TestCase):
             constrict.reconstruct2(np.random.random((5, 2)), fallback="sometimes")
 
 
+class Topology2(unittest.TestCase):
+    """reconstruct2(topology="auto"): the rings the data show (docs/topology.md)."""
+
+    @staticmethod
+    def annulus(n_outer=120, n_inner=60):
+        t = np.linspace(0, 2 * math.pi, n_outer, endpoint=False)
+        u = np.linspace(0, 2 * math.pi, n_inner, endpoint=False) + 0.01
+        pts = np.r_[np.c_[3 * np.cos(t), 3 * np.sin(t)], np.c_[1.5 * np.cos(u), 1.5 * np.sin(u)]]
+        return pts[np.random.default_rng(4).permutation(len(pts))]
+
+    def test_annulus_gives_a_shell_and_a_hole(self):
+        pts = self.annulus()
+        r = constrict.reconstruct2(pts, topology="auto")
+        self.assertIsInstance(r, constrict.Rings)
+        self.assertTrue(r.valid)
+        self.assertEqual(sorted(g.role for g in r.rings), ["hole", "shell"])
+        hole = r.holes[0]
+        self.assertEqual(r.rings[hole.parent].role, "shell")
+        self.assertEqual(sorted(np.concatenate([g.indices for g in r.rings]).tolist()), list(range(len(pts))))
+        self.assertTrue(all(np.linalg.norm(pts[hole.indices], axis=1) < 2))  # the inner circle
+        ok, reason = constrict.validate_rings(pts, r)
+        self.assertTrue(ok, reason)
+        self.assertEqual(pickle.loads(pickle.dumps(r)), r)
+        self.assertEqual(len(json.loads(r.report())["rings"]), 2)
+        # A hole given the wrong way round is rejected.
+        bad = [constrict.Ring(g.role, g.parent, g.indices[::-1] if g.role == "hole" else g.indices) for g in r.rings]
+        self.assertFalse(constrict.validate_rings(pts, bad)[0])
+
+    def test_single_mode_stays_one_polygon(self):
+        r = constrict.reconstruct2(self.annulus())
+        self.assertIsInstance(r, constrict.Polygon)
+        self.assertTrue(r.valid)
+
+
 class Reconstruct3(unittest.TestCase):
     def test_sphere_with_inside_points_is_a_closed_genus0_surface(self):
         rng = np.random.default_rng(3)
