@@ -227,6 +227,13 @@ struct Mesh3Result {
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
   std::size_t refine_removed = 0;         ///< tetrahedra removed by the Refine3 post-pass
   std::size_t non_delaunay_tets = 0;      ///< body tetrahedra made by the fallback
+  /// Bridge measure (docs/reconstruction-3d.md §4.8): surface triangles whose longest edge is at
+  /// least kBridgeRatio times the larger nearest-neighbour distance of its end points — sheets
+  /// spanning a gap between parts that nearly touch show up here.
+  static constexpr double kBridgeRatio = 4.0;
+  std::size_t bridge_faces = 0;
+  double bridge_area = 0;        ///< their total area (at the input's scale)
+  double max_bridge_ratio = 0;   ///< the largest such ratio over all surface triangles
   std::size_t delaunay_tets = 0;          ///< tetrahedra of the Delaunay tetrahedralization
   double volume = 0, surface_area = 0;    ///< of the final surface (double arithmetic)
   double size_bias = 0;                   ///< size bias of the run that produced this result

@@ -324,8 +324,26 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
     }
   r.ms_setup = ms_setup;  // (the hull start may have been made on demand, with the γ pass)
   r.ms_delaunay = ms_delaunay;
+  measure_bridges(surface, r);
   r.volume = std::ldexp(mesh_volume(*body.pts, surface), 3 * scale_exp);
   r.surface_area = std::ldexp(mesh_area(*body.pts, surface), 2 * scale_exp);
+}
+
+// The bridge measure of the surface (Mesh3Result::bridge_faces): ratios against the spacing along
+// the Delaunay edges.
+void Constrictor3::Impl::measure_bridges(const TriMesh3& surface, Mesh3Result& r) const {
+  const std::vector<double> spacing = detail::nearest_spacing3(body);
+  const PointSet& p = *body.pts;
+  for (const auto& t : surface.triangles) {
+    const double ratio = detail::bridge_ratio3(p, spacing, t[0], t[1], t[2]);
+    r.max_bridge_ratio = std::max(r.max_bridge_ratio, ratio);
+    if (!(ratio >= Mesh3Result::kBridgeRatio)) continue;
+    ++r.bridge_faces;
+    TriMesh3 one;
+    one.triangles.push_back(t);
+    r.bridge_area += mesh_area(p, one);
+  }
+  r.bridge_area = std::ldexp(r.bridge_area, 2 * scale_exp);
 }
 
 // ---- Constrictor3 --------------------------------------------------------------------------------

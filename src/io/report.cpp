@@ -54,6 +54,8 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   j["faces"] = r.mesh.triangles.size();
   j["volume"] = r.volume;
   j["surface_area"] = r.surface_area;
+  j["bridges"] = {{"faces", r.bridge_faces}, {"area", r.bridge_area}, {"max_ratio", r.max_bridge_ratio},
+                  {"min_ratio", Mesh3Result::kBridgeRatio}};
   j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"}, {"added", r.refine_added}, {"removed", r.refine_removed}};
   j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
   j["grow"] = {{"enabled", opt.grow},           {"tetrahedra", r.grown},        {"labelled_outside", r.grown_outside},

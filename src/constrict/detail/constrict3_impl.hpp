@@ -90,6 +90,7 @@ struct Constrictor3::Impl {
   void refine_stage(Mesh3Result& r);
   void bridge_stage(Mesh3Result& r);
   void collect(Mesh3Result& r) const;
+  void measure_bridges(const TriMesh3& surface, Mesh3Result& r) const;
 };
 
 }  // namespace constrict
