@@ -412,9 +412,10 @@ py::tuple verdict(const Status& st, const std::string& reason) { return py::make
 
 // ---- files ---------------------------------------------------------------------------------
 
-py::tuple read_points_py(const std::string& path, int dim, bool merge, bool check_input) {
+py::tuple read_points_py(const std::string& path, int dim, bool merge, bool check_input, const std::string& columns) {
   ReadOptions o;
   o.dim = dim;
+  if (!columns.empty()) check(parse_columns(columns, o.columns));
   o.merge_duplicates = merge;
   o.check = check_input;
   PointSet p;
@@ -567,7 +568,8 @@ PYBIND11_MODULE(_core, m) {
     std::vector<std::int64_t> rows(kept.begin(), kept.end());
     return py::make_tuple(to_array(merged), ids64(rows));
   });
-  m.def("read_points", &read_points_py, py::arg("path"), py::arg("dim"), py::arg("merge_duplicates"), py::arg("check"));
+  m.def("read_points", &read_points_py, py::arg("path"), py::arg("dim"), py::arg("merge_duplicates"), py::arg("check"),
+        py::arg("columns") = "");
   m.def("read_mesh", [](const std::string& path) {
     PointSet p;
     TriMesh3 mesh;

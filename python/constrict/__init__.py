@@ -514,28 +514,18 @@ def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optiona
     path = os.fspath(path)
     if columns is None:
         return _core.read_points(path, 0 if dim is None else dim, merge_duplicates, check)
-    cols = [int(c) for c in columns]
+    cols = list(columns)
     if len(cols) not in (2, 3) or dim not in (None, len(cols)):
-        raise _invalid(f"columns must name 2 or 3 columns (and match dim), got {list(columns)}")
-    if min(cols) < 0 or max(cols) > 2:
-        # The library's readers take the first two or three fields of a row (io.hpp).
-        raise _invalid(f"columns can pick among the first three fields (0, 1, 2), got {cols}")
-    raw, info = _core.read_points(path, max(2, max(cols) + 1), False, False)
-    pts = np.ascontiguousarray(raw[:, cols])
-    rows = info["original_index"]
-    if merge_duplicates:
-        merged, kept = _core.merge_duplicates(pts)
-        info["merged_duplicates"] = len(pts) - len(merged)
-        if info["merged_duplicates"]:
-            info["warnings"].append(f"{path}: merged {info['merged_duplicates']} duplicate points")
-        pts, rows = merged, rows[kept]
-    info["original_index"] = rows
-    for k in ("normals", "colors"):
-        if k in info:
-            info[k] = info[k][rows]
-    if check:
-        _core.check_points(pts)
-    return pts, info
+        raise _invalid(f"columns must name 2 or 3 columns (and match dim), got {cols}")
+    if all(isinstance(c, str) for c in cols):  # header names, as the CLI's --columns x,y,z
+        spec = ",".join(cols)
+    elif all(isinstance(c, (int, np.integer)) and not isinstance(c, bool) for c in cols):
+        if min(cols) < 0:
+            raise _invalid(f"columns are 0-based field numbers (or header names), got {cols}")
+        spec = ",".join(str(int(c) + 1) for c in cols)  # the library counts from 1
+    else:
+        raise _invalid(f"columns must be all field numbers or all header names, got {cols}")
+    return _core.read_points(path, 0, merge_duplicates, check, spec)
 
 
 def read_points(path: PathLike, dim: Optional[int] = None, columns: Optional[Sequence[int]] = None,
@@ -547,7 +537,8 @@ def read_points(path: PathLike, dim: Optional[int] = None, columns: Optional[Seq
     Args:
         path: the file.
         dim: None: from the data (2 or 3 columns); 2 or 3: forced (dim=2 drops z). CLI --dim.
-        columns: pick 2 or 3 of the first three fields, e.g. (0, 2) for x and z.
+        columns: the fields holding x, y[, z]: 0-based numbers, e.g. (1, 2, 3) after an id
+            column, or header names, e.g. ("x", "y", "z"). CLI --columns (1-based there).
         merge_duplicates: keep the first of identical points instead of raising Duplicate
             (read_points_info() says which file rows were kept). CLI --merge-duplicates.
 

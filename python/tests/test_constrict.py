@@ -308,6 +308,14 @@ class Files(unittest.TestCase):
         self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz")), pts))
         self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz"), dim=2), pts[:, :2]))
         self.assertTrue(np.array_equal(constrict.read_points(self.path("a.xyz"), columns=(0, 2)), pts[:, [0, 2]]))
+        # Any field by number or by header name (an id column first, two extra fields after).
+        with open(self.path("t.csv"), "w") as f:
+            f.write("id,x,y,z,intensity\n")
+            for i, q in enumerate(pts):
+                f.write(f"{i},{q[0]!r},{q[1]!r},{q[2]!r},7\n")
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("t.csv")), pts))  # by the header
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("t.csv"), columns=(1, 2, 3)), pts))
+        self.assertTrue(np.array_equal(constrict.read_points(self.path("t.csv"), columns=("z", "x")), pts[:, [2, 0]]))
         sample_data.save(self.path("d.xyz"), np.vstack([pts, pts[4:5]]))
         with self.assertRaises(constrict.Error) as ctx:
             constrict.read_points(self.path("d.xyz"))
