@@ -95,6 +95,20 @@ int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   j["triangle_precision"] = d.triangle_precision;
   j["matched_vertices"] = d.matched_vertices;
   put_distance(j, d);
+  // Where the worst errors are: the centroid of the triangle holding each one-sided maximum.
+  const auto centroid = [](const PointSet& p, const TriMesh3& m, long t) {
+    nlohmann::json c = nlohmann::json::array();
+    if (t < 0) return c;
+    const auto& f = m.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k)
+      c.push_back((p[static_cast<std::size_t>(f[0])][k] + p[static_cast<std::size_t>(f[1])][k] +
+                   p[static_cast<std::size_t>(f[2])][k]) / 3);
+    return c;
+  };
+  j["worst"] = {{"result_triangle", d.worst_result_element},
+                {"result_at", centroid(rp, rm, d.worst_result_element)},
+                {"reference_triangle", d.worst_reference_element},
+                {"reference_at", centroid(bp, bm, d.worst_reference_element)}};
   if (!a.quiet)
     std::printf("%s: triangles recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox "
                 "diagonal; result->reference %.6g, reference->result %.6g), mean %.6g (%.4f%%)\n",

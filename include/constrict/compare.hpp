@@ -37,6 +37,9 @@ struct MeshDistance {
   double hausdorff = 0;                       ///< max of the two one-sided values
   double hausdorff_result_to_reference = 0;   ///< max over result samples of d(p, reference)
   double hausdorff_reference_to_result = 0;   ///< max over reference samples of d(p, result)
+  /// Where the one-sided maxima are reached: the first result / reference triangle (index in its
+  /// mesh) holding the farthest sample, -1 for an empty side. Shows where the worst error is.
+  long worst_result_element = -1, worst_reference_element = -1;
   double mean_result_to_reference = 0;        ///< area-weighted mean of d(p, reference) over the result
   double mean_reference_to_result = 0;        ///< area-weighted mean of d(p, result) over the reference
   double mean = 0;                            ///< (mean_result_to_reference + mean_reference_to_result) / 2
@@ -82,6 +85,7 @@ struct CurveDistance2 {
   double hausdorff = 0;
   double hausdorff_result_to_reference = 0;
   double hausdorff_reference_to_result = 0;
+  long worst_result_element = -1, worst_reference_element = -1;  ///< segments holding the maxima
   double mean_result_to_reference = 0;
   double mean_reference_to_result = 0;
   double mean = 0;

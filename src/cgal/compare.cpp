@@ -51,6 +51,7 @@ constexpr int kHashMixShift = 29;
 
 struct Side {
   double hmax = 0;   // max over samples
+  long worst = -1;   // the first element (triangle, segment) where it is reached
   double mean = 0;   // measure-weighted mean
   std::size_t samples = 0;
 };
@@ -62,6 +63,7 @@ Side reduce(const std::vector<double>& emax, const std::vector<double>& eint, co
   Side s;
   double total = 0, integral = 0;
   for (std::size_t i = 0; i < emax.size(); ++i) {
+    if (s.worst < 0 || emax[i] > s.hmax) s.worst = static_cast<long>(i);
     s.hmax = std::max(s.hmax, emax[i]);
     integral += eint[i];
     total += emeasure[i];
@@ -77,6 +79,8 @@ void put_sides(const Side& ab, const Side& ba, Distance& d) {
   d.hausdorff_result_to_reference = ab.hmax;
   d.hausdorff_reference_to_result = ba.hmax;
   d.hausdorff = std::max(ab.hmax, ba.hmax);
+  d.worst_result_element = ab.worst;
+  d.worst_reference_element = ba.worst;
   d.mean_result_to_reference = ab.mean;
   d.mean_reference_to_result = ba.mean;
   d.mean = 0.5 * (ab.mean + ba.mean);

@@ -254,3 +254,20 @@ TEST(ReadMesh, ReadsTheSharedGroundTruth) {
   MeshCheck chk;
   EXPECT_TRUE(validate_mesh3(q, n, &chk)) << chk.reason;
 }
+
+// The worst error is located: one corner of the result cube pulled out by 0.5 along z; the farthest
+// result sample is that corner, on a triangle holding vertex 6.
+TEST(CompareMeshes3, WorstErrorIsLocatedOnTheDisplacedCorner) {
+  PointSet p, q;
+  TriMesh3 m, n;
+  cube(0, p, m);
+  cube(0, q, n);
+  q.coords[3 * 6 + 2] += 0.5;
+  MeshDistance d;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, d, fast()));
+  EXPECT_NEAR(d.hausdorff_result_to_reference, 0.5, 1e-12);
+  ASSERT_GE(d.worst_result_element, 0);
+  const auto& f = n.triangles[static_cast<std::size_t>(d.worst_result_element)];
+  EXPECT_TRUE(f[0] == 6 || f[1] == 6 || f[2] == 6);
+  EXPECT_GE(d.worst_reference_element, 0);
+}
