@@ -53,7 +53,7 @@ inline void fuzz_points(std::string_view data, const std::string& name,
     check_message(st, name,
                   {StatusCode::ParseError, StatusCode::EmptyInput, StatusCode::NonFinite,
                    StatusCode::Duplicate, StatusCode::TooFewPoints, StatusCode::Collinear,
-                   StatusCode::Coplanar});
+                   StatusCode::Coplanar, StatusCode::Unsupported /* LAS/E57 magic bytes */});
     if (!st) continue;
     require(p.dim == 2 || p.dim == 3, "dimension", st);
     require(p.coords.size() % static_cast<std::size_t>(p.dim) == 0, "coordinate count", st);
