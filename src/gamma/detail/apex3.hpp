@@ -13,7 +13,7 @@ namespace constrict::detail {
 
 // A sliver: sin² of the angle at a below this, the double cross product e1 x e2 has a relative
 // error above ~2^-32 (a few ulps / sin) and the magnitudes are evaluated exactly instead.
-constexpr double kSliverSin2 = 0x1p-40;
+constexpr double kExactMagnitudeSin2 = 0x1p-40;  // (~1e-12: extra_faces.cpp's kSliverSin2)
 
 class TriangleFrame3 {
  public:
@@ -48,7 +48,7 @@ class TriangleFrame3 {
     const double ox = wn_[0] / (2 * nn_), oy = wn_[1] / (2 * nn_), oz = wn_[2] / (2 * nn_);
     r_ = std::sqrt(ox * ox + oy * oy + oz * oz);
     inv_norm_n_ = 1.0 / std::sqrt(nn_);
-    sliver_ = !(nn_ >= kSliverSin2 * l1 * l2);  // (NaN from over- or underflow: exact too)
+    sliver_ = !(nn_ >= kExactMagnitudeSin2 * l1 * l2);  // (NaN from over- or underflow: exact too)
   }
 
   /// γ(abc; p), sign exact (semi-static filter, exact predicate when undecided).
