@@ -7,7 +7,8 @@
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]
 #   targets: text ply off obj stl (readers), reconstruct2 reconstruct3 gamma_graph (engines);
 #   docs/fuzzing.md. MAX_LEN (default 4096) bounds the input size; fuzz/dict/<target>.dict is
-#   passed as -dict when it exists.
+#   passed as -dict when it exists. KEEP_CORPUS=1 fuzzes $FUZZ_BUILD/corpus/<target>/ (seeded from
+#   fuzz/corpus/) instead of a temporary copy, so long runs continue where the last one stopped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
@@ -28,7 +29,13 @@ mkdir -p "$BUILD/findings"
 status=0
 for t in "${TARGETS[@]}"; do
   work=$(mktemp -d)
-  cp -r "fuzz/corpus/$t" "$work/corpus"
+  if [ -n "${KEEP_CORPUS:-}" ]; then  # a corpus that grows from run to run, under $BUILD
+    mkdir -p "$BUILD/corpus/$t"
+    cp -n "fuzz/corpus/$t/"* "$BUILD/corpus/$t/"
+    ln -s "$(cd "$BUILD/corpus/$t" && pwd)" "$work/corpus"
+  else
+    cp -r "fuzz/corpus/$t" "$work/corpus"
+  fi
   dict=()
   [ -f "fuzz/dict/$t.dict" ] && dict=(-dict="fuzz/dict/$t.dict")
   echo "== fuzz_$t: ${SECONDS_EACH}s"
