@@ -7,7 +7,8 @@ PKGS=(build-essential cmake ccache libcgal-dev libgmp-dev libmpfr-dev libboost-d
       libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtbb-dev
       libfast-float-dev libnanoflann-dev libpng-dev pybind11-dev python3-dev python3-numpy
       python3-setuptools python3-wheel python3-venv python3-pip
-      python3-shapely python3-meshio python3-dask python3-distributed)
+      python3-shapely python3-meshio python3-dask python3-distributed
+      clang-14 libclang-rt-14-dev)  # (clang: the libFuzzer smoke of .ci/run, docs/fuzzing.md)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

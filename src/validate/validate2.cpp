@@ -247,7 +247,7 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
     const Box bf = box(f);
     bool hit = false;
     for (std::size_t g : big) hit = hit || meet(bf, box(g));
-    int i0, i1, j0, j1;
+    int i0 = 0, i1 = -1, j0 = 0, j1 = -1;  // (an empty range when the box test already hit)
     if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
     for (int j = j0; j <= j1 && !hit; ++j)
       for (int i = i0; i <= i1 && !hit; ++i)

@@ -5,10 +5,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cgal/detail/exact_apex3.hpp"
 #include "constrict/predicates.hpp"
 #include "core/detail/semi_static.hpp"
 
 namespace constrict::detail {
+
+// A sliver: sin² of the angle at a below this, the double cross product e1 x e2 has a relative
+// error above ~2^-32 (a few ulps / sin) and the magnitudes are evaluated exactly instead.
+constexpr double kExactMagnitudeSin2 = 0x1p-40;  // (~1e-12: extra_faces.cpp's kSliverSin2)
 
 class TriangleFrame3 {
  public:
@@ -43,6 +48,7 @@ class TriangleFrame3 {
     const double ox = wn_[0] / (2 * nn_), oy = wn_[1] / (2 * nn_), oz = wn_[2] / (2 * nn_);
     r_ = std::sqrt(ox * ox + oy * oy + oz * oz);
     inv_norm_n_ = 1.0 / std::sqrt(nn_);
+    sliver_ = !(nn_ >= kExactMagnitudeSin2 * l1 * l2);  // (NaN from over- or underflow: exact too)
   }
 
   /// γ(abc; p), sign exact (semi-static filter, exact predicate when undecided).
@@ -60,6 +66,10 @@ class TriangleFrame3 {
     if (safe_range(m) && std::fabs(d) > 16 * kU * m) s = d > 0 ? 1 : -1;
     else s = diametral_side3(a_, b_, c_, p);
     if (s == 0) return 0.0;
+    if (sliver_) {
+      const double mag = exact_apex_magnitude3(a_, b_, c_, p);
+      return s > 0 ? mag : -mag;
+    }
     const double rho = std::fabs(d) / nn_;
     const double h = std::fabs(q[0] * n_[0] + q[1] * n_[1] + q[2] * n_[2]) * inv_norm_n_;
     const double t = 2 * h * r_;
@@ -72,6 +82,7 @@ class TriangleFrame3 {
   const double *a_, *b_, *c_;
   double e1_[3], e2_[3], n_[3], wn_[3], awn_[3];
   double nn_ = 0, ann_ = 0, r_ = 0, inv_norm_n_ = 0;
+  bool sliver_ = false;
 };
 
 }  // namespace constrict::detail

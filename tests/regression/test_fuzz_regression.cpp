@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Inputs found by the engine fuzz targets (fuzz/fuzz_reconstruct2.cpp, fuzz_reconstruct3.cpp,
+// fuzz_gamma_graph.cpp; docs/fuzzing.md "Findings so far"), each with its expected outcome.
+// Files: tests/data/regression/, named for the defect.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "constrict/gamma_graph.hpp"
+#include "constrict/io.hpp"
+#include "constrict/points.hpp"
+
+namespace constrict {
+namespace {
+
+PointSet load(const std::string& name) {
+  PointSet p;
+  ReadOptions ro;
+  const Status st = read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/" + name, ro, p);
+  EXPECT_TRUE(st.is_ok()) << st.message();
+  return p;
+}
+
+bool has_face(const GammaFaces& g, const std::vector<int>& ids, std::size_t* at = nullptr) {
+  for (std::size_t f = 0; f < g.size(); ++f) {
+    bool same = true;
+    for (int j = 0; j < g.dim; ++j) same = same && g.vertex(f, j) == ids[static_cast<std::size_t>(j)];
+    if (same) {
+      if (at) *at = f;
+      return true;
+    }
+  }
+  return false;
+}
+
+// A sliver a few ulps from collinear (fuzz_gamma_graph, first run). Exact rational arithmetic
+// gives face (0,2,5) the side values -1 + 5e-13 (points 3, 4) and 1 - 5e-13 (point 1), so it is a
+// member of γ(g0, g1) only for g0 <= -1 + 5e-13; face (0,1,2) has -0.8456 and 0.6653. The double
+// magnitudes of TriangleFrame3 lost every digit on such slivers (e1 x e2 cancels): -0.099 / +0.042
+// and -6e-27 / 7e-30, so γ(-0.5,-0.5) held (0,2,5) (`constrict graph --gamma=-0.5,-0.5`). Slivers
+// are now evaluated exactly (cgal/detail/exact_apex3.hpp); the signs were always exact.
+TEST(FuzzRegressionGraph, SliverNearCollinearMagnitudesExact) {
+  const PointSet p = load("gamma3_sliver_near_collinear_oracle_inexact.xyz");
+  ASSERT_EQ(p.dim, 3);
+  ASSERT_EQ(p.size(), 6u);
+  for (double g : {-0.05, -0.5, -0.999}) {
+    GammaFaces graph;
+    ASSERT_TRUE(build_gamma_graph(p, GraphSpec::fixed(g, g), graph).is_ok());
+    EXPECT_FALSE(has_face(graph, {0, 2, 5})) << g;
+  }
+  GammaFaces all;
+  ASSERT_TRUE(build_gamma_graph(p, GraphSpec::fixed(-1, -1), all).is_ok());
+  std::size_t f = 0;
+  ASSERT_TRUE(has_face(all, {0, 2, 5}, &f));
+  EXPECT_LT(std::min(all.gamma_a[f], all.gamma_b[f]), -0.999999);
+  EXPECT_GT(std::max(all.gamma_a[f], all.gamma_b[f]), 0.999999);
+  ASSERT_TRUE(has_face(all, {0, 1, 2}, &f));
+  EXPECT_NEAR(std::min(all.gamma_a[f], all.gamma_b[f]), -0.845607450744, 1e-9);
+  EXPECT_NEAR(std::max(all.gamma_a[f], all.gamma_b[f]), 0.665327520881, 1e-9);
+  // The oracle (side_values_scan, same apex values) agrees.
+  double ga = 0, gb = 0;
+  bool blocked = false;
+  const int ids[3] = {0, 1, 2};
+  side_values_scan(p, ids, ga, gb, blocked);
+  EXPECT_NEAR(std::min(ga, gb), -0.845607450744, 1e-9);
+}
+
+}  // namespace
+}  // namespace constrict
