@@ -4,6 +4,8 @@
 # on a temporary copy of its corpus (fuzz/corpus/<target>/), so the source tree stays clean: only
 # $FUZZ_BUILD is written. Exits non-zero on any finding (crash, sanitizer report, failed check,
 # 10 s timeout, more than 2 GiB allocated); crash inputs are kept in $FUZZ_BUILD/findings/.
+# FUZZ_SEED (default 1) fixes the mutation sequence, so a CI run repeats the inputs a local run of
+# the same length tried first; FUZZ_SEED=0 lets libFuzzer pick one (long local runs).
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]
 #   targets: text ply off obj stl (readers), reconstruct2 reconstruct3 gamma_graph (engines);
 #   docs/fuzzing.md. MAX_LEN (default 4096) bounds the input size; fuzz/dict/<target>.dict is
@@ -39,7 +41,7 @@ for t in "${TARGETS[@]}"; do
   dict=()
   [ -f "fuzz/dict/$t.dict" ] && dict=(-dict="fuzz/dict/$t.dict")
   echo "== fuzz_$t: ${SECONDS_EACH}s"
-  if ! "$BUILD/fuzz/fuzz_$t" "$work/corpus" "${dict[@]}" -max_total_time="$SECONDS_EACH" -timeout=10 \
+  if ! "$BUILD/fuzz/fuzz_$t" "$work/corpus" "${dict[@]}" -max_total_time="$SECONDS_EACH" -seed="${FUZZ_SEED:-1}" -timeout=10 \
        -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len="${MAX_LEN:-4096}" -print_final_stats=1 \
        -artifact_prefix="$BUILD/findings/${t}-" 2>"$work/log"; then
     status=1
