@@ -231,18 +231,8 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     vo.seed_limit = a.seed_limit;
     VoronoiSkeleton2Result v;
     if (Status s = voronoi_skeleton2(pts, vo, v); !s) return fail(s);
-    r.boundary = v.boundary;
-    r.complete = v.complete;
-    r.stuck_points = v.unplaced_points;
-    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
-    r.validated = v.validated && v.complete;
-    r.check = v.check;
-    r.area = v.area;
-    r.perimeter = v.perimeter;
-    r.ms_delaunay = v.stats.ms_delaunay;
-    r.ms_constrict = v.stats.ms_grow;
-    r.ms_validate = v.stats.ms_validate;
     skel = v.stats;
+    r = as_reconstruction(std::move(v));
   } else if (Status s = reconstruct_rings2(pts, ropt, rr, &visitor); !s) {
     return fail(s);
   } else if (!rr.from_polygon) {
@@ -362,16 +352,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     vo.validate = false;
     VoronoiSkeleton3Result v;
     if (Status s = voronoi_skeleton3(pts, vo, v); !s) return fail(s);
-    r.mesh = std::move(v.mesh);
-    r.tets = std::move(v.tets);
-    r.complete = v.complete;
-    r.unplaced_points = v.unplaced_points;
-    r.method = v.complete ? Method3::VoronoiSkeleton : Method3::Incomplete;
-    r.volume = v.volume;
-    r.surface_area = v.surface_area;
-    r.ms_delaunay = v.stats.ms_delaunay;
-    r.ms_constrict = v.stats.ms_grow;
     skel = v.stats;
+    r = as_reconstruction(std::move(v));
   } else if (Status s = reconstruct3(pts, opt, r, &visitor); !s) {
     return fail(s);
   }

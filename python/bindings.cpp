@@ -249,18 +249,8 @@ py::dict reconstruct2_py(const py::handle& points, const std::string& fallback, 
     vo.seed_limit = seed_limit;
     VoronoiSkeleton2Result v;
     run_nogil([&] { return voronoi_skeleton2(in.points, vo, v); });
-    r.boundary = v.boundary;
-    r.complete = v.complete;
-    r.stuck_points = v.unplaced_points;
-    r.method = v.complete ? "voronoi-skeleton" : "incomplete";
-    r.validated = v.validated && v.complete;
-    r.check = v.check;
-    r.area = v.area;
-    r.perimeter = v.perimeter;
-    r.ms_delaunay = v.stats.ms_delaunay;
-    r.ms_constrict = v.stats.ms_grow;
-    r.ms_validate = v.stats.ms_validate;
     stats = skeleton_stats(v.stats, seed_limit);
+    r = as_reconstruction(std::move(v));
   } else {
     run_nogil([&] { return reconstruct2(in.points, o, r); });
   }
@@ -340,17 +330,8 @@ py::dict reconstruct3_py(const py::handle& points, const std::string& fallback, 
     vo.seed_limit = seed_limit;
     VoronoiSkeleton3Result v;
     run_nogil([&] { return voronoi_skeleton3(in.points, vo, v); });
-    r.mesh = std::move(v.mesh);
-    r.tets = std::move(v.tets);
-    r.complete = v.complete;
-    r.validated = v.validated && v.complete;
-    r.unplaced_points = v.unplaced_points;
-    r.method = v.complete ? Method3::VoronoiSkeleton : Method3::Incomplete;
-    r.volume = v.volume;
-    r.surface_area = v.surface_area;
-    r.ms_delaunay = v.stats.ms_delaunay;
-    r.ms_constrict = v.stats.ms_grow;
     stats = skeleton_stats(v.stats, seed_limit);
+    r = as_reconstruction(std::move(v));
   } else {
     run_nogil([&] { return reconstruct3(in.points, o, r); });
   }

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "constrict/constrict.hpp"
+#include "constrict/constrict3.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
@@ -89,5 +91,10 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
 ///   Delaunay tetrahedra that is a ball with no interior vertex). O(S T log T) for S seeds.
 Status voronoi_skeleton3(const PointSet& points, const VoronoiSkeletonOptions& options,
                          VoronoiSkeleton3Result& result);
+
+/// The skeleton's result in the constriction's result type (method "voronoi-skeleton", or
+/// "incomplete"), so that callers write and report both through one path (CLI, Python).
+Polygon2Result as_reconstruction(VoronoiSkeleton2Result&& skeleton);
+Mesh3Result as_reconstruction(VoronoiSkeleton3Result&& skeleton);
 
 }  // namespace constrict

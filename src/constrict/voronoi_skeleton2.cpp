@@ -106,4 +106,20 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
   return Status::ok();
 }
 
+Polygon2Result as_reconstruction(VoronoiSkeleton2Result&& v) {
+  Polygon2Result r;
+  r.boundary = std::move(v.boundary);
+  r.complete = v.complete;
+  r.stuck_points = std::move(v.unplaced_points);
+  r.method = v.complete ? "voronoi-skeleton" : "incomplete";
+  r.validated = v.validated && v.complete;
+  r.check = v.check;
+  r.area = v.area;
+  r.perimeter = v.perimeter;
+  r.ms_delaunay = v.stats.ms_delaunay;
+  r.ms_constrict = v.stats.ms_grow;
+  r.ms_validate = v.stats.ms_validate;
+  return r;
+}
+
 }  // namespace constrict

@@ -88,4 +88,19 @@ Status voronoi_skeleton3(const PointSet& points, const VoronoiSkeletonOptions& o
   return Status::ok();
 }
 
+Mesh3Result as_reconstruction(VoronoiSkeleton3Result&& v) {
+  Mesh3Result r;
+  r.mesh = std::move(v.mesh);
+  r.tets = std::move(v.tets);
+  r.complete = v.complete;
+  r.validated = v.validated && v.complete;
+  r.unplaced_points = std::move(v.unplaced_points);
+  r.method = v.complete ? Method3::VoronoiSkeleton : Method3::Incomplete;
+  r.volume = v.volume;
+  r.surface_area = v.surface_area;
+  r.ms_delaunay = v.stats.ms_delaunay;
+  r.ms_constrict = v.stats.ms_grow;
+  return r;
+}
+
 }  // namespace constrict
