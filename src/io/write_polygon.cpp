@@ -18,16 +18,20 @@ void coords(std::string& s, const double* p, char sep) {
   put_double(s, p[1]);
 }
 
+// The optional graph layer under a polygon or rings picture: its 2D edges, dashed.
+void graph_layer(std::string& s, const detail::SvgFrame& fr, const PointSet& pts, const PolygonSvgLayers* layers) {
+  if (!layers || !layers->graph || layers->graph->dim != 2) return;
+  const GammaFaces& g = *layers->graph;
+  s += "<g stroke=\"#8a8a8a\" stroke-width=\"0.7\" stroke-dasharray=\"4 3\" fill=\"none\">\n";
+  for (std::size_t f = 0; f < g.size(); ++f)
+    fr.line(s, pts[static_cast<std::size_t>(g.vertex(f, 0))], pts[static_cast<std::size_t>(g.vertex(f, 1))]);
+  s += "</g>\n";
+}
+
 std::string to_svg(const PointSet& pts, const std::vector<int>& b, const PolygonSvgLayers* layers) {
   const detail::SvgFrame fr(pts);
   std::string s = fr.open(layers && !layers->title.empty() ? layers->title : "constrict polygon");
-  if (layers && layers->graph && layers->graph->dim == 2) {
-    const GammaFaces& g = *layers->graph;
-    s += "<g stroke=\"#8a8a8a\" stroke-width=\"0.7\" stroke-dasharray=\"4 3\" fill=\"none\">\n";
-    for (std::size_t f = 0; f < g.size(); ++f)
-      fr.line(s, pts[static_cast<std::size_t>(g.vertex(f, 0))], pts[static_cast<std::size_t>(g.vertex(f, 1))]);
-    s += "</g>\n";
-  }
+  graph_layer(s, fr, pts, layers);
   s += "<polygon fill=\"#dce8f5\" fill-opacity=\"0.6\" stroke=\"#1f4e8c\" stroke-width=\"1.6\" "
        "stroke-linejoin=\"round\" points=\"";
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -150,13 +154,7 @@ std::string multipolygon_text(const PointSet& pts, const std::vector<Ring2>& rin
 std::string rings_svg(const PointSet& pts, const std::vector<Ring2>& rings, const PolygonSvgLayers* layers) {
   const detail::SvgFrame fr(pts);
   std::string s = fr.open(layers && !layers->title.empty() ? layers->title : "constrict rings");
-  if (layers && layers->graph && layers->graph->dim == 2) {
-    const GammaFaces& g = *layers->graph;
-    s += "<g stroke=\"#8a8a8a\" stroke-width=\"0.7\" stroke-dasharray=\"4 3\" fill=\"none\">\n";
-    for (std::size_t f = 0; f < g.size(); ++f)
-      fr.line(s, pts[static_cast<std::size_t>(g.vertex(f, 0))], pts[static_cast<std::size_t>(g.vertex(f, 1))]);
-    s += "</g>\n";
-  }
+  graph_layer(s, fr, pts, layers);
   s += "<path fill=\"#dce8f5\" fill-opacity=\"0.6\" fill-rule=\"evenodd\" stroke=\"#1f4e8c\" stroke-width=\"1.6\" "
        "stroke-linejoin=\"round\" d=\"";
   for (const Ring2& r : rings) {
