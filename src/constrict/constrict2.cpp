@@ -28,7 +28,7 @@
 #include "core/detail/check_points.hpp"
 #include "core/detail/edge_key.hpp"
 #include "core/detail/grid_cells.hpp"
-#include "gamma/detail/delaunay_local.hpp"
+#include "cgal/detail/delaunay_local.hpp"
 
 namespace constrict {
 namespace {
