@@ -101,9 +101,6 @@ Status check_dimension_options(const ReconstructArgs& a, int dim) {
     if (a.ascii) return wrong_dimension("--ascii", 2, a.in.path);
     if (a.fast) return wrong_dimension("--fast", 2, a.in.path);
     if (a.no_grow) return wrong_dimension("--no-grow", 2, a.in.path);
-  } else if (a.topology != "single") {
-    return {StatusCode::InvalidArgument, "--topology " + a.topology + " is 2D only so far, but " + a.in.path +
-                                             " is 3D (3D gives one closed genus-0 surface)"};
   } else if (a.fallback == "gamma0" || a.fallback == "degree4") {
     return {StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback, but " + a.in.path +
                                              " is 3D; 3D has auto (star cavities) or none"};
@@ -298,6 +295,24 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   return 0;
 }
 
+// --topology auto in 3D: the surfaces, their roles, nesting and genus, and what decided (issue 16).
+void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Surface3& s : sr.surfaces) {
+    nlohmann::json x = {{"faces", s.triangles.size()}, {"points", s.points.size()}, {"genus", s.genus},
+                        {"role", to_string(s.role)}, {"parent", s.parent}};
+    x["gap_spacings"] = std::isfinite(s.gap_spacings) ? nlohmann::json(s.gap_spacings) : nlohmann::json(nullptr);
+    x["nearest_surface"] = s.nearest_surface;
+    list.push_back(x);
+  }
+  j["surfaces"] = list;
+  j["topology"] = {{"mode", to_string(sr.topology)}, {"decision", to_string(sr.decision)}, {"parts", sr.parts},
+                   {"part_sizes", sr.part_sizes}, {"small_parts_merged", sr.small_parts_merged}, {"gap_threshold", sr.gap_threshold},
+                   {"min_gap_spacings", std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},
+                   {"handles_closed", sr.mesh.handle_added}, {"handles_opened", sr.mesh.handle_removed},
+                   {"ms_infer", sr.ms_infer}, {"ms_assemble", sr.ms_assemble}};
+}
+
 class ProgressVisitor3 final : public Constrict3Visitor {
  public:
   ProgressVisitor3(Progress& p, std::size_t n) : progress_(p), n_(n) {}
@@ -345,6 +360,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   progress.phase(is_skeleton(a) ? "voronoi skeleton growth" : "delaunay tetrahedralization, labels");
   ProgressVisitor3 visitor(progress, pts.size());
   Mesh3Result r;
+  Surfaces3Result sr;
   VoronoiSkeletonStats skel;
   if (is_skeleton(a)) {
     VoronoiSkeletonOptions vo;
@@ -354,16 +370,32 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     if (Status s = voronoi_skeleton3(pts, vo, v); !s) return fail(s);
     skel = v.stats;
     r = as_reconstruction(std::move(v));
+  } else if (a.topology == "auto") {
+    Surfaces3Options so;
+    so.topology = Topology3::Auto;
+    so.topology_gap = a.topology_gap;
+    so.surface = opt;
+    so.validate = false;  // validated below, as the single surface is
+    if (Status s = reconstruct_surfaces3(pts, so, sr); !s) return fail(s);
+    r = sr.mesh;
   } else if (Status s = reconstruct3(pts, opt, r, &visitor); !s) {
     return fail(s);
   }
+  const bool surfaces = a.topology == "auto" && !is_skeleton(a);
 
   progress.phase("validating");
   const auto tv = Clock::now();
   MeshCheck chk;
   MeshCheckOptions copt;
   copt.require_all_points = true;
+  copt.any_topology = surfaces;
   bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
+  std::string body_reason;
+  if (surfaces && valid && r.complete) {
+    const Status bs = validate_surfaces3(pts, r.mesh, r.tets);
+    valid = bs.is_ok();
+    body_reason = bs.message();
+  }
   // An incomplete skeleton must still be a closed genus-0 surface over the points it reaches.
   if (is_skeleton(a) && !r.complete) {
     MeshCheck part;
@@ -373,7 +405,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   }
   const double ms_validate = ms(tv, Clock::now());
   if (r.complete && !valid)
-    return fail({StatusCode::Internal, "the reconstructed surface failed validation (please report): " + chk.reason});
+    return fail({StatusCode::Internal, "the reconstructed surface failed validation (please report): " + chk.reason +
+                                           body_reason});
 
   progress.phase("writing");
   const auto tw = Clock::now();
@@ -393,6 +426,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["genus"] = chk.genus;
     j["components"] = chk.components;
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
+    if (surfaces) add_surfaces_json(sr, j);
     add_method_json(a, skel, j);
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms_write}, {"total", ms(t0, Clock::now())}});
     if (Status s = write_report(a.report, j); !s) return fail(s);
@@ -404,7 +438,12 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                                              " points left inside; the surface in " + a.out + " passes through " +
                                              std::to_string(nb) + " points"});
   }
-  if (!a.quiet) {
+  if (!a.quiet && surfaces) {
+    std::printf("%zu surface%s through %zu/%zu points: valid (closed, manifold, outward, total genus %d, %zu triangles; %zu part%s, %s)",
+                sr.surfaces.size(), sr.surfaces.size() == 1 ? "" : "s", nb, n, chk.genus, r.mesh.triangles.size(), sr.parts,
+                sr.parts == 1 ? "" : "s", to_string(sr.decision));
+    std::printf(" -> %s (%.0f ms)\n", a.out.c_str(), ms(t0, Clock::now()));
+  } else if (!a.quiet) {
     std::printf("surface through %zu/%zu points: valid (closed, manifold, outward, genus %d, %zu triangles); method %s",
                 nb, n, chk.genus, r.mesh.triangles.size(), to_string(r.method));
     if (a.method != "gamma" && !is_skeleton(a)) std::printf(" (criterion %s)", a.method.c_str());
@@ -452,10 +491,10 @@ Command add_reconstruct_command(CLI::App& app) {
       ->check(CLI::IsMember({"gamma", "min-area-change", "boissonnat", "voronoi-skeleton"}));
   cmd->add_option("--seed-limit", a->seed_limit, "voronoi-skeleton: try at most N seeds (0 = all)");
   cmd->add_option("--topology", a->topology,
-                  "2D: single (default: one polygon) | auto (the rings the data show: shells, holes, parts; docs/topology.md)")
+                  "single (default: one polygon / one genus-0 surface) | auto (what the data show: 2D shells, holes, parts; 3D parts, inner shells, handles; docs/topology.md)")
       ->check(CLI::IsMember({"single", "auto"}));
   cmd->add_option("--topology-gap", a->topology_gap,
-                  "2D auto: accept several rings only when every two are at least T local spacings apart (default 2)")
+                  "auto: separate rings (2D) or surfaces (3D) only where parts are at least T local spacings apart (default 2)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};

@@ -340,6 +340,39 @@ py::dict reconstruct3_py(const py::handle& points, const std::string& fallback, 
   return d;
 }
 
+// topology="auto" in 3D: reconstruct_surfaces3 (topology.hpp); the surface dict plus the surfaces.
+py::dict surfaces3_py(const py::handle& points, const std::string& topology, double gap, const std::string& fallback,
+                      const std::string& refine, bool fast, bool grow, bool merge, bool self_intersections) {
+  Surfaces3Options so;
+  if (!topology_from_name(topology, so.topology))
+    raise({StatusCode::InvalidArgument, "topology must be 'single' or 'auto', not '" + topology + "'"});
+  so.topology_gap = gap;
+  so.surface = options3(fallback, parse_refine(refine), fast, grow, Criterion::Gamma, SIZE_MAX, self_intersections);
+  const Input in = prepare(points, 3, merge);
+  Surfaces3Result r;
+  run_nogil([&] { return reconstruct_surfaces3(in.points, so, r); });
+  py::list surfaces;
+  for (Surface3& x : r.surfaces) {
+    remap(x.points, in.rows);
+    py::dict d;
+    d["role"] = to_string(x.role);
+    d["parent"] = x.parent;
+    d["genus"] = x.genus;
+    d["triangles"] = ids(x.triangles);
+    d["points"] = ids(x.points);
+    d["gap_spacings"] = x.gap_spacings;
+    surfaces.append(d);
+  }
+  const bool valid = r.valid();
+  const int genus = r.genus;
+  py::dict d = surface_dict(r.mesh, so.surface, in);
+  d["valid"] = valid;
+  d["genus"] = valid ? genus : -1;
+  d["surfaces"] = surfaces;
+  d["topology"] = to_string(r.topology);
+  return d;
+}
+
 // ---- graphs, validation --------------------------------------------------------------------
 
 GraphSpec parse_spec(const std::string& preset, const py::object& gamma, const py::object& interval) {
@@ -507,6 +540,8 @@ PYBIND11_MODULE(_core, m) {
         return verdict(st, c.reason);
       },
       py::arg("points"), py::arg("boundary"));
+  m.def("surfaces3", &surfaces3_py, py::arg("points"), py::arg("topology"), py::arg("topology_gap"), py::arg("fallback"),
+        py::arg("refine"), py::arg("fast"), py::arg("grow"), py::arg("merge"), py::arg("self_intersections"));
   m.def("rings2", &rings2_py, py::arg("points"), py::arg("topology"), py::arg("topology_gap"), py::arg("fallback"),
         py::arg("refine"), py::arg("method"), py::arg("stop_after"));
   m.def(
@@ -525,19 +560,24 @@ PYBIND11_MODULE(_core, m) {
       py::arg("points"), py::arg("rings"));
   m.def(
       "validate_surface",
-      [](const py::handle& points, const py::handle& triangles) {
+      [](const py::handle& points, const py::handle& triangles, const py::object& tetrahedra) {
         const PointSet p = to_points(points, 3);
         TriMesh3 mesh;
         mesh.triangles = to_rows<3>(triangles, p.size(), "triangles");
         MeshCheck c;
         Status st;
-        {
+        if (!tetrahedra.is_none()) {  // any topology, checked against the body (validate_surfaces3)
+          const std::vector<std::array<int, 4>> body = to_rows<4>(tetrahedra, p.size(), "tetrahedra");
+          py::gil_scoped_release nogil;
+          st = validate_surfaces3(p, mesh, body);
+          c.reason = st.message();
+        } else {
           py::gil_scoped_release nogil;
           st = validate_mesh3(p, mesh, &c);
         }
         return verdict(st, c.reason);
       },
-      py::arg("points"), py::arg("triangles"));
+      py::arg("points"), py::arg("triangles"), py::arg("tetrahedra") = py::none());
   m.def("check_points", [](const py::handle& points) {
     const PointSet p = to_points(points, dim_of(points));
     run_nogil([&] { return check_points(p); });

@@ -21,6 +21,15 @@
 
 namespace constrict {
 
+struct Delaunay3;
+struct Mesh3Result;
+struct Constrict3Options;
+namespace detail {
+// reconstruct3() with the tetrahedralization already built (src/constrict/detail/share3.hpp).
+Status reconstruct3_sharing(const PointSet& points, const Constrict3Options& options, Delaunay3&& dt, Mesh3Result& result,
+                            std::vector<int> part_of);
+}  // namespace detail
+
 /// What to do when the Delaunay constriction locks (heap empty, points still inside).
 enum class Fallback3 {
   Auto,  ///< star-cavity re-tetrahedralization around each stuck point, then continue (default)
@@ -137,6 +146,12 @@ struct Constrict3Options {
   /// stop_after, with a sculpting post-pass or another criterion. Default on: the best GT
   /// recovery and distances measured on every shared model.
   bool grow = true;
+  /// Handles (the auto topology, topology.hpp; docs/topology.md §"3D"): after the growth and its
+  /// fill, a handle stage may close loops through the regions labelled inside that the genus-0
+  /// growth had to leave out, and open tunnels through regions labelled outside, keeping every
+  /// vertex manifold and every point on the surface; a change is kept only where it lowers the
+  /// bridge measure (no face spanning a gap). The result may then have genus > 0. Off: genus 0.
+  bool handles = false;
   /// Cavity size limit (tetrahedra) of one fallback attempt.
   std::size_t max_cavity_tets = 2048;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
@@ -155,6 +170,7 @@ enum class Stage3 {
   Hull,        ///< the start: the convex hull (the points on it)
   Grow,        ///< growth from the inside (docs/reconstruction-3d.md §4.7)
   Fill,        ///< fill pass after the growth
+  Handles,     ///< handle stage after the fill (Constrict3Options::handles)
   Gamma,       ///< the γ-constriction from the convex hull (seed paper §4.2)
   Cavity,      ///< star cavities after a lock (seed paper §4.3)
   Carve,       ///< carve pass (docs/reconstruction-3d.md §4.6)
@@ -162,7 +178,7 @@ enum class Stage3 {
   Refine,      ///< Refine3 edge flips
   Candidates,  ///< the variant runs (Constrict3Options::variants)
 };
-/// "hull", "grow", "fill", "gamma", "cavity", "carve", "sculpt", "refine", "candidates".
+/// "hull", "grow", "fill", "handles", "gamma", "cavity", "carve", "sculpt", "refine", "candidates".
 const char* to_string(Stage3 stage) noexcept;
 
 /// How a 3D result was reached (Mesh3Result::method).
@@ -220,6 +236,10 @@ struct Mesh3Result {
   std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
+  std::size_t handle_added = 0;           ///< tetrahedra the handle stage added (closing loops)
+  std::size_t handle_removed = 0;         ///< ... and removed (opening tunnels)
+  int genus = 0;                          ///< total genus of the surface (> 0 only with handles)
+  int surfaces = 1;                       ///< its components (> 1 only with handles: inner shells)
   std::size_t grow_cavities = 0;          ///< points the growth placed by a mirrored star cavity
   std::size_t grow_unreached = 0;         ///< growth tried and failed: points it left (then the constriction ran)
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
@@ -299,7 +319,11 @@ class Constrictor3 {
   static void validate_result(Impl& s, Mesh3Result& r);
   Status run_candidates(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
                         Constrict3Visitor* visitor);
+  static Status run(Constrictor3& c, const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
+                    Constrict3Visitor* visitor);
   friend Status reconstruct3(const PointSet&, const Constrict3Options&, Mesh3Result&, Constrict3Visitor*);
+  friend Status detail::reconstruct3_sharing(const PointSet&, const Constrict3Options&, Delaunay3&&, Mesh3Result&,
+                                             std::vector<int>);
 };
 
 /// Reconstructs a closed genus-0 polyhedron through all points (3D).

@@ -31,6 +31,11 @@ struct MeshCheckOptions {
   /// orient3-based). Cost O(F log F + K) with K = pairs of overlapping x-extents (a sweep);
   /// meant for tests and small meshes.
   bool self_intersections = false;
+  /// Accept any number of components and any genus (the surfaces of reconstruct_surfaces3(),
+  /// topology.hpp): each component closed and manifold, V - E + F even per mesh, and the total
+  /// signed volume positive. The orientation of each component against the body is the body
+  /// check's job (validate_surfaces3()).
+  bool any_topology = false;
 };
 
 /// What validate_mesh3() found. Flags after the first failing check may be left false.
@@ -53,7 +58,8 @@ struct MeshCheck {
   bool no_self_intersections = false;  ///< meaningful when self_intersection_checked
   long long vertices = 0, edges = 0, faces = 0;
   long long euler = 0;            ///< V - E + F
-  int genus = -1;                 ///< (2 - χ) / 2 for a closed connected manifold, else -1
+  int genus = -1;                 ///< (2 - χ) / 2 for a closed connected manifold, else -1; with
+                                  ///< any_topology the total genus (2c - χ) / 2 over c components
   int components = 0;
   int missing_point = -1;         ///< first input point that is not a vertex
   int bad_vertex = -1;            ///< first vertex with a bad link

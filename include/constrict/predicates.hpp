@@ -66,4 +66,12 @@ int compare_distance2(const double* p, const double* q, const double* r) noexcep
 int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
                  double t) noexcept;
 
+/// The 3D version of compare_gap2(): sign of k·|p-q|^2 - t^2·Σ|a_i-b_i|^2 over 3D points. Exact.
+/// @pre k >= 1, t finite and >= 0
+int compare_gap3(const double* p, const double* q, const double* const* a, const double* const* b, int k,
+                 double t) noexcept;
+
+/// The 3D version of compare_distance2(): sign(|p-q|^2 - |p-r|^2). Exact.
+int compare_distance3(const double* p, const double* q, const double* r) noexcept;
+
 }  // namespace constrict

@@ -5,12 +5,14 @@
 /// data show one curve. Method, threshold and measurements: docs/topology.md.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
@@ -174,5 +176,113 @@ Status validate_rings2(const PointSet& points, const std::vector<Ring2>& rings, 
 /// Same checks by testing all edge pairs and all ring pairs: O(E^2). Meant for tests.
 Status validate_rings2_brute_force(const PointSet& points, const std::vector<Ring2>& rings,
                                    RingsCheck* details = nullptr);
+
+// ---- 3D: surfaces (issue 16) --------------------------------------------------------------------
+
+/// What topology a 3D reconstruction may give.
+enum class Topology3 {
+  Single,  ///< one closed genus-0 surface through all points: reconstruct3(), the paper's problem
+  Auto,    ///< the surfaces the data show: separate parts, inner shells and handles
+};
+/// Topology3 by name: "single", "auto". @return false for another name
+bool topology_from_name(const std::string& name, Topology3& out) noexcept;
+const char* to_string(Topology3 topology) noexcept;
+
+/// Role of a surface: an outer one bounds a solid part (the body is inside it), an inner one a
+/// cavity of a part (the body is outside it; its normals point into the cavity).
+enum class SurfaceRole { Outer, Inner };
+const char* to_string(SurfaceRole role) noexcept;
+
+/// One closed surface of a surface set.
+struct Surface3 {
+  SurfaceRole role = SurfaceRole::Outer;
+  /// The surface that directly encloses this one (index in the set), or -1: an inner surface's
+  /// parent is the outer surface of its part; an outer surface inside a cavity has that cavity's
+  /// inner surface as parent.
+  int parent = -1;
+  int genus = 0;
+  std::vector<int> triangles;  ///< indices into the result's mesh.triangles
+  std::vector<int> points;     ///< its vertices (input ids, ascending)
+  /// The smallest gap to another surface's points in local spacings (double, for the report; the
+  /// decision is exact, compare_gap3()); infinity and -1 with one surface.
+  double gap_spacings = std::numeric_limits<double>::infinity();
+  int nearest_surface = -1;
+};
+
+/// The default of Surfaces3Options::topology_gap (docs/topology.md §"3D"): the same rule as in
+/// 2D, measured on the shared 3D data.
+constexpr double kDefaultTopologyGap3 = 2.0;
+
+/// The default of Surfaces3Options::min_part_points: the 10 shared 3D topology sets have parts of
+/// 400+ points; the shared scans have outlier clusters of 2-4 points 2+ spacings from the rest.
+constexpr std::size_t kMinPartPoints3 = 10;
+
+/// Options of reconstruct_surfaces3().
+struct Surfaces3Options {
+  Topology3 topology = Topology3::Single;  ///< Single: reconstruct3() exactly
+  /// Parts of the data at least this many local spacings apart get separate surfaces: Delaunay
+  /// edges pq with |pq| >= topology_gap · rms(nearest-neighbour distances of p and q) do not join
+  /// (compare_gap3()). Larger splits less often.
+  double topology_gap = kDefaultTopologyGap3;
+  /// A part with fewer points (or flat) is a cluster of outliers, not an object of its own: it
+  /// joins the part across its shortest Delaunay edge. >= 4 (a closed surface needs 4 points).
+  std::size_t min_part_points = kMinPartPoints3;
+  /// Auto: let each part's surface have handles (Constrict3Options::handles).
+  bool handles = true;
+  bool validate = true;        ///< validate_surfaces3(); a failure is a bug: Internal
+  Constrict3Options surface;   ///< the options of each part's reconstruct3()
+};
+
+/// Why reconstruct_surfaces3() gave its surfaces.
+enum class SurfacesDecision {
+  OnePart,      ///< the points form one part (no gap of topology_gap spacings splits them)
+  SmallPart,    ///< a part's reconstruct3() gave no complete surface: one part used instead
+  NotDelaunay,  ///< a part's surface is not made of Delaunay faces of all points: one part used
+  Parts,        ///< several parts, each with its own surfaces, assembled into one body
+};
+const char* to_string(SurfacesDecision decision) noexcept;
+
+/// Result of reconstruct_surfaces3().
+struct Surfaces3Result {
+  Topology3 topology = Topology3::Single;
+  SurfacesDecision decision = SurfacesDecision::OnePart;
+  /// All surfaces in one mesh (outward from the body: an inner surface faces into its cavity) and
+  /// the body, its volume and area. With several parts the engine fields (stages, timings, counts)
+  /// are sums over the parts and method is the first part's.
+  Mesh3Result mesh;
+  std::vector<Surface3> surfaces;  ///< ordered by their lexicographically smallest point
+  std::size_t parts = 1;           ///< point parts found by the gap rule
+  std::vector<std::size_t> part_sizes;  ///< their point counts (Auto), in part order
+  /// Parts that could not have a surface of their own (fewer than 4 points, or flat: outliers),
+  /// joined to the part across their shortest Delaunay edge.
+  std::size_t small_parts_merged = 0;
+  double gap_threshold = kDefaultTopologyGap3;
+  /// The smallest gap between two parts in local spacings (double; infinity with one part).
+  double min_gap_spacings = std::numeric_limits<double>::infinity();
+  int genus = 0;       ///< total genus
+  bool validated = false;
+  std::string check;   ///< validate_surfaces3()'s reason; empty when valid
+  bool valid() const noexcept { return mesh.complete && validated && check.empty(); }
+  double ms_infer = 0, ms_assemble = 0, ms_validate = 0;
+};
+
+/// Reconstructs closed surfaces through all points (3D). Single: reconstruct3(). Auto (docs/topology.md
+/// §"3D"): (1) parts: components of the Delaunay edges shorter than topology_gap local spacings
+/// (exact); (2) each part's surface by reconstruct3() on its points, with handles when the labels
+/// show them (Constrict3Options::handles); (3) with several parts, the body: the Delaunay
+/// tetrahedra of all points inside an odd number of the surfaces (each surface must be made of
+/// Delaunay faces of all points, else NotDelaunay and one part); roles and parents from the nesting;
+/// (4) validate_surfaces3(). Deterministic; the same surfaces for the points in any order.
+/// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
+///   what reconstruct3() returns, Internal if a complete result fails validation (a bug)
+Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& options, Surfaces3Result& result);
+
+/// Checks surfaces and body exactly: the mesh closed, edge- and vertex-manifold, oriented, through
+/// every point (each point on one surface), any number of components and genus
+/// (MeshCheckOptions::any_topology); every body tetrahedron positive (orient3) and the free faces of
+/// the body exactly the mesh triangles, oriented out of the body. @return Ok or InvalidArgument
+/// with the reason
+Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body,
+                          bool self_intersections = false);
 
 }  // namespace constrict

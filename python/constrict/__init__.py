@@ -81,6 +81,11 @@ class Polygon:
     merged_duplicates: np.ndarray  #: int64: rows dropped as later copies (merge_duplicates=True)
     report_json: str  #: the library's JSON report, verbatim (see report())
     skeleton: Optional[Dict[str, Any]] = None  #: method="voronoi-skeleton": the search statistics
+    #: topology="auto": one dict per closed surface -- "role" ("outer" | "inner": faces into a
+    #: cavity), "parent" (index or -1), "genus", "triangles" (int64 rows of ``triangles``),
+    #: "points" (int64), "gap_spacings" (to the nearest other surface); None in single mode.
+    surfaces: Optional[List[Dict[str, Any]]] = None
+    topology: str = "single"  #: "single" or "auto"
 
     def report(self) -> str:
         """The library's JSON report (the fields of ``constrict reconstruct --report`` that the
@@ -203,6 +208,11 @@ class Surface:
     merged_duplicates: np.ndarray  #: int64: rows dropped as later copies (merge_duplicates=True)
     report_json: str  #: the library's JSON report, verbatim (see report())
     skeleton: Optional[Dict[str, Any]] = None  #: method="voronoi-skeleton": the search statistics
+    #: topology="auto": one dict per closed surface -- "role" ("outer" | "inner": faces into a
+    #: cavity), "parent" (index or -1), "genus", "triangles" (int64 rows of ``triangles``),
+    #: "points" (int64), "gap_spacings" (to the nearest other surface); None in single mode.
+    surfaces: Optional[List[Dict[str, Any]]] = None
+    topology: str = "single"  #: "single" or "auto"
 
     def report(self) -> str:
         """The library's JSON report (the fields of ``constrict reconstruct --report`` that the
@@ -250,6 +260,11 @@ def _same(a: object, b: object) -> bool:
                 return False
         elif f.name == "timings_ms" or f.name == "report_json":
             continue  # wall-clock times differ between equal runs
+        elif f.name == "surfaces" and x is not None and y is not None:
+            if len(x) != len(y) or any(set(s) != set(t) or any(
+                    not np.array_equal(s[k], t[k]) if isinstance(s[k], np.ndarray) else s[k] != t[k] for k in s)
+                    for s, t in zip(x, y)):
+                return False
         elif x != y:
             return False
     return True
@@ -401,6 +416,8 @@ def reconstruct3(
     seed_limit: int = 0,
     merge_duplicates: bool = False,
     validate_self_intersections: bool = False,
+    topology: str = "single",
+    topology_gap: float = 2.0,
     **unknown: Any,
 ) -> Surface:
     """Closed genus-0 triangulated surface through every point of an (N, 3) array, and the
@@ -433,6 +450,11 @@ def reconstruct3(
         validate_self_intersections: add the exact self-intersection test to the library's
             validation (O(F log F + K); off by default, the surface bounds a
             tetrahedralization).
+        topology: "single" (default): one closed genus-0 surface. "auto": the surfaces the data
+            show -- separate parts, inner shells (cavities) and handles (any genus); the result's
+            ``surfaces`` lists them and ``genus`` is the total. CLI --topology. docs/topology.md.
+        topology_gap: parts at least this many local spacings apart get separate surfaces
+            (topology="auto"). CLI --topology-gap.
 
     Returns:
         :class:`Surface`.
@@ -448,6 +470,13 @@ def reconstruct3(
                       stop_after=(stop_after, None), grow=(grow, True), fast=(fast, False))
     if fast and ref == "none":
         raise _invalid("fast=True does not apply with refine=False (the paper's algorithm is one run)")
+    if topology != "single" or topology_gap != 2.0:
+        if method != "gamma" or stop_after is not None:
+            raise _invalid("topology: needs the gamma constriction run to the end (no method=, stop_after=)")
+        d = _core.surfaces3(points, topology, float(topology_gap), fallback, ref, fast, grow, merge_duplicates,
+                            validate_self_intersections)
+        d["skeleton"] = None
+        return Surface(**d)
     d = _core.reconstruct3(points, fallback, ref, fast, grow, method, stop_after, seed_limit,
                            merge_duplicates, validate_self_intersections)
     return Surface(**_with_skeleton(d))
@@ -498,10 +527,13 @@ def validate_rings(points: ArrayLike, rings: Any) -> Tuple[bool, str]:
     return _core.validate_rings(points, rings.rings if isinstance(rings, Rings) else rings)
 
 
-def validate_surface(points: ArrayLike, triangles: ArrayLike) -> Tuple[bool, str]:
+def validate_surface(points: ArrayLike, triangles: ArrayLike,
+                     tetrahedra: Optional[ArrayLike] = None) -> Tuple[bool, str]:
     """(ok, reason): is the mesh closed, manifold, outward oriented, connected, genus 0 and
-    through every point?"""
-    return _core.validate_surface(points, triangles)
+    through every point? With ``tetrahedra`` (a topology="auto" result's body): any number of
+    surfaces and any genus, and the triangles must be exactly the body's free faces, oriented out
+    of it (validate_surfaces3)."""
+    return _core.validate_surface(points, triangles, tetrahedra)
 
 
 # ---- files -------------------------------------------------------------------------------------

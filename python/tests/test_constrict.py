@@ -141,6 +141,58 @@ class Topology2(unittest.TestCase):
         self.assertTrue(r.valid)
 
 
+class Topology3(unittest.TestCase):
+    """reconstruct3(topology="auto"): parts, inner shells and handles (docs/topology.md)."""
+
+    @staticmethod
+    def fibonacci_sphere(n, centre, radius):
+        k = np.arange(n) + 0.5
+        phi = np.arccos(1 - 2 * k / n)
+        theta = math.pi * (1 + 5 ** 0.5) * k
+        v = np.c_[np.cos(theta) * np.sin(phi), np.sin(theta) * np.sin(phi), np.cos(phi)]
+        return np.asarray(centre) + radius * v
+
+    @staticmethod
+    def torus(nu=48, nv=18, R=1.0, r=0.4):
+        pts = []
+        for i in range(nu):
+            for j in range(nv):
+                u = 2 * math.pi * (i + 0.5 * (j % 2)) / nu
+                v = 2 * math.pi * j / nv
+                pts.append([(R + r * math.cos(v)) * math.cos(u), (R + r * math.cos(v)) * math.sin(u), r * math.sin(v)])
+        return np.array(pts)
+
+    def test_two_spheres_and_a_hollow_one(self):
+        two = np.r_[self.fibonacci_sphere(600, (0, 0, 0), 1), self.fibonacci_sphere(600, (2.6, 0, 0), 1)]
+        r = constrict.reconstruct3(two, topology="auto")
+        self.assertTrue(r.valid)
+        self.assertEqual(r.topology, "auto")
+        self.assertEqual([s["role"] for s in r.surfaces], ["outer", "outer"])
+        self.assertEqual(sorted(np.concatenate([s["points"] for s in r.surfaces]).tolist()), list(range(len(two))))
+        self.assertTrue(constrict.validate_surface(two, r.triangles, r.tetrahedra)[0])
+        self.assertFalse(constrict.validate_surface(two, r.triangles)[0])  # not one genus-0 surface
+        self.assertEqual(pickle.loads(pickle.dumps(r)), r)
+        hollow = np.r_[self.fibonacci_sphere(900, (0, 0, 0), 1.5), self.fibonacci_sphere(400, (0, 0, 0), 1)]
+        h = constrict.reconstruct3(hollow, topology="auto")
+        self.assertTrue(h.valid)
+        roles = sorted((s["role"], s["parent"]) for s in h.surfaces)
+        self.assertEqual([x[0] for x in roles], ["inner", "outer"])
+        self.assertLess(h.volume, 4 / 3 * math.pi * 1.5 ** 3 - 4 / 3 * math.pi * 0.9)  # the cavity is not solid
+
+    def test_torus_has_genus_one_in_auto_and_zero_in_single(self):
+        pts = self.torus()
+        a = constrict.reconstruct3(pts, topology="auto")
+        self.assertTrue(a.valid)
+        self.assertEqual(a.genus, 1)
+        self.assertEqual(len(a.surfaces), 1)
+        s = constrict.reconstruct3(pts)
+        self.assertTrue(s.valid)
+        self.assertEqual(s.genus, 0)
+        self.assertIsNone(s.surfaces)
+        with self.assertRaises(constrict.Error):
+            constrict.reconstruct3(pts, topology="sometimes")
+
+
 class Reconstruct3(unittest.TestCase):
     def test_sphere_with_inside_points_is_a_closed_genus0_surface(self):
         rng = np.random.default_rng(3)

@@ -121,29 +121,51 @@ int compare_distance2(const double* p, const double* q, const double* r) noexcep
   return static_cast<int>(CGAL::compare_distance_to_point(p2(p), p2(q), p2(r)));
 }
 
-int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
-                 double t) noexcept {
-  // Semi-static filter (core/detail/semi_static.hpp): the expression k·|pq|^2 - t·t·Σ|a_i b_i|^2
-  // over exact double leaves has depth <= 3 + (k - 1) + 3 + 2 = k + 7; the bound uses 2k + 8.
+namespace {
+// sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) in D dimensions. Semi-static filter
+// (core/detail/semi_static.hpp): the expression over exact double leaves has depth
+// <= D + 1 + (k - 1) + D + 1 + 2; the bound uses 2k + 2D + 4 (2k + 8 in 2D, as before).
+template <int D>
+int compare_gap(const double* p, const double* q, const double* const* a, const double* const* b, int k, double t) {
   const auto sq = [](const double* u, const double* v) {
-    const double dx = u[0] - v[0], dy = u[1] - v[1];
-    return dx * dx + dy * dy;
+    double s = 0;
+    for (int c = 0; c < D; ++c) s += (u[c] - v[c]) * (u[c] - v[c]);
+    return s;
   };
   double sum = 0;
   for (int i = 0; i < k; ++i) sum += sq(a[i], b[i]);
   const double lhs = static_cast<double>(k) * sq(p, q), rhs = t * t * sum;
   const double d = lhs - rhs, m = lhs + rhs;  // every leaf product is a square: m is the |tree|
-  const double depth = 2.0 * k + 8;
+  const double depth = 2.0 * k + 2 * D + 4;
   if (std::isfinite(m) && detail::safe_range(m) && std::fabs(d) > depth * detail::kU * m) return d > 0 ? 1 : -1;
   using Z = CGAL::Mpzf;
   const auto zsq = [](const double* u, const double* v) {
-    const Z dx = Z(u[0]) - Z(v[0]), dy = Z(u[1]) - Z(v[1]);
-    return dx * dx + dy * dy;
+    Z s(0);
+    for (int c = 0; c < D; ++c) {
+      const Z dc = Z(u[c]) - Z(v[c]);
+      s = s + dc * dc;
+    }
+    return s;
   };
   Z zsum(0);
   for (int i = 0; i < k; ++i) zsum = zsum + zsq(a[i], b[i]);
   const Z diff = Z(static_cast<double>(k)) * zsq(p, q) - Z(t) * Z(t) * zsum;
   return static_cast<int>(CGAL::sign(diff));
+}
+}  // namespace
+
+int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
+                 double t) noexcept {
+  return compare_gap<2>(p, q, a, b, k, t);
+}
+
+int compare_gap3(const double* p, const double* q, const double* const* a, const double* const* b, int k,
+                 double t) noexcept {
+  return compare_gap<3>(p, q, a, b, k, t);
+}
+
+int compare_distance3(const double* p, const double* q, const double* r) noexcept {
+  return static_cast<int>(CGAL::compare_distance_to_point(p3(p), p3(q), p3(r)));
 }
 
 }  // namespace constrict

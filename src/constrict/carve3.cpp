@@ -22,13 +22,19 @@ namespace {
 constexpr int kRepairRounds = 16;
 
 enum class Toggle { Remove, Add };  // carve: take tetrahedra out of the body; fill: put them in
+// Genus0: a valid state is a closed genus-0 2-manifold through every point (F = 2N - 4, manifold
+// vertices). Handles: any genus (manifold vertices, every point in the body); a region's end
+// state is then kept only when it changed the topology (F grew: a handle) and `decide` agrees.
+enum class Rule { Genus0, Handles };
 
 class Regions {
  public:
   // Candidates: the Delaunay tetrahedra with sign * score >= threshold (carve: label >= min_conf;
   // fill: -label >= min_conf; bridges: edge ratio >= the bridge ratio), most scored first.
-  Regions(Body3& b, const std::vector<float>& score, float sign, double threshold, Toggle dir, Carve3Stats& st)
-      : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st) {}
+  Regions(Body3& b, const std::vector<float>& score, float sign, double threshold, Toggle dir, Carve3Stats& st,
+          Rule rule = Rule::Genus0, const HandleDecision* decide = nullptr)
+      : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st), rule_(rule),
+        decide_(decide) {}
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
   bool run() {
@@ -41,7 +47,7 @@ class Regions {
         for (int x : b_.tets[t]) ++alive_at_[uz(x)];
       }
     targetF_ = 2 * b_.n - 4;
-    if (F_ != targetF_) return false;
+    if (rule_ == Rule::Genus0 && F_ != targetF_) return false;
     anchor_.assign(b_.tets.size(), 0);
     if (!add_) choose_anchors();
     seen_.assign(b_.tets.size(), 0);
@@ -51,8 +57,10 @@ class Regions {
       if (seen_[s0] || !cand(static_cast<int>(s0))) continue;
       if (!collect_region(static_cast<int>(s0))) continue;
       ++s_.regions;
+      const std::size_t F0 = F_;
       peel_region();
       repair_and_settle();
+      if (rule_ == Rule::Handles) decide_region(F0);
     }
     return true;
   }
@@ -186,7 +194,7 @@ class Regions {
     dirty_list_.clear();
   }
   bool valid_now() {
-    if (F_ != targetF_) return false;
+    if (rule_ == Rule::Genus0 && F_ != targetF_) return false;
     flush();
     return nbad_ == 0;
   }
@@ -249,12 +257,33 @@ class Regions {
     std::vector<int> still;
     for (int t : pending_)
       if (b_.alive(t) == add_) still.push_back(t);
-    if (nbad_ == 0 && F_ == targetF_) still.clear();
+    if (nbad_ == 0 && (F_ == targetF_ || rule_ == Rule::Handles)) still.clear();
     s_.undone += still.size();
     // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
     for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, !add_);
     flush();
-    CONSTRICT_CHECK(F_ == targetF_ && nbad_ == 0, "carve undo did not restore the surface");
+    CONSTRICT_CHECK((F_ == targetF_ || rule_ == Rule::Handles) && nbad_ == 0, "carve undo did not restore the surface");
+  }
+
+  // Handles: keep the region's changes only if they changed the topology (F = 2N - 4c + 4g over
+  // c surfaces of total genus g: a handle raises F, a sealed cavity lowers it) and the decision
+  // agrees; else put the region back as it was.
+  void decide_region(std::size_t F0) {
+    changed_.clear();
+    for (int t : region_)
+      if (b_.alive(t) == add_) changed_.push_back(t);
+    if (changed_.empty()) return;
+    // Carving must not split the body (F would drop); a fill that drops F seals a cavity (an inner
+    // shell: the caller decides whether enclosed voids are allowed).
+    const long long dF = static_cast<long long>(F_) - static_cast<long long>(F0);
+    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF)) {
+      s_.changed += changed_.size();
+      return;
+    }
+    s_.undone += changed_.size();
+    for (int t : changed_) toggle(t, !add_);
+    flush();
+    CONSTRICT_CHECK(F_ == F0 && nbad_ == 0, "handle undo did not restore the surface");
   }
 
   Body3& b_;
@@ -263,6 +292,9 @@ class Regions {
   const double min_conf_;
   const bool add_;
   Carve3Stats& s_;
+  const Rule rule_;
+  const HandleDecision* decide_;
+  std::vector<int> changed_;
   std::vector<int> vt_off_, vt_idx_;
   std::size_t F_ = 0, targetF_ = 0, nbad_ = 0;
   std::vector<int> alive_at_;  // body tetrahedra per vertex
@@ -311,6 +343,14 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
     stats.changed = 0;
   }
   return stats.changed;
+}
+
+std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const HandleDecision& decide,
+                     Carve3Stats& closed, Carve3Stats& opened) {
+  // Loops first (the genus-0 growth leaves a cut in every handle of the object), then tunnels.
+  Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, closed, Rule::Handles, &decide).run();
+  Regions(body, labels.label, 1.0f, min_conf, Toggle::Remove, opened, Rule::Handles, &decide).run();
+  return closed.changed + opened.changed;
 }
 
 }  // namespace constrict::detail

@@ -40,6 +40,7 @@ const char* to_string(Stage3 s) noexcept {
     case Stage3::Hull: return "hull";
     case Stage3::Grow: return "grow";
     case Stage3::Fill: return "fill";
+    case Stage3::Handles: return "handles";
     case Stage3::Gamma: return "gamma";
     case Stage3::Cavity: return "cavity";
     case Stage3::Carve: return "carve";
@@ -78,6 +79,28 @@ Status Constrict3Options::from_preset(const std::string& name, Constrict3Options
   else if (name == "fast") out = fast();
   else return {StatusCode::InvalidArgument, "unknown 3D preset '" + name + "' (use default, paper or fast)"};
   return Status::ok();
+}
+
+// Edge-connected components of a surface over n points (vertex-disjoint surfaces: union-find on
+// the vertices of each triangle).
+static int surface_components(const TriMesh3& m, std::size_t n) {
+  std::vector<int> up(n);
+  for (std::size_t v = 0; v < n; ++v) up[v] = static_cast<int>(v);
+  const auto find = [&](int x) {
+    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
+    return x;
+  };
+  for (const auto& t : m.triangles)
+    for (int k = 1; k < 3; ++k) {
+      const int a = find(t[0]), b = find(t[uz(k)]);
+      if (a != b) up[uz(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<char> used(n, 0);
+  for (const auto& t : m.triangles)
+    for (int v : t) used[uz(v)] = 1;
+  int c = 0;
+  for (std::size_t v = 0; v < n; ++v) c += used[v] && find(static_cast<int>(v)) == static_cast<int>(v);
+  return c;
 }
 
 // ---- Impl: the set-up and the stages in order --------------------------------------------------
@@ -201,7 +224,31 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   r.filled = filled;
   r.stages.push_back({Stage3::Grow, body.n - n_hull, 0});
   r.stages.push_back({Stage3::Fill, 0, 0});
+  handles_stage(r);
   return Growth::Grown;
+}
+
+// (0') The handle stage after the fill (Constrict3Options::handles; docs/topology.md §"3D"): loops
+// closed through the inside regions the growth left out, tunnels opened through outside ones,
+// cavities sealed, each kept only where it lowers the bridge measure; one body, else undone.
+void Constrictor3::Impl::handles_stage(Mesh3Result& r) {
+  if (!opt.handles || !keys.labels) return;
+  stage_event(Stage3::Handles);
+  const auto t0 = Clock::now();
+  const std::vector<std::uint8_t> state0 = body.state;
+  handles_closed = handles_opened = {};
+  const double conf = opt.carve_confidence <= 1 ? opt.carve_confidence : kFillConfidence;
+  const std::size_t changed =
+      detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get()), handles_closed, handles_opened);
+  // (Enclosed voids are the cavities of inner shells: allowed here.)
+  if (changed > 0 && !body.side_connected(kAlive)) {
+    body.state = state0;
+    handles_closed.changed = handles_opened.changed = 0;
+  }
+  r.handle_added = handles_closed.changed;
+  r.handle_removed = handles_opened.changed;
+  r.stages.push_back({Stage3::Handles, 0, handles_opened.changed});
+  r.ms_fill += ms_since(t0);
 }
 
 // (1) The γ-constriction from the hull (the caller may have stepped already).
@@ -325,6 +372,11 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
   r.ms_setup = ms_setup;  // (the hull start may have been made on demand, with the γ pass)
   r.ms_delaunay = ms_delaunay;
   measure_bridges(surface, r);
+  // F = 2N - 4c + 4g for c closed surfaces of total genus g through all N points.
+  r.surfaces = surface_components(surface, body.n);
+  if (r.complete)
+    r.genus = static_cast<int>((static_cast<long long>(surface.triangles.size()) - 2LL * static_cast<long long>(body.n) +
+                                4LL * r.surfaces) / 4);
   r.volume = std::ldexp(mesh_volume(*body.pts, surface), 3 * scale_exp);
   r.surface_area = std::ldexp(mesh_area(*body.pts, surface), 2 * scale_exp);
 }
@@ -353,7 +405,11 @@ Constrictor3::~Constrictor3() = default;
 
 Status Constrictor3::init(const PointSet& points, const Constrict3Options& options, Constrict3Visitor* visitor) {
   Impl& s = *impl_;
+  std::shared_ptr<Delaunay3> shared = std::move(s.shared_dt);
+  std::shared_ptr<const std::vector<int>> part_of = std::move(s.part_of);
   s = Impl{};
+  s.shared_dt = std::move(shared);
+  s.part_of = std::move(part_of);
   if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct3 needs 3D points"};
   if (!(options.sculpt_threshold >= 0 && options.sculpt_threshold <= 4))
     return {StatusCode::InvalidArgument, "sculpt_threshold must be in [0, 4]"};
@@ -393,7 +449,12 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     // The growth reads the tetrahedralization and the labels only: the γ-values are computed
     // when the constriction from the hull needs them (ensure_hull_start).
     Delaunay3 dt;
-    if (Status st = build_delaunay3(*body.pts, dt); !st) return st;
+    if (shared_dt && shared_dt->n_vertices == body.n && order_is_identity()) {
+      dt = std::move(*shared_dt);
+    } else if (Status st = build_delaunay3(*body.pts, dt); !st) {
+      return st;
+    }
+    shared_dt.reset();
     body.tets = std::move(dt.tets);
     body.nbr = std::move(dt.neighbors);
   } else {
@@ -469,6 +530,7 @@ void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
   MeshCheckOptions mo;
   mo.require_all_points = r.complete;
   mo.self_intersections = s.opt.validate_self_intersections;
+  mo.any_topology = s.opt.handles;
   MeshCheck mc;
   const Status vs = validate_mesh3(*s.input, r.mesh, &mc, mo);  // on the input's own coordinates
   CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
@@ -479,6 +541,19 @@ void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
 Status reconstruct3(const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
                     Constrict3Visitor* visitor) {
   Constrictor3 c;
+  return Constrictor3::run(c, points, options, result, visitor);
+}
+
+Status detail::reconstruct3_sharing(const PointSet& points, const Constrict3Options& options, Delaunay3&& dt,
+                                    Mesh3Result& result, std::vector<int> part_of) {
+  Constrictor3 c;
+  c.impl_->shared_dt = std::make_shared<Delaunay3>(std::move(dt));
+  if (!part_of.empty()) c.impl_->part_of = std::make_shared<const std::vector<int>>(std::move(part_of));
+  return Constrictor3::run(c, points, options, result, nullptr);
+}
+
+Status Constrictor3::run(Constrictor3& c, const PointSet& points, const Constrict3Options& options, Mesh3Result& result,
+                         Constrict3Visitor* visitor) {
   const std::vector<Constrict3Variant>& cand = options.variants;
   for (const Constrict3Variant& v : cand)
     if (!weights_ok(v.size_bias, v.label_weight))

@@ -168,7 +168,8 @@ Status check_edges(const TriMesh3& mesh, MeshCheck& d);
 VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n);
 Status check_vertex_links(VertexLinks& vl, MeshCheck& d);
 Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOptions& options, MeshCheck& d);
-Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, MeshCheck& d);
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, const MeshCheckOptions& options,
+                      MeshCheck& d);
 Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 Status check_self_intersections(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 
@@ -195,7 +196,7 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   VertexLinks links = vertex_links(mesh, n);
   if (Status s = check_vertex_links(links, d); !s) return s;
   if (Status s = check_all_points(links.off, options, d); !s) return s;
-  if (Status s = check_topology(mesh, links.off, d); !s) return s;
+  if (Status s = check_topology(mesh, links.off, options, d); !s) return s;
   if (Status s = check_outward(pts, mesh, d); !s) return s;
   if (options.self_intersections) return check_self_intersections(pts, mesh, d);
   return Status::ok();
@@ -339,7 +340,8 @@ Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOpti
 }
 
 // 6. one component (union-find over vertices along face edges), χ = 2, F = 2V - 4.
-Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, MeshCheck& d) {
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, const MeshCheckOptions& options,
+                      MeshCheck& d) {
   const std::size_t n = off.size() - 1;
   const std::size_t nf = mesh.triangles.size();
   std::vector<int> parent(n);
@@ -358,6 +360,16 @@ Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off,
   d.one_component = comps == 1;
   d.euler = d.vertices - d.edges + static_cast<long long>(nf);
   if (d.one_component && d.euler % 2 == 0 && d.euler <= 2) d.genus = static_cast<int>((2 - d.euler) / 2);
+  if (options.any_topology) {
+    // χ = Σ (2 - 2 g_i) over the closed components: 2c - χ is twice the total genus.
+    const long long twice_genus = 2LL * comps - d.euler;
+    if (twice_genus < 0 || twice_genus % 2 != 0)
+      return fail(d, "Euler characteristic " + std::to_string(d.euler) + " impossible for " + std::to_string(comps) +
+                         " closed surfaces");
+    d.genus = static_cast<int>(twice_genus / 2);
+    d.euler_ok = d.face_count_ok = true;
+    return Status::ok();
+  }
   if (!d.one_component) return fail(d, "mesh has " + std::to_string(comps) + " components");
   d.euler_ok = d.euler == 2;
   if (!d.euler_ok)

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "constrict/constrict3.hpp"
+#include "constrict/delaunay.hpp"
 #include "constrict/detail/stages3.hpp"
 
 namespace constrict {
@@ -45,6 +46,18 @@ struct Constrictor3::Impl {
   std::array<int, 4> input_ids(std::array<int, 4> t) const;
   TriMesh3 input_ids(TriMesh3 m) const;
 
+  // A tetrahedralization given by the caller (detail::reconstruct3_sharing), used once by
+  // build_tetrahedralization when it would build the same one.
+  std::shared_ptr<Delaunay3> shared_dt;
+  // The parts of the auto topology's gap rule per engine id (reconstruct3_sharing), or null: the
+  // handle stage may then seal cavities that separate parts.
+  std::shared_ptr<const std::vector<int>> part_of;
+  bool order_is_identity() const {
+    for (std::size_t k = 0; k < order->size(); ++k)
+      if ((*order)[k] != static_cast<int>(k)) return false;
+    return true;
+  }
+
   // State.
   detail::Body3 body;                 // tetrahedra, adjacency, body, surface points
   detail::Keys3 keys;                 // labels, γ face terms, bridge ratios (shared, read-only)
@@ -53,6 +66,7 @@ struct Constrictor3::Impl {
   detail::Tets nbr_delaunay;          // adjacency before the growth's cavities (for a reset)
   detail::Growth3Stats growth;
   detail::Carve3Stats carve;
+  detail::Carve3Stats handles_closed, handles_opened;
   detail::Flips3Stats flips;
   std::size_t filled = 0, removed_sculpt = 0, n_hull = 0;
   double ms_delaunay = 0, ms_setup = 0;
@@ -86,6 +100,7 @@ struct Constrictor3::Impl {
   void constriction_stage(Mesh3Result& r);
   void lock_fallback_stage(Mesh3Result& r);
   void carve_stage(Mesh3Result& r);
+  void handles_stage(Mesh3Result& r);
   void sculpt_stage(Mesh3Result& r);
   void refine_stage(Mesh3Result& r);
   void bridge_stage(Mesh3Result& r);

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -169,6 +170,22 @@ std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, 
 // The mirror image after the growth: adds the regions of Delaunay tetrahedra labelled inside that
 // the body left out, under the same validity rule and with no enclosed void.
 std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
+
+// ---- handles (carve3.cpp, handles3.cpp; docs/topology.md §"3D") --------------------------------
+
+// Whether a region's change that made a handle is kept: the tetrahedra it changed and whether they
+// were added (a loop closed) or removed (a tunnel opened); the body is in the changed state.
+// dF: the change of the surface's face count (> 0 a handle, < 0 a sealed cavity).
+using HandleDecision = std::function<bool(const Body3& body, const std::vector<int>& changed, bool added, long long dF)>;
+// The regions labelled inside that the body left out (closing loops), then the regions labelled
+// outside in the body (opening tunnels), under the manifold rule without the genus-0 condition; a
+// region's change is kept only when it adds a handle and decide agrees. Returns the tetrahedra changed.
+std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const HandleDecision& decide,
+                     Carve3Stats& closed, Carve3Stats& opened);
+// The decision of the engine (handles3.cpp): a change is kept when it lowers the bridge measure
+// of the surface around it; with part_of (the parts of the gap rule, per point; may be null) also
+// a sealed cavity that leaves fewer surfaces holding points of two parts.
+HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of);
 
 // ---- edge flips (flips3.cpp; docs/reconstruction-3d.md §4) -------------------------------------
 

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Sharing the Delaunay tetrahedralization with the 3D engine (the auto topology,
+// src/topology/surfaces3.cpp, builds it for its own inference first).
+#pragma once
+
+#include "constrict/constrict3.hpp"
+#include "constrict/delaunay.hpp"
+
+namespace constrict::detail {
+
+// reconstruct3() on points that are already in canonical order (canonical_order(points) is the
+// identity: the engine ids are the indices) with dt = build_delaunay3(points): the engine uses it
+// instead of building its own when it runs the growth (the default options); the result is the
+// same as reconstruct3()'s, bit for bit. dt is consumed. part_of (per point, or empty): the parts
+// of the gap rule, which lets the handle stage seal the cavities that separate them.
+Status reconstruct3_sharing(const PointSet& points, const Constrict3Options& options, Delaunay3&& dt, Mesh3Result& result,
+                            std::vector<int> part_of = {});
+
+}  // namespace constrict::detail

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The decision of the handle stage (docs/topology.md §"3D"): a region labelled inside that closes
+// a loop, or labelled outside that opens a tunnel, is kept only when the surface around it has
+// fewer bridge faces afterwards. A true handle the genus-0 growth had to cut shows as a wall of
+// long faces across the tube at the cut; closing the loop removes it. Two parts that nearly touch
+// (labels leaking across a gap) would instead get new faces spanning the gap: more bridges.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "constrict/detail/stages3.hpp"
+
+namespace constrict::detail {
+namespace {
+
+struct BridgeCount {
+  int faces = 0;
+  double worst = 0;
+};
+
+// Surfaces of the body holding points of two parts or more.
+int mixed_surfaces(const Body3& b, const std::vector<int>& part_of) {
+  std::vector<int> up(b.n);
+  for (std::size_t v = 0; v < b.n; ++v) up[v] = static_cast<int>(v);
+  const auto find = [&](int x) {
+    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
+    return x;
+  };
+  for (std::size_t t = 0; t < b.tets.size(); ++t) {
+    if (b.state[t] != kAlive) continue;
+    for (int i = 0; i < 4; ++i) {
+      if (!b.boundary_face(static_cast<int>(t), i)) continue;
+      const auto& v = b.tets[t];
+      for (int k = 1; k < 3; ++k) {
+        const int x = find(v[uz(kFaceOut[i][0])]), y = find(v[uz(kFaceOut[i][k])]);
+        if (x != y) up[uz(std::max(x, y))] = std::min(x, y);
+      }
+    }
+  }
+  std::vector<int> part_at(b.n, -1);
+  std::vector<char> mixed(b.n, 0);
+  for (std::size_t v = 0; v < b.n; ++v) {
+    if (!b.onb[v]) continue;
+    const int r = find(static_cast<int>(v));
+    if (part_at[uz(r)] < 0) part_at[uz(r)] = part_of[v];
+    else if (part_at[uz(r)] != part_of[v]) mixed[uz(r)] = 1;
+  }
+  int k = 0;
+  for (char m : mixed) k += m;
+  return k;
+}
+
+}  // namespace
+
+HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of) {
+  auto spacing = std::make_shared<const std::vector<double>>(nearest_spacing3(body));
+  const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
+  // Before any change: the surfaces holding two parts (one, or none).
+  const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;
+  return [spacing, debug, part_of, mixed0](const Body3& b, const std::vector<int>& changed, bool added, long long dF) {
+    if (part_of && mixed0 > 0 && dF < 0 && mixed_surfaces(b, *part_of) < mixed0) {
+      if (debug) std::fprintf(stderr, "handle seal: %zu tets separate two parts: kept\n", changed.size());
+      return true;
+    }
+    std::vector<int> sorted = changed;
+    std::sort(sorted.begin(), sorted.end());
+    const auto was_changed = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };
+    const auto alive_before = [&](int t) { return t >= 0 && (was_changed(t) ? !b.alive(t) : b.alive(t)); };
+    BridgeCount before, after;
+    const auto count = [&](BridgeCount& c, int t, int i) {
+      const auto& v = b.tets[uz(t)];
+      const double r = bridge_ratio3(*b.pts, *spacing, v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]);
+      c.worst = std::max(c.worst, r);
+      if (r >= Mesh3Result::kBridgeRatio) ++c.faces;
+    };
+    for (int t : changed)
+      for (int i = 0; i < 4; ++i) {
+        const int m = b.nbr[uz(t)][uz(i)];
+        // Each face once: from the changed tetrahedron with the smaller index, or a neighbour
+        // not changed.
+        if (m >= 0 && was_changed(m) && m < t) continue;
+        if (alive_before(t) != alive_before(m)) count(before, t, i);
+        if (b.alive(t) != b.alive(m)) count(after, t, i);
+      }
+    const bool keep = after.faces < before.faces;
+    if (debug)
+      std::fprintf(stderr, "handle %s: %zu tets, bridges %d -> %d, worst %.2f -> %.2f: %s\n", added ? "close" : "open",
+                   changed.size(), before.faces, after.faces, before.worst, after.worst, keep ? "kept" : "undone");
+    return keep;
+  };
+}
+
+}  // namespace constrict::detail

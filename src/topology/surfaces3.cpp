@@ -1,0 +1,686 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// reconstruct_surfaces3(): the 3D ladder of topology.hpp (docs/topology.md §"3D") -- parts by the
+// exact gap rule on the Delaunay edges; one part -> reconstruct3() (with handles in Auto); several
+// -> one reconstruct3() per part, then the body of all of them from the Delaunay tetrahedralization
+// of all points by the parity of the surfaces around each tetrahedron (inner shells become
+// cavities), roles and parents from the nesting tree. Any step that does not hold exactly (a part
+// too small, a surface face that is not a Delaunay face of all points, an inconsistent nesting)
+// falls back to one part. Then the exact validation of what came out.
+//
+// Exactness contract: the nearest neighbours (compare_distance3) and the gap rule (compare_gap3)
+// are exact predicates; the rest is combinatorics over the Delaunay tetrahedralization. Doubles
+// are only computed for the report (gap_spacings). Parts and surfaces are ordered by their
+// lexicographically smallest point, so the result does not depend on the file order.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "constrict/delaunay.hpp"
+#include "constrict/mesh.hpp"
+#include "constrict/points.hpp"
+#include "constrict/predicates.hpp"
+#include "constrict/topology.hpp"
+#include "constrict/detail/share3.hpp"
+#include "core/detail/canonical_order.hpp"
+
+namespace constrict {
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
+// Face opposite local vertex i of a positively oriented tetrahedron, oriented outward.
+constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+bool lex_less3(const double* p, const double* q) {
+  return std::lexicographical_compare(p, p + 3, q, q + 3);
+}
+
+struct UnionFind {
+  std::vector<int> up;
+  explicit UnionFind(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
+  int find(int x) {
+    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
+    return x;
+  }
+  void join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) up[uz(std::max(a, b))] = std::min(a, b);
+  }
+};
+
+// Calls f(p, q) for the 6 edges of every tetrahedron (an edge once per tetrahedron around it).
+template <class F>
+void for_tet_edges(const Delaunay3& dt, F&& f) {
+  for (const auto& t : dt.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) f(t[uz(i)], t[uz(j)]);
+}
+
+// The nearest Delaunay neighbour of every point (exact; ties -> the lexicographically smaller).
+std::vector<int> nearest_neighbours(const PointSet& pts, const Delaunay3& dt) {
+  std::vector<int> nn(pts.size(), -1);
+  const auto offer = [&](int p, int q) {
+    int& cur = nn[uz(p)];
+    if (cur == q) return;
+    if (cur < 0) {
+      cur = q;
+      return;
+    }
+    const int c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(cur)]);
+    if (c < 0 || (c == 0 && lex_less3(pts[uz(q)], pts[uz(cur)]))) cur = q;
+  };
+  for_tet_edges(dt, [&](int p, int q) {
+    offer(p, q);
+    offer(q, p);
+  });
+  return nn;
+}
+
+struct Parts {
+  std::vector<int> part_of;              // per point
+  std::vector<std::vector<int>> points;  // per part, ascending ids
+  double min_gap = std::numeric_limits<double>::infinity();
+  std::vector<std::array<int, 2>> long_edges;  // the Delaunay edges the gap rule did not join (p < q)
+};
+
+double len2(const double* a, const double* b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+// |pq| / rms(nn(p), nn(q)) in double (the report).
+double gap_ratio(const PointSet& pts, const std::vector<int>& nn, int p, int q) {
+  const double s = 0.5 * (len2(pts[uz(p)], pts[uz(nn[uz(p)])]) + len2(pts[uz(q)], pts[uz(nn[uz(q)])]));
+  return std::sqrt(len2(pts[uz(p)], pts[uz(q)]) / s);
+}
+
+// Can the points have a closed surface of their own: at least min_points (and 4), not all
+// coplanar (exact)?
+bool solid_part(const PointSet& pts, const std::vector<int>& ids, std::size_t min_points) {
+  if (ids.size() < std::max<std::size_t>(4, min_points)) return false;
+  const double* a = pts[uz(ids[0])];
+  std::size_t j = 1;
+  while (j < ids.size() && std::equal(a, a + 3, pts[uz(ids[j])])) ++j;
+  if (j == ids.size()) return false;
+  const double* b = pts[uz(ids[j])];
+  std::size_t k = j + 1;
+  while (k < ids.size() && collinear3(a, b, pts[uz(ids[k])])) ++k;
+  if (k == ids.size()) return false;
+  const double* c = pts[uz(ids[k])];
+  for (std::size_t l = k + 1; l < ids.size(); ++l)
+    if (orient3(a, b, c, pts[uz(ids[l])]) != 0) return true;
+  return false;
+}
+
+// Is Delaunay edge e shorter than f (exact; ties -> the smaller pair of lexicographic endpoints)?
+bool shorter_edge(const PointSet& pts, const std::array<int, 2>& e, const std::array<int, 2>& f) {
+  const double* a[1] = {pts[uz(f[0])]};
+  const double* b[1] = {pts[uz(f[1])]};
+  const int c = compare_gap3(pts[uz(e[0])], pts[uz(e[1])], a, b, 1, 1.0);
+  if (c != 0) return c < 0;
+  const auto lo = [&](const std::array<int, 2>& x) { return lex_less3(pts[uz(x[0])], pts[uz(x[1])]) ? x[0] : x[1]; };
+  const auto hi = [&](const std::array<int, 2>& x) { return lo(x) == x[0] ? x[1] : x[0]; };
+  if (lo(e) != lo(f)) return lex_less3(pts[uz(lo(e))], pts[uz(lo(f))]);
+  return lex_less3(pts[uz(hi(e))], pts[uz(hi(f))]);
+}
+
+// The components of the union-find, ordered by their lexicographically smallest point.
+Parts collect_parts(const PointSet& pts, UnionFind& uf) {
+  std::vector<int> root_best(pts.size(), -1);
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    int& b = root_best[uz(uf.find(static_cast<int>(v)))];
+    if (b < 0 || lex_less3(pts[v], pts[uz(b)])) b = static_cast<int>(v);
+  }
+  std::vector<int> roots;
+  for (std::size_t v = 0; v < pts.size(); ++v)
+    if (uf.find(static_cast<int>(v)) == static_cast<int>(v)) roots.push_back(static_cast<int>(v));
+  std::sort(roots.begin(), roots.end(), [&](int a, int b) { return lex_less3(pts[uz(root_best[uz(a)])], pts[uz(root_best[uz(b)])]); });
+  std::vector<int> index_of(pts.size(), -1);
+  for (std::size_t k = 0; k < roots.size(); ++k) index_of[uz(roots[k])] = static_cast<int>(k);
+  Parts out;
+  out.part_of.resize(pts.size());
+  out.points.resize(roots.size());
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    const int k = index_of[uz(uf.find(static_cast<int>(v)))];
+    out.part_of[v] = k;
+    out.points[uz(k)].push_back(static_cast<int>(v));
+  }
+  return out;
+}
+
+// Parts: components of the Delaunay edges shorter than gap local spacings; then every part that
+// cannot have a surface of its own (fewer than 4 points, or flat: a few outliers) joins the part
+// across its shortest Delaunay edge, until none is left.
+Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int>& nn, double gap,
+                 std::size_t min_points, std::size_t& merged) {
+  UnionFind uf(pts.size());
+  std::vector<std::array<int, 2>> long_edges;
+  // (An edge whose ends are joined already decides nothing: every edge between two final parts
+  // is tested, and recorded as long.)
+  for_tet_edges(dt, [&](int p, int q) {
+    if (uf.find(p) == uf.find(q)) return;
+    const double* a[2] = {pts[uz(p)], pts[uz(q)]};
+    const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
+    if (compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, gap) < 0) uf.join(p, q);
+    else long_edges.push_back({std::min(p, q), std::max(p, q)});
+  });
+  std::sort(long_edges.begin(), long_edges.end());
+  long_edges.erase(std::unique(long_edges.begin(), long_edges.end()), long_edges.end());
+  merged = 0;
+  for (;;) {
+    Parts parts = collect_parts(pts, uf);
+    std::vector<char> small(parts.points.size(), 0);
+    bool any = false;
+    if (parts.points.size() > 1)
+      for (std::size_t k = 0; k < parts.points.size(); ++k) any = (small[k] = !solid_part(pts, parts.points[k], min_points)) || any;
+    if (!any) {
+      for (const auto& e : long_edges)
+        if (parts.part_of[uz(e[0])] != parts.part_of[uz(e[1])])
+          parts.min_gap = std::min(parts.min_gap, gap_ratio(pts, nn, e[0], e[1]));
+      parts.long_edges = std::move(long_edges);
+      return parts;
+    }
+    // The shortest edge out of each small part.
+    std::vector<int> best(parts.points.size(), -1);
+    for (std::size_t i = 0; i < long_edges.size(); ++i) {
+      const int a = parts.part_of[uz(long_edges[i][0])], b = parts.part_of[uz(long_edges[i][1])];
+      if (a == b) continue;
+      for (int k : {a, b})
+        if (small[uz(k)] && (best[uz(k)] < 0 || shorter_edge(pts, long_edges[i], long_edges[uz(best[uz(k)])]))) best[uz(k)] = static_cast<int>(i);
+    }
+    // (All at once: two small parts may join each other; the next round checks again.)
+    for (std::size_t k = 0; k < parts.points.size(); ++k)
+      if (small[k] && best[k] >= 0) {
+        uf.join(long_edges[uz(best[k])][0], long_edges[uz(best[k])][1]);
+        ++merged;
+      }
+  }
+}
+
+// ---- assembling the body of several parts --------------------------------------------------------
+
+struct FaceKey {
+  std::array<int, 3> v;
+  bool operator==(const FaceKey& o) const { return v == o.v; }
+};
+struct FaceHash {
+  std::size_t operator()(const FaceKey& k) const {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (int x : k.v) h = (h ^ static_cast<std::uint32_t>(x)) * 1099511628211ULL;
+    return static_cast<std::size_t>(h);
+  }
+};
+FaceKey key_of(int a, int b, int c) {
+  std::array<int, 3> v{{a, b, c}};
+  std::sort(v.begin(), v.end());
+  return {v};
+}
+
+// The regions of the tetrahedralization between the surface faces (is_surface(t, i): the face
+// opposite vertex i of t): face-connected components not crossing one; region 0 is the exterior
+// (the tetrahedra that reach the convex hull through a non-surface face). Returns the count.
+template <class IsSurface>
+int surface_regions(const Delaunay3& dt, IsSurface&& is_surface, std::vector<int>& region) {
+  const std::size_t T = dt.tets.size();
+  region.assign(T, -1);
+  std::vector<int> queue;
+  const auto flood = [&](int r) {
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int t = queue[q];
+      for (int i = 0; i < 4; ++i) {
+        const int m = dt.neighbors[uz(t)][uz(i)];
+        if (m < 0 || is_surface(uz(t), i) || region[uz(m)] >= 0) continue;
+        region[uz(m)] = r;
+        queue.push_back(m);
+      }
+    }
+    queue.clear();
+  };
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i)
+      if (dt.neighbors[t][uz(i)] < 0 && !is_surface(t, i) && region[t] < 0) {
+        region[t] = 0;
+        queue.push_back(static_cast<int>(t));
+      }
+  flood(0);
+  int regions = 1;
+  for (std::size_t t = 0; t < T; ++t)
+    if (region[t] < 0) {
+      region[t] = regions;
+      queue.push_back(static_cast<int>(t));
+      flood(regions++);
+    }
+  return regions;
+}
+
+// The body of the part surfaces inside the tetrahedralization of all points: the regions of
+// tetrahedra between the surfaces, a tree rooted at the exterior; the body is the regions at odd
+// depth. False when a surface face is not a Delaunay face or the regions do not form that tree.
+bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& faces, std::vector<std::array<int, 4>>& body) {
+  std::unordered_map<FaceKey, int, FaceHash> surface;
+  surface.reserve(faces.size() * 2);
+  for (std::size_t f = 0; f < faces.size(); ++f) surface.emplace(key_of(faces[f][0], faces[f][1], faces[f][2]), static_cast<int>(f));
+  const std::size_t T = dt.tets.size();
+  // Which face of which tetrahedron is a surface face.
+  std::vector<std::uint8_t> on_surface(T, 0);  // bit i: face opposite vertex i
+  std::size_t found = 0;
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const auto& v = dt.tets[t];
+      const auto& f = kFaceOut[i];
+      if (surface.count(key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]))) {
+        on_surface[t] |= static_cast<std::uint8_t>(1u << i);
+        ++found;
+      }
+    }
+  // Every surface face is shared by two tetrahedra, or one on the convex hull.
+  std::size_t expect = 0;
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i)
+      if (on_surface[t] >> i & 1u) expect += dt.neighbors[t][uz(i)] < 0 ? 2 : 1;
+  if (expect != 2 * faces.size() || found > 2 * faces.size()) return false;
+  std::vector<int> region;
+  const int regions = surface_regions(dt, [&](std::size_t t, int i) { return (on_surface[t] >> i & 1u) != 0; }, region);
+  // Region adjacency through surface faces; the depth by breadth-first search from the exterior.
+  std::vector<std::vector<int>> adj(uz(regions));
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (!(on_surface[t] >> i & 1u)) continue;
+      const int m = dt.neighbors[t][uz(i)];
+      const int other = m < 0 ? 0 : region[uz(m)];
+      if (other == region[t]) return false;  // a surface with the same region on both sides
+      adj[uz(region[t])].push_back(other);
+    }
+  std::vector<int> depth(uz(regions), -1);
+  depth[0] = 0;
+  std::vector<int> bfs{0};
+  for (std::size_t q = 0; q < bfs.size(); ++q)
+    for (int o : adj[uz(bfs[q])]) {
+      if (depth[uz(o)] < 0) {
+        depth[uz(o)] = depth[uz(bfs[q])] + 1;
+        bfs.push_back(o);
+      } else if (std::abs(depth[uz(o)] - depth[uz(bfs[q])]) != 1) {
+        return false;  // not a tree of nested regions
+      }
+    }
+  for (int d : depth)
+    if (d < 0) return false;
+  body.clear();
+  for (std::size_t t = 0; t < T; ++t)
+    if (depth[uz(region[t])] % 2 == 1) body.push_back(dt.tets[t]);
+  return true;
+}
+
+// The free faces of a body of positively oriented tetrahedra, oriented out of it.
+TriMesh3 body_surface(const std::vector<std::array<int, 4>>& body) {
+  std::unordered_map<FaceKey, int, FaceHash> count;
+  count.reserve(body.size() * 4);
+  for (const auto& t : body)
+    for (const auto& f : kFaceOut) ++count[key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])])];
+  TriMesh3 m;
+  for (const auto& t : body)
+    for (const auto& f : kFaceOut)
+      if (count[key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])])] == 1) m.triangles.push_back({t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]});
+  std::sort(m.triangles.begin(), m.triangles.end());
+  return m;
+}
+
+// ---- the surfaces of a mesh -----------------------------------------------------------------------
+
+// Components of the mesh (edge-connected through shared vertices: the surfaces are vertex-disjoint),
+// their genus, roles and parents. Roles/parents: an outer surface has the body inside it; nesting by
+// the region tree when known (several parts), else every surface is outer with no parent.
+std::vector<Surface3> split_surfaces(const PointSet& pts, const TriMesh3& mesh) {
+  UnionFind uf(pts.size());
+  for (const auto& t : mesh.triangles) {
+    uf.join(t[0], t[1]);
+    uf.join(t[0], t[2]);
+  }
+  std::vector<int> best(pts.size(), -1);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) {
+      int& b = best[uz(uf.find(v))];
+      if (b < 0 || lex_less3(pts[uz(v)], pts[uz(b)])) b = v;
+    }
+  std::vector<int> roots;
+  for (std::size_t v = 0; v < pts.size(); ++v)
+    if (best[v] >= 0 && uf.find(static_cast<int>(v)) == static_cast<int>(v)) roots.push_back(static_cast<int>(v));
+  std::sort(roots.begin(), roots.end(), [&](int a, int b) { return lex_less3(pts[uz(best[uz(a)])], pts[uz(best[uz(b)])]); });
+  std::vector<int> index_of(pts.size(), -1);
+  for (std::size_t k = 0; k < roots.size(); ++k) index_of[uz(roots[k])] = static_cast<int>(k);
+  std::vector<Surface3> s(roots.size());
+  std::vector<long long> edges(roots.size(), 0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) s[uz(index_of[uz(uf.find(mesh.triangles[f][0]))])].triangles.push_back(static_cast<int>(f));
+  std::vector<char> used(pts.size(), 0);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) used[uz(v)] = 1;
+  for (std::size_t v = 0; v < pts.size(); ++v)
+    if (used[v]) s[uz(index_of[uz(uf.find(static_cast<int>(v)))])].points.push_back(static_cast<int>(v));
+  for (Surface3& x : s) {
+    // Closed manifold: E = 3F/2, χ = V - E + F = V - F/2, genus = (2 - χ)/2.
+    const long long F = static_cast<long long>(x.triangles.size()), V = static_cast<long long>(x.points.size());
+    x.genus = static_cast<int>((2 - (V - F / 2)) / 2);
+  }
+  return s;
+}
+
+// Roles and parents (several parts): the regions of the tetrahedralization between the surfaces
+// form a tree rooted at the exterior; a surface whose inner side is at odd depth bounds a solid
+// (outer), at even depth a cavity (inner); its parent is the surface its outer side was entered by.
+void nest_surfaces(const Delaunay3& dt, const TriMesh3& mesh, std::vector<Surface3>& s) {
+  if (s.size() < 2) return;
+  std::unordered_map<FaceKey, int, FaceHash> face_surface;
+  for (std::size_t k = 0; k < s.size(); ++k)
+    for (int f : s[k].triangles) {
+      const auto& t = mesh.triangles[uz(f)];
+      face_surface.emplace(key_of(t[0], t[1], t[2]), static_cast<int>(k));
+    }
+  const std::size_t T = dt.tets.size();
+  const auto surf_of = [&](std::size_t t, int i) {
+    const auto& v = dt.tets[t];
+    const auto& f = kFaceOut[i];
+    auto it = face_surface.find(key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]));
+    return it == face_surface.end() ? -1 : it->second;
+  };
+  std::vector<int> region;
+  const int regions = surface_regions(dt, [&](std::size_t t, int i) { return surf_of(t, i) >= 0; }, region);
+  // Each surface separates two regions; BFS from the exterior orders them (outer side first).
+  std::vector<std::array<int, 2>> sides(s.size(), {{-1, -1}});
+  for (std::size_t t = 0; t < T; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const int k = surf_of(t, i);
+      if (k < 0) continue;
+      const int m = dt.neighbors[t][uz(i)];
+      const int a = region[t], b = m < 0 ? 0 : region[uz(m)];
+      sides[uz(k)] = {{std::min(a, b), std::max(a, b)}};
+    }
+  std::vector<std::vector<std::pair<int, int>>> adj(uz(regions));  // (other region, surface)
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    adj[uz(sides[k][0])].push_back({sides[k][1], static_cast<int>(k)});
+    adj[uz(sides[k][1])].push_back({sides[k][0], static_cast<int>(k)});
+  }
+  std::vector<int> depth(uz(regions), -1), via(uz(regions), -1);  // via: the surface entered through
+  depth[0] = 0;
+  std::vector<int> bfs{0};
+  for (std::size_t q = 0; q < bfs.size(); ++q) {
+    const int r = bfs[q];
+    for (const auto& [o, k] : adj[uz(r)]) {
+      if (depth[uz(o)] >= 0) continue;
+      depth[uz(o)] = depth[uz(r)] + 1;
+      via[uz(o)] = k;
+      bfs.push_back(o);
+      // Surface k: outer side r, inner side o.
+      s[uz(k)].role = depth[uz(o)] % 2 == 1 ? SurfaceRole::Outer : SurfaceRole::Inner;
+      s[uz(k)].parent = via[uz(r)];
+    }
+  }
+}
+
+// Roles and parents (one part: one connected body): an outer surface encloses the body, an inner
+// one faces into a cavity -- the exact sign of its enclosed volume; every inner surface's parent
+// is the part's one outer surface.
+void nest_in_body(const PointSet& pts, const TriMesh3& mesh, std::vector<Surface3>& s) {
+  int outer = -1, n_outer = 0;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    std::vector<int> tris;
+    tris.reserve(s[k].triangles.size() * 3);
+    for (int f : s[k].triangles) tris.insert(tris.end(), mesh.triangles[uz(f)].begin(), mesh.triangles[uz(f)].end());
+    const bool out = signed_volume_sign(pts.coords.data(), tris.data(), s[k].triangles.size()) > 0;
+    s[k].role = out ? SurfaceRole::Outer : SurfaceRole::Inner;
+    if (out) {
+      outer = static_cast<int>(k);
+      ++n_outer;
+    }
+  }
+  if (n_outer != 1) return;
+  for (Surface3& x : s)
+    if (x.role == SurfaceRole::Inner) x.parent = outer;
+}
+
+// Per-surface smallest gap to another surface's points (double, the report), over Delaunay edges.
+void report_gaps(const PointSet& pts, const std::vector<std::array<int, 2>>& edges, const std::vector<int>& nn,
+                 std::vector<Surface3>& s) {
+  if (s.size() < 2) return;
+  std::vector<int> of(pts.size(), -1);
+  for (std::size_t k = 0; k < s.size(); ++k)
+    for (int v : s[k].points) of[uz(v)] = static_cast<int>(k);
+  for (const auto& e : edges) {
+    const int a = of[uz(e[0])], b = of[uz(e[1])];
+    if (a < 0 || b < 0 || a == b) continue;
+    const double g = gap_ratio(pts, nn, e[0], e[1]);
+    for (auto [x, y] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}})
+      if (g < s[uz(x)].gap_spacings || (g == s[uz(x)].gap_spacings && y < s[uz(x)].nearest_surface)) {
+        s[uz(x)].gap_spacings = g;
+        s[uz(x)].nearest_surface = y;
+      }
+  }
+}
+
+PointSet subset(const PointSet& pts, const std::vector<int>& ids) {
+  PointSet s;
+  s.dim = 3;
+  s.coords.reserve(ids.size() * 3);
+  for (int v : ids) s.coords.insert(s.coords.end(), pts[uz(v)], pts[uz(v)] + 3);
+  return s;
+}
+
+// Sums of the engine counts of the parts (the stages and timings of the parts added up).
+void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
+  sum.grown += r.grown;
+  sum.grown_outside += r.grown_outside;
+  sum.filled += r.filled;
+  sum.handle_added += r.handle_added;
+  sum.handle_removed += r.handle_removed;
+  sum.grow_cavities += r.grow_cavities;
+  sum.cavities += r.cavities;
+  sum.cavity_attempts += r.cavity_attempts;
+  sum.carved += r.carved;
+  sum.carve_undone += r.carve_undone;
+  sum.removed_one_face += r.removed_one_face;
+  sum.removed_two_face += r.removed_two_face;
+  sum.refine_added += r.refine_added;
+  sum.refine_removed += r.refine_removed;
+  sum.non_delaunay_tets += r.non_delaunay_tets;
+  sum.bridge_faces += r.bridge_faces;
+  sum.bridge_area += r.bridge_area;
+  sum.max_bridge_ratio = std::max(sum.max_bridge_ratio, r.max_bridge_ratio);
+  sum.ms_grow += r.ms_grow;
+  sum.ms_fill += r.ms_fill;
+  sum.ms_constrict += r.ms_constrict;
+  sum.ms_fallback += r.ms_fallback;
+  sum.ms_refine += r.ms_refine;
+  sum.ms_validate += r.ms_validate;
+  sum.ms_delaunay += r.ms_delaunay;
+  sum.ms_setup += r.ms_setup;
+}
+
+// Several parts: each part's surface, then the body from the tetrahedralization of all points.
+// False (nothing usable) when a part cannot have a surface of its own or the parts do not fit.
+bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts, const Constrict3Options& o,
+                   Surfaces3Result& r, Status& err) {
+  std::vector<Mesh3Result> res(parts.points.size());
+  for (std::size_t k = 0; k < parts.points.size(); ++k) {
+    if (parts.points[k].size() < 4) {
+      r.decision = SurfacesDecision::SmallPart;
+      return false;
+    }
+    const PointSet sub = subset(pts, parts.points[k]);
+    const Status s = reconstruct3(sub, o, res[k]);
+    if (s.code() == StatusCode::Coplanar || s.code() == StatusCode::TooFewPoints || (s.is_ok() && !res[k].complete)) {
+      r.decision = SurfacesDecision::SmallPart;
+      return false;
+    }
+    if (!s) {
+      err = s;
+      return false;
+    }
+  }
+  std::vector<std::array<int, 3>> faces;
+  for (std::size_t k = 0; k < res.size(); ++k)
+    for (const auto& t : res[k].mesh.triangles) {
+      const auto& ids = parts.points[k];
+      faces.push_back({ids[uz(t[0])], ids[uz(t[1])], ids[uz(t[2])]});
+    }
+  const auto t0 = Clock::now();
+  std::vector<std::array<int, 4>> body;
+  if (!assemble_body(dt, faces, body)) {
+    r.decision = SurfacesDecision::NotDelaunay;
+    return false;
+  }
+  r.decision = SurfacesDecision::Parts;
+  Mesh3Result& m = r.mesh;
+  m = Mesh3Result{};
+  m.method = res[0].method;
+  m.complete = true;
+  m.delaunay_tets = dt.tets.size();
+  for (const Mesh3Result& x : res) add_counts(m, x);
+  m.tets = std::move(body);
+  std::sort(m.tets.begin(), m.tets.end());
+  m.mesh = body_surface(m.tets);
+  m.volume = mesh_volume(pts, m.mesh);
+  m.surface_area = mesh_area(pts, m.mesh);
+  m.validated = true;  // every part was validated by reconstruct3(); the whole below
+  r.ms_assemble = ms_since(t0);
+  return true;
+}
+
+// Engine / work ids -> input ids (order[k] = the input id of work point k).
+void to_input_ids(const std::vector<int>& order, Surfaces3Result& r) {
+  const auto map = [&](int& v) { v = order[uz(v)]; };
+  for (auto& t : r.mesh.mesh.triangles) std::for_each(t.begin(), t.end(), map);
+  for (auto& t : r.mesh.tets) std::for_each(t.begin(), t.end(), map);
+  for (auto* list : {&r.mesh.stuck_points, &r.mesh.unplaced_points}) {
+    std::for_each(list->begin(), list->end(), map);
+    std::sort(list->begin(), list->end());
+  }
+  for (Surface3& s : r.surfaces) {
+    std::for_each(s.points.begin(), s.points.end(), map);
+    std::sort(s.points.begin(), s.points.end());
+  }
+}
+
+// The total genus, then the exact validation of the surfaces and the body.
+Status finish_surfaces(const PointSet& points, const Surfaces3Options& o, Surfaces3Result& r) {
+  r.genus = 0;
+  for (const Surface3& s : r.surfaces) r.genus += s.genus;
+  r.mesh.genus = r.genus;
+  r.mesh.surfaces = static_cast<int>(r.surfaces.size());
+  if (o.validate && r.mesh.complete) {
+    const auto t0 = Clock::now();
+    const Status vs = validate_surfaces3(points, r.mesh.mesh, r.mesh.tets, o.surface.validate_self_intersections);
+    if (!vs) return {StatusCode::Internal, "reconstruct_surfaces3 produced invalid surfaces: " + vs.message()};
+    r.validated = true;
+    r.ms_validate = ms_since(t0);
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+bool topology_from_name(const std::string& name, Topology3& out) noexcept {
+  if (name == "single") out = Topology3::Single;
+  else if (name == "auto") out = Topology3::Auto;
+  else return false;
+  return true;
+}
+const char* to_string(Topology3 t) noexcept { return t == Topology3::Single ? "single" : "auto"; }
+const char* to_string(SurfaceRole r) noexcept { return r == SurfaceRole::Outer ? "outer" : "inner"; }
+const char* to_string(SurfacesDecision d) noexcept {
+  switch (d) {
+    case SurfacesDecision::OnePart: return "one-part";
+    case SurfacesDecision::SmallPart: return "small-part";
+    case SurfacesDecision::NotDelaunay: return "not-delaunay";
+    case SurfacesDecision::Parts: return "parts";
+  }
+  return "?";
+}
+
+Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, Surfaces3Result& r) {
+  r = Surfaces3Result{};
+  r.topology = o.topology;
+  r.gap_threshold = o.topology_gap;
+  if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct_surfaces3 needs 3D points"};
+  if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
+  if (Status s = check_points(points); !s) return s;
+  Constrict3Options eo = o.surface;
+  eo.handles = o.topology == Topology3::Auto && o.handles;
+  eo.validate = o.validate;
+  if (o.topology == Topology3::Single) {
+    if (Status s = reconstruct3(points, eo, r.mesh); !s) return s;
+    r.surfaces = split_surfaces(points, r.mesh.mesh);
+    return finish_surfaces(points, o, r);
+  }
+  // Auto works on the points in the engine's canonical order (so that one part shares the
+  // tetrahedralization with the engine, and the parts do not depend on the file order); the
+  // result is mapped back to input ids at the end.
+  const std::vector<int> order = detail::canonical_order(points);
+  const PointSet work = detail::permuted(points, order);
+  const auto t0 = Clock::now();
+  Delaunay3 dt;
+  if (Status s = build_delaunay3(work, dt); !s) return s;
+  const std::vector<int> nn = nearest_neighbours(work, dt);
+  const Parts parts = find_parts(work, dt, nn, o.topology_gap, o.min_part_points, r.small_parts_merged);
+  r.parts = parts.points.size();
+  for (const auto& p : parts.points) r.part_sizes.push_back(p.size());
+  r.min_gap_spacings = parts.min_gap;
+  r.ms_infer = ms_since(t0);
+  bool done = false;
+  if (parts.points.size() > 1) {
+    Status err = Status::ok();
+    done = several_parts(work, dt, parts, eo, r, err);
+    if (!err) return err;
+  }
+  if (done) {
+    r.surfaces = split_surfaces(work, r.mesh.mesh);
+    nest_surfaces(dt, r.mesh.mesh, r.surfaces);
+  } else {
+    std::vector<int> part_of;
+    if (parts.points.size() > 1) part_of = parts.part_of;
+    if (Status s = detail::reconstruct3_sharing(work, eo, std::move(dt), r.mesh, std::move(part_of)); !s) return s;
+    r.surfaces = split_surfaces(work, r.mesh.mesh);
+    nest_in_body(work, r.mesh.mesh, r.surfaces);
+  }
+  report_gaps(work, parts.long_edges, nn, r.surfaces);
+  to_input_ids(order, r);
+  return finish_surfaces(points, o, r);
+}
+
+Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body,
+                          bool self_intersections) {
+  MeshCheckOptions mo;
+  mo.any_topology = true;
+  mo.self_intersections = self_intersections;
+  MeshCheck mc;
+  if (Status s = validate_mesh3(points, mesh, &mc, mo); !s) return s;
+  for (const auto& t : body) {
+    for (int v : t)
+      if (v < 0 || uz(v) >= points.size()) return {StatusCode::InvalidArgument, "body tetrahedron with a bad index"};
+    if (orient3(points[uz(t[0])], points[uz(t[1])], points[uz(t[2])], points[uz(t[3])]) <= 0)
+      return {StatusCode::InvalidArgument, "body tetrahedron not positively oriented"};
+  }
+  TriMesh3 free_faces = body_surface(body);
+  TriMesh3 sorted = mesh;
+  // Same oriented triangles up to rotation of each triangle's vertices.
+  const auto canon = [](std::array<int, 3> t) {
+    const int m = static_cast<int>(std::min_element(t.begin(), t.end()) - t.begin());
+    std::rotate(t.begin(), t.begin() + m, t.end());
+    return t;
+  };
+  for (auto& t : free_faces.triangles) t = canon(t);
+  for (auto& t : sorted.triangles) t = canon(t);
+  std::sort(free_faces.triangles.begin(), free_faces.triangles.end());
+  std::sort(sorted.triangles.begin(), sorted.triangles.end());
+  if (free_faces.triangles != sorted.triangles)
+    return {StatusCode::InvalidArgument, "the free faces of the body are not the surfaces (oriented out of the body)"};
+  return Status::ok();
+}
+
+}  // namespace constrict
