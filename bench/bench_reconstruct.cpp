@@ -13,6 +13,7 @@
 #include "bench_data.hpp"
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
+#include "constrict/topology.hpp"
 
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -81,7 +82,7 @@ void BM_Reconstruct3(benchmark::State& state) {
     if (!reconstruct3(pts, Constrict3Options{}, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
     benchmark::DoNotOptimize(r.mesh.triangles.data());
     // Which path ran (1: the growth reached every point, docs/reconstruction-3d.md §4.7) and its phases.
-    state.counters["grown"] = r.method == "grow" ? 1 : 0;
+    state.counters["grown"] = r.method == Method3::Grow ? 1 : 0;
     state.counters["ms_dt_gamma"] = r.ms_delaunay;
     state.counters["ms_setup"] = r.ms_setup;
     state.counters["ms_grow"] = r.ms_grow;
@@ -95,6 +96,23 @@ void sizes3(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->Iterations(1);
 }
 
+// The auto topology (issue 16: within 1.3x of the single mode on the same input): on one closed
+// surface it decides one part and shares the tetrahedralization with the engine.
+void BM_Surfaces3Auto(benchmark::State& state) {
+  const auto pts = bench::points3(static_cast<std::size_t>(state.range(0)), bench::Dist::Surface);
+  Surfaces3Options o;
+  o.topology = Topology3::Auto;
+  for (auto _ : state) {
+    Surfaces3Result r;
+    if (!reconstruct_surfaces3(pts, o, r) || !r.valid()) state.SkipWithError("reconstruct_surfaces3 failed");
+    benchmark::DoNotOptimize(r.mesh.mesh.triangles.data());
+    state.counters["surfaces"] = static_cast<double>(r.surfaces.size());
+    state.counters["ms_infer"] = r.ms_infer;
+    state.counters["ms_validate"] = r.ms_validate;
+  }
+}
+
 BENCHMARK(BM_CgalDelaunay3Same)->Apply(sizes3);
 BENCHMARK(BM_Reconstruct3)->Apply(sizes3);
+BENCHMARK(BM_Surfaces3Auto)->Apply(sizes3);
 }  // namespace

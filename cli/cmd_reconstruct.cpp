@@ -2,6 +2,7 @@
 // `constrict reconstruct`: a simple polygon (2D) through all points. Validates every result.
 #include <cstdio>
 #include <memory>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -382,6 +383,19 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     return fail(s);
   }
   const bool surfaces = a.topology == "auto" && !is_skeleton(a);
+  // Single mode, small inputs: what auto would give, for the note and the report.
+  Surfaces3Result inferred;
+  const bool infer = !surfaces && !is_skeleton(a) && pts.size() <= kNoteMaxPoints3 && r.complete;
+  if (infer) {
+    Surfaces3Options so;
+    so.topology = Topology3::Auto;
+    so.topology_gap = a.topology_gap;
+    so.surface = opt;
+    if (!reconstruct_surfaces3(pts, so, inferred).is_ok()) inferred = Surfaces3Result{};
+    if (!a.quiet && inferred.valid() && (inferred.surfaces.size() > 1 || inferred.genus > 0))
+      std::fprintf(stderr, "note: the points show %zu surface%s of total genus %d; try --topology auto\n",
+                   inferred.surfaces.size(), inferred.surfaces.size() == 1 ? "" : "s", inferred.genus);
+  }
 
   progress.phase("validating");
   const auto tv = Clock::now();
@@ -389,12 +403,16 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   MeshCheckOptions copt;
   copt.require_all_points = true;
   copt.any_topology = surfaces;
+  // Auto: the body check beside the mesh check (two independent exact checks, one thread each).
+  std::future<Status> body_check;
+  if (surfaces && r.complete)
+    body_check = std::async(std::launch::async, [&] { return validate_body3(pts, r.mesh, r.tets); });
   bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
   std::string body_reason;
-  if (surfaces && valid && r.complete) {
-    const Status bs = validate_surfaces3(pts, r.mesh, r.tets);
-    valid = bs.is_ok();
-    body_reason = bs.message();
+  if (body_check.valid()) {
+    const Status bs = body_check.get();
+    if (valid && !bs) body_reason = bs.message();
+    valid = valid && bs.is_ok();
   }
   // An incomplete skeleton must still be a closed genus-0 surface over the points it reaches.
   if (is_skeleton(a) && !r.complete) {
@@ -427,6 +445,10 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     j["components"] = chk.components;
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
     if (surfaces) add_surfaces_json(sr, j);
+    if (infer && inferred.valid())
+      j["topology"] = {{"mode", "single"},
+                       {"inferred", {{"surfaces", inferred.surfaces.size()}, {"genus", inferred.genus},
+                                     {"parts", inferred.parts}, {"decision", to_string(inferred.decision)}}}};
     add_method_json(a, skel, j);
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms_write}, {"total", ms(t0, Clock::now())}});
     if (Status s = write_report(a.report, j); !s) return fail(s);

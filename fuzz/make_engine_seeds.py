@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the engine fuzz targets (fuzz/corpus/{reconstruct2,reconstruct3,
+"""Writes the seed corpora of the engine fuzz targets (fuzz/corpus/{reconstruct2,reconstruct3,surfaces3,
 gamma_graph}/) in the byte layout of fuzz/fuzz_engine.hpp: [options][mode][count][params][points].
 Run from the repository root after changing the layout; the files are committed."""
 import math
@@ -88,6 +88,8 @@ def write(target, opts, dim, lead=b""):
 write("reconstruct2", [(0, 0), (1, 0), (2, 0), (4, 0), (6, 0), (8, 3), (0x20 | 2, 0), (16, 0x80)], 2)
 # 3D options: preset/fallback/criterion/grow byte, sculpt/refine byte.
 write("reconstruct3", [(0, 0), (1, 0), (2, 0), (0x20, 0), (4, 0), (8, 6), (0, 2), (0, 0x40)], 3)
+# Auto topology: gap / min part / handles / growth byte (fuzz_surfaces3.cpp).
+write("surfaces3", [(0,), (1,), (3,), (5,), (0x08,), (0x10,), (0x20,), (2,)], 3)
 # γ-graph: dimension byte, then spec kind and values (no options pair: lead holds them).
 specs = [b"\x00\x01", b"\x00\x02", b"\x01\x05\x05", b"\x01\x06\x06", b"\x01\x0b\x00", b"\x02\x00\x01\x02\x01",
          b"\x00\x05\x60", b"\x00\x06\x30", b"\x01\x03\x04", b"\x00\x08"]

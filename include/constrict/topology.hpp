@@ -217,6 +217,10 @@ constexpr double kDefaultTopologyGap3 = 2.0;
 /// 400+ points; the shared scans have outlier clusters of 2-4 points 2+ spacings from the rest.
 constexpr std::size_t kMinPartPoints3 = 10;
 
+/// The CLI's 3D single mode also runs the auto topology (for its note) up to this many points:
+/// about 0.1 s there.
+constexpr std::size_t kNoteMaxPoints3 = 5000;
+
 /// Options of reconstruct_surfaces3().
 struct Surfaces3Options {
   Topology3 topology = Topology3::Single;  ///< Single: reconstruct3() exactly
@@ -284,5 +288,11 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& opt
 /// with the reason
 Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body,
                           bool self_intersections = false);
+
+/// The body part of validate_surfaces3() alone: every tetrahedron positive (orient3), a face shared
+/// by two tetrahedra seen from opposite sides (no overlap there), and the faces of exactly one
+/// tetrahedron exactly the mesh triangles, oriented out of the body. O(T) plus a radix sort.
+/// @return Ok or InvalidArgument naming the first bad face
+Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body);
 
 }  // namespace constrict

@@ -347,9 +347,18 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
 
 std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const HandleDecision& decide,
                      Carve3Stats& closed, Carve3Stats& opened) {
-  // Loops first (the genus-0 growth leaves a cut in every handle of the object), then tunnels.
-  Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, closed, Rule::Handles, &decide).run();
-  Regions(body, labels.label, 1.0f, min_conf, Toggle::Remove, opened, Rule::Handles, &decide).run();
+  // Loops first (the genus-0 growth leaves a cut in every handle of the object), then tunnels;
+  // each pass only when a candidate touches the surface (usually none: O(T) to find out).
+  bool close = false, open = false;
+  for (std::size_t t = 0; t < body.T0 && !(close && open); ++t) {
+    const float l = labels.label[t];
+    const bool alive = body.state[t] == kAlive;
+    if (alive ? !(l >= min_conf) : !(l <= -min_conf)) continue;
+    for (int m : body.nbr[t])
+      if (alive ? !body.alive(m) : body.alive(m)) (alive ? open : close) = true;
+  }
+  if (close) Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, closed, Rule::Handles, &decide).run();
+  if (open) Regions(body, labels.label, 1.0f, min_conf, Toggle::Remove, opened, Rule::Handles, &decide).run();
   return closed.changed + opened.changed;
 }
 

@@ -386,16 +386,15 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
 void Constrictor3::Impl::measure_bridges(const TriMesh3& surface, Mesh3Result& r) const {
   const std::vector<double> spacing = detail::nearest_spacing3(body);
   const PointSet& p = *body.pts;
+  TriMesh3 bridges;
   for (const auto& t : surface.triangles) {
     const double ratio = detail::bridge_ratio3(p, spacing, t[0], t[1], t[2]);
     r.max_bridge_ratio = std::max(r.max_bridge_ratio, ratio);
-    if (!(ratio >= Mesh3Result::kBridgeRatio)) continue;
-    ++r.bridge_faces;
-    TriMesh3 one;
-    one.triangles.push_back(t);
-    r.bridge_area += mesh_area(p, one);
+    if (ratio >= Mesh3Result::kBridgeRatio) bridges.triangles.push_back(t);
   }
-  r.bridge_area = std::ldexp(r.bridge_area, 2 * scale_exp);
+  // (One mesh_area call: it scans every point once for its magnitude, so not once per face.)
+  r.bridge_faces = bridges.triangles.size();
+  r.bridge_area = bridges.triangles.empty() ? 0.0 : std::ldexp(mesh_area(p, bridges), 2 * scale_exp);
 }
 
 // ---- Constrictor3 --------------------------------------------------------------------------------
@@ -420,7 +419,15 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   // The engine runs on the points in a canonical order of their coordinates, so that the same
   // points in any file order give the same surface (ties everywhere are broken by engine ids);
   // the result is mapped back to input ids in collect().
-  s.order = std::make_shared<const std::vector<int>>(detail::canonical_order(points));
+  // (With a shared tetrahedralization the caller's points are in canonical order already:
+  // detail::reconstruct3_sharing's precondition.)
+  if (s.shared_dt) {
+    std::vector<int> id(points.size());
+    for (std::size_t k = 0; k < id.size(); ++k) id[k] = static_cast<int>(k);
+    s.order = std::make_shared<const std::vector<int>>(std::move(id));
+  } else {
+    s.order = std::make_shared<const std::vector<int>>(detail::canonical_order(points));
+  }
   auto work = std::make_shared<PointSet>(detail::permuted(points, *s.order));
   // Far from 1 in magnitude, the double parts (γ magnitudes, circumballs, lengths) would overflow
   // or underflow: work on a copy scaled by a power of two, which changes no predicate and makes
@@ -449,7 +456,8 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     // The growth reads the tetrahedralization and the labels only: the γ-values are computed
     // when the constriction from the hull needs them (ensure_hull_start).
     Delaunay3 dt;
-    if (shared_dt && shared_dt->n_vertices == body.n && order_is_identity()) {
+    // (Not after a rescaling: CGAL's spatial sort of the scaled copy may insert in another order.)
+    if (shared_dt && scale_exp == 0 && shared_dt->n_vertices == body.n && order_is_identity()) {
       dt = std::move(*shared_dt);
     } else if (Status st = build_delaunay3(*body.pts, dt); !st) {
       return st;

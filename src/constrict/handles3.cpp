@@ -54,15 +54,17 @@ int mixed_surfaces(const Body3& b, const std::vector<int>& part_of) {
 }  // namespace
 
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of) {
-  auto spacing = std::make_shared<const std::vector<double>>(nearest_spacing3(body));
+  // (The spacing on first use: most bodies have no candidate region.)
+  auto spacing = std::make_shared<std::vector<double>>();
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
-  const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;
+  const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
   return [spacing, debug, part_of, mixed0](const Body3& b, const std::vector<int>& changed, bool added, long long dF) {
     if (part_of && mixed0 > 0 && dF < 0 && mixed_surfaces(b, *part_of) < mixed0) {
       if (debug) std::fprintf(stderr, "handle seal: %zu tets separate two parts: kept\n", changed.size());
       return true;
     }
+    if (spacing->empty()) *spacing = nearest_spacing3(b);
     std::vector<int> sorted = changed;
     std::sort(sorted.begin(), sorted.end());
     const auto was_changed = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };

@@ -65,24 +65,42 @@ void for_tet_edges(const Delaunay3& dt, F&& f) {
       for (int j = i + 1; j < 4; ++j) f(t[uz(i)], t[uz(j)]);
 }
 
-// The nearest Delaunay neighbour of every point (exact; ties -> the lexicographically smaller).
-std::vector<int> nearest_neighbours(const PointSet& pts, const Delaunay3& dt) {
-  std::vector<int> nn(pts.size(), -1);
+// The local spacing at a point: the distance to its kSpacingRank-th nearest Delaunay neighbour. The
+// nearest one alone is too small where a random sampling clumps (Poisson samples of a surface
+// split into a hundred "parts" at T = 2 by the nearest-neighbour distance); the third is close to
+// the sampling spacing for blue-noise and random samples alike (docs/topology.md §"3D").
+constexpr int kSpacingRank = 3;
+
+// Each point's kSpacingRank-th nearest Delaunay neighbour (exact comparisons; ties -> the
+// lexicographically smaller point; fewer neighbours -> the farthest).
+std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
+  constexpr int k = kSpacingRank;
+  std::vector<std::array<int, k>> best(pts.size());
+  for (auto& b : best) b.fill(-1);
+  const auto closer = [&](int p, int q, int r) {  // is q nearer to p than r?
+    const int c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(r)]);
+    return c < 0 || (c == 0 && lex_less3(pts[uz(q)], pts[uz(r)]));
+  };
   const auto offer = [&](int p, int q) {
-    int& cur = nn[uz(p)];
-    if (cur == q) return;
-    if (cur < 0) {
-      cur = q;
-      return;
-    }
-    const int c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(cur)]);
-    if (c < 0 || (c == 0 && lex_less3(pts[uz(q)], pts[uz(cur)]))) cur = q;
+    auto& b = best[uz(p)];
+    for (int x : b)
+      if (x == q) return;
+    // Insert q into the sorted list of the k nearest so far.
+    int i = k;
+    while (i > 0 && (b[uz(i - 1)] < 0 || closer(p, q, b[uz(i - 1)]))) --i;
+    if (i == k) return;
+    for (int j = k - 1; j > i; --j) b[uz(j)] = b[uz(j - 1)];
+    b[uz(i)] = q;
   };
   for_tet_edges(dt, [&](int p, int q) {
     offer(p, q);
     offer(q, p);
   });
-  return nn;
+  std::vector<int> out(pts.size(), -1);
+  for (std::size_t v = 0; v < pts.size(); ++v)
+    for (int x : best[v])
+      if (x >= 0) out[v] = x;
+  return out;
 }
 
 struct Parts {
@@ -626,7 +644,7 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   const auto t0 = Clock::now();
   Delaunay3 dt;
   if (Status s = build_delaunay3(work, dt); !s) return s;
-  const std::vector<int> nn = nearest_neighbours(work, dt);
+  const std::vector<int> nn = spacing_neighbours(work, dt);
   const Parts parts = find_parts(work, dt, nn, o.topology_gap, o.min_part_points, r.small_parts_merged);
   r.parts = parts.points.size();
   for (const auto& p : parts.points) r.part_sizes.push_back(p.size());
@@ -660,27 +678,7 @@ Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const st
   mo.self_intersections = self_intersections;
   MeshCheck mc;
   if (Status s = validate_mesh3(points, mesh, &mc, mo); !s) return s;
-  for (const auto& t : body) {
-    for (int v : t)
-      if (v < 0 || uz(v) >= points.size()) return {StatusCode::InvalidArgument, "body tetrahedron with a bad index"};
-    if (orient3(points[uz(t[0])], points[uz(t[1])], points[uz(t[2])], points[uz(t[3])]) <= 0)
-      return {StatusCode::InvalidArgument, "body tetrahedron not positively oriented"};
-  }
-  TriMesh3 free_faces = body_surface(body);
-  TriMesh3 sorted = mesh;
-  // Same oriented triangles up to rotation of each triangle's vertices.
-  const auto canon = [](std::array<int, 3> t) {
-    const int m = static_cast<int>(std::min_element(t.begin(), t.end()) - t.begin());
-    std::rotate(t.begin(), t.begin() + m, t.end());
-    return t;
-  };
-  for (auto& t : free_faces.triangles) t = canon(t);
-  for (auto& t : sorted.triangles) t = canon(t);
-  std::sort(free_faces.triangles.begin(), free_faces.triangles.end());
-  std::sort(sorted.triangles.begin(), sorted.triangles.end());
-  if (free_faces.triangles != sorted.triangles)
-    return {StatusCode::InvalidArgument, "the free faces of the body are not the surfaces (oriented out of the body)"};
-  return Status::ok();
+  return validate_body3(points, mesh, body);
 }
 
 }  // namespace constrict

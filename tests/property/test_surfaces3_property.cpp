@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <numeric>
 #include <random>
 #include <set>
@@ -76,8 +77,25 @@ PointSet transformed(const PointSet& p, unsigned seed, int axes_shift, int exp2)
   return q;
 }
 
+// Brute force, independent of the validator: every directed edge used once and its reverse once
+// (closed, oriented, edge-manifold), and per surface V - E + F = 2 - 2 genus.
+void expect_closed_oriented(const Surfaces3Result& r, const std::string& what) {
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : r.mesh.mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  for (const auto& [e, c] : directed) {
+    ASSERT_EQ(c, 1) << what << ": edge " << e.first << "-" << e.second << " used " << c << " times";
+    ASSERT_EQ(directed.count({e.second, e.first}), 1u) << what << ": border edge";
+  }
+  for (const Surface3& x : r.surfaces) {
+    const long long F = static_cast<long long>(x.triangles.size()), E = 3 * F / 2, V = static_cast<long long>(x.points.size());
+    EXPECT_EQ(V - E + F, 2 - 2 * x.genus) << what;
+  }
+}
+
 void expect_topology(const test::Sample3& s, const Surfaces3Result& r, const std::string& what) {
   ASSERT_TRUE(r.valid()) << what << ": " << r.check;
+  expect_closed_oriented(r, what);
   EXPECT_EQ(r.surfaces.size(), static_cast<std::size_t>(s.surfaces)) << what;
   EXPECT_EQ(r.genus, s.genus) << what;
   int inner = 0;
@@ -127,6 +145,28 @@ TEST(Surfaces3Property, GenusZeroControlsKeepTheSingleSurface) {
       ASSERT_TRUE(reconstruct3(s.points, Constrict3Options{}, single).is_ok());
       EXPECT_EQ(coordinate_triangles(s.points, a.mesh.mesh), coordinate_triangles(s.points, single.mesh)) << what;
     }
+}
+
+TEST(Surfaces3Property, NoisyAndSparseControlsStayOneSurface) {
+  // Radial noise of 0.3 spacings, and a sparse sampling (spacing 0.3 on the unit sphere).
+  for (unsigned seed : {4u, 5u}) {
+    test::Sample3 s = test::make_surfaces3(Family3::Ellipsoid, 0, seed);
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], s.points[i][k]);
+        hi[k] = std::max(hi[k], s.points[i][k]);
+      }
+    const double h = 0.12 * (hi[0] - lo[0]) / 2.8;  // (the generator's spacing, after its scale)
+    for (double& c : s.points.coords) c += 0.3 * h * g(rng) / std::sqrt(3.0);
+    const std::string what = "noisy ellipsoid seed " + std::to_string(seed);
+    std::cout << "[ info ] " << what << "\n";
+    expect_topology(s, run_auto(s.points), what);
+    const test::Sample3 sparse = test::make_surfaces3(Family3::Sphere, 0, seed, 0.3);
+    expect_topology(sparse, run_auto(sparse.points), "sparse sphere seed " + std::to_string(seed));
+  }
 }
 
 TEST(Surfaces3Property, DecisionIndependentOfOrderRotationAndScale) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Inputs found by the engine fuzz targets (fuzz/fuzz_reconstruct2.cpp, fuzz_reconstruct3.cpp,
-// fuzz_gamma_graph.cpp; docs/fuzzing.md "Findings so far"), each with its expected outcome.
+// fuzz_surfaces3.cpp, fuzz_gamma_graph.cpp; docs/fuzzing.md "Findings so far"), each with its expected outcome.
 // Files: tests/data/regression/, named for the defect.
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/points.hpp"
+#include "constrict/topology.hpp"
 
 namespace constrict {
 namespace {
@@ -65,6 +66,28 @@ TEST(FuzzRegressionGraph, SliverNearCollinearMagnitudesExact) {
   const int ids[3] = {0, 1, 2};
   side_values_scan(p, ids, ga, gb, blocked);
   EXPECT_NEAR(std::min(ga, gb), -0.845607450744, 1e-9);
+}
+
+
+// Points of magnitude 1e300 (fuzz_surfaces3, first run): the auto topology shares its
+// tetrahedralization with the engine, but the engine works on a power-of-two rescaled copy, and
+// CGAL's spatial sort of that copy inserted in another order: when the growth failed, the γ pass
+// (built on the copy) no longer matched the shared tetrahedra and the engine threw ("the γ pass did
+// not reproduce the tetrahedralization"). The engine now uses a shared tetrahedralization only
+// without rescaling.
+TEST(FuzzRegressionSurfaces, SharedTetrahedralizationNotUsedAfterRescaling) {
+  const PointSet p = load("surfaces3_shared_dt_rescaled_1e300.xyz");
+  ASSERT_EQ(p.size(), 12u);
+  for (bool handles : {false, true}) {
+    Surfaces3Options o;
+    o.topology = Topology3::Auto;
+    o.handles = handles;
+    Surfaces3Result r;
+    const Status st = reconstruct_surfaces3(p, o, r);
+    ASSERT_TRUE(st.is_ok()) << st.message();
+    EXPECT_TRUE(r.valid()) << r.check;
+    EXPECT_TRUE(validate_surfaces3(p, r.mesh.mesh, r.mesh.tets, true).is_ok());
+  }
 }
 
 }  // namespace
