@@ -225,7 +225,8 @@ constexpr std::size_t kNoteMaxPoints3 = 5000;
 struct Surfaces3Options {
   Topology3 topology = Topology3::Single;  ///< Single: reconstruct3() exactly
   /// Parts of the data at least this many local spacings apart get separate surfaces: Delaunay
-  /// edges pq with |pq| >= topology_gap · rms(nearest-neighbour distances of p and q) do not join
+  /// edges pq with |pq| >= topology_gap · rms(local spacings of p and q: the distance to the third
+  /// nearest Delaunay neighbour) do not join
   /// (compare_gap3()). Larger splits less often.
   double topology_gap = kDefaultTopologyGap3;
   /// A part with fewer points (or flat) is a cluster of outliers, not an object of its own: it

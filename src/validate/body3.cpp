@@ -21,10 +21,10 @@ namespace {
 inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-// A face occurrence: its sorted vertices and where it came from (tetrahedron * 4 + face, or
-// ~triangle for a surface triangle).
+// A face occurrence in the group of its smallest vertex: the other two (ascending) and where it
+// came from (tetrahedron * 4 + face, or ~triangle for a surface triangle). 16 bytes.
 struct Occ {
-  std::array<int, 3> v;  // sorted
+  int b, c;
   std::int64_t from;
 };
 
@@ -49,37 +49,39 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
     if (orient3(points[uz(t[0])], points[uz(t[1])], points[uz(t[2])], points[uz(t[3])]) <= 0)
       return {StatusCode::InvalidArgument, "body tetrahedron not positively oriented"};
   }
-  std::vector<Occ> occ;
-  occ.reserve(4 * body.size() + mesh.triangles.size());
-  for (std::size_t t = 0; t < body.size(); ++t)
-    for (int i = 0; i < 4; ++i) {
-      const std::array<int, 3> f{{body[t][uz(kFaceOut[i][0])], body[t][uz(kFaceOut[i][1])], body[t][uz(kFaceOut[i][2])]}};
-      occ.push_back({sorted3(f), static_cast<std::int64_t>(t * 4 + uz(i))});
-    }
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     for (int v : mesh.triangles[f])
       if (v < 0 || uz(v) >= n) return {StatusCode::InvalidArgument, "surface triangle with a bad index"};
-    occ.push_back({sorted3(mesh.triangles[f]), ~static_cast<std::int64_t>(f)});
-  }
-  // Group the occurrences by their smallest vertex (a counting sort: one pass), then sort each
-  // small group by the other two.
+  // Group the occurrences by their smallest vertex (a counting sort written in place: count, then
+  // fill; no copy of all occurrences), then sort each small group by the other two.
+  const auto face_of = [&](std::size_t t, int i) {
+    return sorted3({{body[t][uz(kFaceOut[i][0])], body[t][uz(kFaceOut[i][1])], body[t][uz(kFaceOut[i][2])]}});
+  };
+  std::vector<std::size_t> off(n + 1, 0);
+  for (std::size_t t = 0; t < body.size(); ++t)
+    for (int i = 0; i < 4; ++i) ++off[uz(face_of(t, i)[0]) + 1];
+  for (const auto& tri : mesh.triangles) ++off[uz(*std::min_element(tri.begin(), tri.end())) + 1];
+  for (std::size_t v = 0; v < n; ++v) off[v + 1] += off[v];
+  std::vector<Occ> occ(off[n]);
   {
-    std::vector<std::size_t> off(n + 1, 0);
-    for (const Occ& o : occ) ++off[uz(o.v[0]) + 1];
-    for (std::size_t v = 0; v < n; ++v) off[v + 1] += off[v];
-    std::vector<Occ> grouped(occ.size());
     std::vector<std::size_t> pos(off.begin(), off.end() - 1);
-    for (const Occ& o : occ) grouped[pos[uz(o.v[0])]++] = o;
-    occ.swap(grouped);
-    for (std::size_t v = 0; v < n; ++v)
-      std::sort(occ.begin() + static_cast<std::ptrdiff_t>(off[v]), occ.begin() + static_cast<std::ptrdiff_t>(off[v + 1]),
-                [](const Occ& x, const Occ& y) {
-                  // (v[0] is the group's: explicit compares, not std::array's memcmp)
-                  if (x.v[1] != y.v[1]) return x.v[1] < y.v[1];
-                  if (x.v[2] != y.v[2]) return x.v[2] < y.v[2];
-                  return x.from < y.from;
-                });
+    for (std::size_t t = 0; t < body.size(); ++t)
+      for (int i = 0; i < 4; ++i) {
+        const auto f = face_of(t, i);
+        occ[pos[uz(f[0])]++] = {f[1], f[2], static_cast<std::int64_t>(t * 4 + uz(i))};
+      }
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+      const auto v = sorted3(mesh.triangles[f]);
+      occ[pos[uz(v[0])]++] = {v[1], v[2], ~static_cast<std::int64_t>(f)};
+    }
   }
+  for (std::size_t v = 0; v < n; ++v)
+    std::sort(occ.begin() + static_cast<std::ptrdiff_t>(off[v]), occ.begin() + static_cast<std::ptrdiff_t>(off[v + 1]),
+              [](const Occ& x, const Occ& y) {
+                if (x.b != y.b) return x.b < y.b;
+                if (x.c != y.c) return x.c < y.c;
+                return x.from < y.from;
+              });
   // The orientation of an occurrence relative to its sorted triple, out of its tetrahedron (or as
   // the surface triangle is written).
   const auto oriented = [&](const Occ& o) {
@@ -91,34 +93,29 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
   const auto face_name = [](const std::array<int, 3>& v) {
     return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
   };
-  for (std::size_t i = 0; i < occ.size();) {
-    std::size_t j = i + 1;
-    const auto same = [&](const Occ& o) { return o.v[0] == occ[i].v[0] && o.v[1] == occ[i].v[1] && o.v[2] == occ[i].v[2]; };
-    while (j < occ.size() && same(occ[j])) ++j;
-    int tets = 0, tris = 0;
-    for (std::size_t k = i; k < j; ++k) (occ[k].from < 0 ? tris : tets) += 1;
-    const auto f = [&] { return face_name(occ[i].v); };  // (only for a message)
-    if (tris > 1) return {StatusCode::InvalidArgument, "surface triangle " + f() + " appears twice"};
-    if (tets > 2) return {StatusCode::InvalidArgument, "face " + f() + " shared by more than two body tetrahedra"};
-    if (tets == 2) {
-      if (tris) return {StatusCode::InvalidArgument, "surface triangle " + f() + " lies inside the body"};
-      const Occ* a = nullptr;
-      const Occ* b = nullptr;
-      for (std::size_t k = i; k < j; ++k) (a ? b : a) = &occ[k];
-      if (even_order(oriented(*a)) == even_order(oriented(*b)))
-        return {StatusCode::InvalidArgument, "face " + f() + " has body tetrahedra on the same side (overlap)"};
-    } else if (tets == 1) {
-      if (!tris) return {StatusCode::InvalidArgument, "free face " + f() + " of the body is not a surface triangle"};
-      const Occ* a = nullptr;
-      const Occ* s = nullptr;
-      for (std::size_t k = i; k < j; ++k) (occ[k].from < 0 ? s : a) = &occ[k];
-      if (even_order(oriented(*a)) != even_order(oriented(*s)))
-        return {StatusCode::InvalidArgument, "surface triangle " + f() + " is not oriented out of the body"};
-    } else if (tris) {
-      return {StatusCode::InvalidArgument, "surface triangle " + f() + " is not a face of the body"};
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t i = off[g]; i < off[g + 1];) {
+      std::size_t j = i + 1;
+      while (j < off[g + 1] && occ[j].b == occ[i].b && occ[j].c == occ[i].c) ++j;
+      int tets = 0, tris = 0;
+      for (std::size_t k = i; k < j; ++k) (occ[k].from < 0 ? tris : tets) += 1;
+      const auto f = [&] { return face_name({{static_cast<int>(g), occ[i].b, occ[i].c}}); };  // (messages only)
+      if (tris > 1) return {StatusCode::InvalidArgument, "surface triangle " + f() + " appears twice"};
+      if (tets > 2) return {StatusCode::InvalidArgument, "face " + f() + " shared by more than two body tetrahedra"};
+      if (tets == 2) {
+        if (tris) return {StatusCode::InvalidArgument, "surface triangle " + f() + " lies inside the body"};
+        if (even_order(oriented(occ[i])) == even_order(oriented(occ[i + 1])))
+          return {StatusCode::InvalidArgument, "face " + f() + " has body tetrahedra on the same side (overlap)"};
+      } else if (tets == 1) {
+        if (!tris) return {StatusCode::InvalidArgument, "free face " + f() + " of the body is not a surface triangle"};
+        // (sorted by from: the triangle, ~f < 0, comes first)
+        if (even_order(oriented(occ[i + 1])) != even_order(oriented(occ[i])))
+          return {StatusCode::InvalidArgument, "surface triangle " + f() + " is not oriented out of the body"};
+      } else if (tris) {
+        return {StatusCode::InvalidArgument, "surface triangle " + f() + " is not a face of the body"};
+      }
+      i = j;
     }
-    i = j;
-  }
   return Status::ok();
 }
 

@@ -221,5 +221,30 @@ TEST(Surfaces3Property, GapOptionMovesTheSplit) {
   EXPECT_EQ(reconstruct_surfaces3(s.points, o, r).code(), StatusCode::InvalidArgument);
 }
 
+
+TEST(Surfaces3Property, BodyCheckRejectsBrokenBodies) {
+  const test::Sample3 s = test::make_surfaces3(Family3::Hollow, 4, 9);
+  const Surfaces3Result r = run_auto(s.points);
+  ASSERT_TRUE(r.valid());
+  const TriMesh3& m = r.mesh.mesh;
+  const auto& body = r.mesh.tets;
+  EXPECT_TRUE(validate_body3(s.points, m, body).is_ok());
+  TriMesh3 flipped = m;  // one surface triangle facing into the body
+  std::swap(flipped.triangles[7][1], flipped.triangles[7][2]);
+  EXPECT_NE(validate_body3(s.points, flipped, body).message().find("not oriented out"), std::string::npos);
+  auto fewer = body;  // a tetrahedron gone: its faces become free but are not surface triangles
+  fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(fewer.size() / 2));
+  EXPECT_FALSE(validate_body3(s.points, m, fewer).is_ok());
+  auto twice = body;  // a tetrahedron twice: overlap
+  twice.push_back(body[3]);
+  EXPECT_FALSE(validate_body3(s.points, m, twice).is_ok());
+  auto inverted = body;  // a negative tetrahedron
+  std::swap(inverted[5][0], inverted[5][1]);
+  EXPECT_NE(validate_body3(s.points, m, inverted).message().find("positively"), std::string::npos);
+  TriMesh3 missing = m;  // a surface triangle dropped
+  missing.triangles.pop_back();
+  EXPECT_FALSE(validate_body3(s.points, missing, body).is_ok());
+}
+
 }  // namespace
 }  // namespace constrict
