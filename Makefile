@@ -2,7 +2,10 @@
 #   make demo   install missing Debian packages, build (Release), reconstruct the bundled examples into out/
 #   make test   build and run every test through ctest
 #   make install  library, headers, CLI and the Python package ($(PREFIX)/lib/python3/dist-packages/constrict)
-# Variables: BUILD (build dir), JOBS, CMAKE_ARGS (extra cmake flags, e.g. -DCONSTRICT_WERROR=ON), PREFIX.
+#   make bench  build Release with the benchmarks, then the whole-process table against CGAL's
+#               Delaunay (bench/whole_process.sh -> $(OUT)/bench/table.md; several minutes)
+# Variables: BUILD (build dir), JOBS, CMAKE_ARGS (extra cmake flags, e.g. -DCONSTRICT_WERROR=ON), PREFIX,
+#   ROUNDS (bench rounds, default 3).
 
 BUILD      ?= build
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
@@ -35,7 +38,8 @@ demo: build
 bench: deps
 	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DCONSTRICT_BUILD_BENCH=ON -DCONSTRICT_BUILD_TESTS=OFF $(LAUNCHER) $(CMAKE_ARGS)
 	cmake --build $(BUILD)-bench -j $(JOBS)
-	@echo "run: $(BUILD)-bench/bench/constrict_bench (see docs/benchmarks.md)"
+	bench/whole_process.sh $(BUILD)-bench $(OUT)/bench $(or $(ROUNDS),3)
+	@echo "micro-benchmarks: $(BUILD)-bench/bench/constrict_bench (see docs/benchmarks.md)"
 
 install: build
 	cmake --install $(BUILD) --prefix $(or $(PREFIX),install)

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Whole-process speed against the yardstick (issue 19; docs/benchmarks.md "Whole process"):
+# generates the inputs (fixed seeds) into OUT, then per input runs, in ROUNDS alternating rounds,
+# the yardstick (read with fast_float + CGAL's Delaunay, bench/yardstick/cgal_delaunay.cpp) and
+# `constrict reconstruct` (read to written result), and writes a Markdown table of the medians,
+# their ratio and constrict's peak memory per point to OUT/table.md.
+# Usage: bench/whole_process.sh [BUILD_DIR (build-bench)] [OUT (out/bench)] [ROUNDS (3)] [N (1000000)]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${1:-build-bench}; OUT=${2:-out/bench}; ROUNDS=${3:-3}; N=${4:-1000000}
+CLI=$BUILD/cli/constrict; YARD=$BUILD/bench/constrict_yardstick
+for x in "$CLI" "$YARD"; do [ -x "$x" ] || { echo "missing $x: run make bench" >&2; exit 1; }; done
+mkdir -p "$OUT"
+/usr/bin/python3 - "$OUT" "$N" <<'PY'
+import math, os, sys
+import numpy as np
+out, n = sys.argv[1], int(sys.argv[2])
+def save(name, p):
+    path = os.path.join(out, name)
+    if not os.path.exists(path):
+        np.savetxt(path, p, fmt="%.17g")
+rng = np.random.default_rng(19)
+# A smooth closed curve (five petals), one point per spacing along the arc, shuffled.
+t = np.sort(rng.random(n)) * 2 * math.pi
+r = 1 + 0.3 * np.cos(5 * t)
+curve = np.c_[r * np.cos(t), r * np.sin(t)]
+save("curve2.xy", curve[rng.permutation(n)])
+# The same curve with noise about the spacing, normal to it.
+length = 2 * math.pi * 1.25  # about the curve's length
+h = length / n
+save("noisy2.xy", (curve + rng.normal(scale=h, size=curve.shape))[rng.permutation(n)])
+save("uniform2.xy", rng.random((n, 2)))
+v = rng.normal(size=(n, 3))
+v /= np.linalg.norm(v, axis=1)[:, None]
+save("surface3.xyz", v * [2.0, 1.2, 0.8])
+PY
+inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3")
+[ -f ../shared/data/3d/igea.xyz ] && inputs+=("../shared/data/3d/igea.xyz 3")
+median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+table="$OUT/table.md"
+{
+  echo "| input | points | yardstick s | constrict s | ratio | constrict peak MB | bytes/point |"
+  echo "|---|---|---|---|---|---|---|"
+} > "$table"
+for entry in "${inputs[@]}"; do
+  set -- $entry; name=$1; dim=$2; in="$OUT/$name"
+  [ -f "$in" ] || in=$name
+  ext=$([ "$dim" = 2 ] && echo idx || echo off)
+  ys=(); cs=(); mem=()
+  for ((k = 0; k < ROUNDS; ++k)); do
+    ys+=("$( { /usr/bin/time -f "%e" "$YARD" "$dim" "$in" >/dev/null; } 2>&1 | tail -1)")
+    line=$( { /usr/bin/time -f "%e %M" "$CLI" reconstruct "$in" -o "$OUT/result.$ext" -q >/dev/null; } 2>&1 | tail -1)
+    cs+=("${line% *}"); mem+=("${line#* }")
+  done
+  y=$(printf '%s\n' "${ys[@]}" | median); c=$(printf '%s\n' "${cs[@]}" | median); m=$(printf '%s\n' "${mem[@]}" | median)
+  pts=$(wc -l < "$in")
+  awk -v n="$(basename "$name")" -v p="$pts" -v y="$y" -v c="$c" -v m="$m" \
+    'BEGIN { printf "| %s | %d | %.2f | %.2f | %.2f | %.0f | %.0f |\n", n, p, y, c, c / y, m / 1024, m * 1024 / p }' >> "$table"
+  echo "$(basename "$name"): yardstick $y s, constrict $c s"
+done
+echo "table: $table"
+cat "$table"
