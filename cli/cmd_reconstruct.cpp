@@ -314,6 +314,25 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
                    {"ms_infer", sr.ms_infer}, {"ms_assemble", sr.ms_assemble}};
 }
 
+// --topology auto in 3D (validate: the library's own check; the CLI validates and reports it).
+Status run_surfaces3(const ReconstructArgs& a, const PointSet& pts, const Constrict3Options& opt, bool validate,
+                     Surfaces3Result& sr) {
+  Surfaces3Options so;
+  so.topology = Topology3::Auto;
+  so.topology_gap = a.topology_gap;
+  so.surface = opt;
+  so.validate = validate;
+  return reconstruct_surfaces3(pts, so, sr);
+}
+
+// Single mode: what auto gives, for the note on stderr and the report (small inputs only).
+void note_surfaces3(const ReconstructArgs& a, const PointSet& pts, const Constrict3Options& opt, Surfaces3Result& inferred) {
+  if (!run_surfaces3(a, pts, opt, true, inferred).is_ok()) inferred = Surfaces3Result{};
+  if (!a.quiet && inferred.valid() && (inferred.surfaces.size() > 1 || inferred.genus > 0))
+    std::fprintf(stderr, "note: the points show %zu surface%s of total genus %d; try --topology auto\n",
+                 inferred.surfaces.size(), inferred.surfaces.size() == 1 ? "" : "s", inferred.genus);
+}
+
 class ProgressVisitor3 final : public Constrict3Visitor {
  public:
   ProgressVisitor3(Progress& p, std::size_t n) : progress_(p), n_(n) {}
@@ -372,12 +391,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     skel = v.stats;
     r = as_reconstruction(std::move(v));
   } else if (a.topology == "auto") {
-    Surfaces3Options so;
-    so.topology = Topology3::Auto;
-    so.topology_gap = a.topology_gap;
-    so.surface = opt;
-    so.validate = false;  // validated below, as the single surface is
-    if (Status s = reconstruct_surfaces3(pts, so, sr); !s) return fail(s);
+    if (Status s = run_surfaces3(a, pts, opt, false, sr); !s) return fail(s);
     r = sr.mesh;
   } else if (Status s = reconstruct3(pts, opt, r, &visitor); !s) {
     return fail(s);
@@ -386,16 +400,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   // Single mode, small inputs: what auto would give, for the note and the report.
   Surfaces3Result inferred;
   const bool infer = !surfaces && !is_skeleton(a) && pts.size() <= kNoteMaxPoints3 && r.complete;
-  if (infer) {
-    Surfaces3Options so;
-    so.topology = Topology3::Auto;
-    so.topology_gap = a.topology_gap;
-    so.surface = opt;
-    if (!reconstruct_surfaces3(pts, so, inferred).is_ok()) inferred = Surfaces3Result{};
-    if (!a.quiet && inferred.valid() && (inferred.surfaces.size() > 1 || inferred.genus > 0))
-      std::fprintf(stderr, "note: the points show %zu surface%s of total genus %d; try --topology auto\n",
-                   inferred.surfaces.size(), inferred.surfaces.size() == 1 ? "" : "s", inferred.genus);
-  }
+  if (infer) note_surfaces3(a, pts, opt, inferred);
 
   progress.phase("validating");
   const auto tv = Clock::now();
