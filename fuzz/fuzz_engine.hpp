@@ -85,6 +85,26 @@ enum class Mode : std::uint8_t {
 };
 constexpr int kModes = 8;
 
+// The status contract of the 3D engines (reconstruct3, reconstruct_surfaces3): for bad input the
+// check_points() status; for valid input Ok, or Unsupported only when no exact power-of-two
+// rescaling exists. True when the result is Ok and is to be checked.
+inline bool engine3_status(const constrict::PointSet& p, const constrict::Status& checked, const constrict::Status& st) {
+  require_one_line(st);
+  if (!checked) {
+    require(st.code() == checked.code(), "status differs from check_points()", st.message());
+    return false;
+  }
+  if (st.code() == constrict::StatusCode::Unsupported) {
+    constrict::PointSet scaled;
+    int e = 0;
+    require(!constrict::exact_power_of_two_scale(p, scaled, e).is_ok(), "Unsupported although exactly rescalable",
+            st.message());
+    return false;
+  }
+  require(st.is_ok(), "valid input refused", st.message());
+  return true;
+}
+
 namespace detail {
 
 // Exact lattice points on the circle of radius 5 and the sphere of radius 3 (x^2+y^2+z^2 = 9).

@@ -64,19 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     checked = check_points(p);
     st = reconstruct_surfaces3(p, options, r);
   });
-  constrict_fuzz::require_one_line(st);
-  if (!checked) {
-    require(st.code() == checked.code(), "status differs from check_points()", st.message());
-    return 0;
-  }
-  if (st.code() == StatusCode::Unsupported) {
-    PointSet scaled;
-    int e = 0;
-    require(!exact_power_of_two_scale(p, scaled, e).is_ok(), "Unsupported although exactly rescalable",
-            st.message());
-    return 0;
-  }
-  require(st.is_ok(), "valid input refused", st.message());
+  if (!constrict_fuzz::engine3_status(p, checked, st)) return 0;
   constrict_fuzz::no_throw("checks", [&] { check_surfaces(p, r); });
   return 0;
 }
