@@ -159,8 +159,8 @@ Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Opt
 /// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
 ///   Internal if a complete ring set fails validation (a bug)
 /// @note Guarantee: with validate, a complete result is a valid ring set (validate_rings2()).
-///   Auto costs one Delaunay triangulation and O(N log N) more than Single, and runs reconstruct2()
-///   on the whole set only when it finds one part.
+///   Auto costs one Delaunay triangulation and O(N log N) more than Single, run on a second
+///   thread beside reconstruct2() (whose polygon is dropped when the inference finds several rings).
 Status reconstruct_rings2(const PointSet& points, const Rings2Options& options, Rings2Result& result,
                           Constrict2Visitor* visitor = nullptr);
 

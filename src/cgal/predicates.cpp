@@ -117,9 +117,6 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
   return static_cast<int>(CGAL::sign(total));
 }
 
-int compare_distance2(const double* p, const double* q, const double* r) noexcept {
-  return static_cast<int>(CGAL::compare_distance_to_point(p2(p), p2(q), p2(r)));
-}
 
 namespace {
 // sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) in D dimensions. Semi-static filter
@@ -164,8 +161,19 @@ int compare_gap3(const double* p, const double* q, const double* const* a, const
   return compare_gap<3>(p, q, a, b, k, t);
 }
 
+
+int compare_distance2(const double* p, const double* q, const double* r) noexcept {
+  // sign(|pq|^2 - |pr|^2): compare_gap's semi-static filter first (CGAL's filtered predicate
+  // alone was 10 % of a 10^6-point topology inference), then its exact Mpzf arithmetic.
+  const double* a[1] = {p};
+  const double* b[1] = {r};
+  return compare_gap<2>(p, q, a, b, 1, 1.0);
+}
+
 int compare_distance3(const double* p, const double* q, const double* r) noexcept {
-  return static_cast<int>(CGAL::compare_distance_to_point(p3(p), p3(q), p3(r)));
+  const double* a[1] = {p};
+  const double* b[1] = {r};
+  return compare_gap<3>(p, q, a, b, 1, 1.0);
 }
 
 }  // namespace constrict

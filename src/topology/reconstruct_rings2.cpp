@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include <tbb/task_group.h>
+
 #include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
@@ -55,16 +57,27 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
   if (Status s = check_points(points); !s) return s;
-  if (o.topology == Topology2::Auto || o.infer_in_single)
-    if (Status s = infer(points, o, r); !s) return s;
+  // The inference and the single polygon are independent: the inference runs on the other core
+  // while this thread builds the polygon (deterministic: neither reads the other). When Auto finds
+  // several rings the polygon is dropped.
+  Status inferred = Status::ok(), single = Status::ok();
+  const bool run_infer = o.topology == Topology2::Auto || o.infer_in_single;
+  {
+    tbb::task_group side;
+    if (run_infer) side.run([&] { inferred = infer(points, o, r); });
+    single = reconstruct2(points, o.polygon, r.polygon, visitor);
+    side.wait();
+  }
+  if (!inferred) return inferred;
   if (o.topology == Topology2::Auto && r.inferred.several()) {
+    r.polygon = Polygon2Result{};
     r.rings = r.inferred.rings;
     r.from_polygon = false;
     r.validated = true;  // infer_rings2() validated them (exactly: validate_rings2())
     r.check = r.inferred.check;
     measure(points, r);
   } else {
-    if (Status s = reconstruct2(points, o.polygon, r.polygon, visitor); !s) return s;
+    if (!single) return single;
     Ring2 shell;
     shell.indices = r.polygon.boundary;
     r.rings.push_back(std::move(shell));
