@@ -212,7 +212,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (fmt == PolygonFormat::Auto)
     return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt, .svg or .rings)"});
   if (is_skeleton(a) && a.topology != "single")
-    return fail({StatusCode::InvalidArgument, "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon)"});
+    return fail({StatusCode::InvalidArgument, "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon or surface)"});
   Constrict2Options opt;  // --refine none: the paper's algorithm (Constrict2Options::paper())
   (void)Constrict2Options::from_preset(a.refine == "none" ? "paper" : "default", opt);
   (void)fallback_from_name(a.fallback, opt.fallback);

@@ -342,12 +342,16 @@ py::dict reconstruct3_py(const py::handle& points, const std::string& fallback, 
 
 // topology="auto" in 3D: reconstruct_surfaces3 (topology.hpp); the surface dict plus the surfaces.
 py::dict surfaces3_py(const py::handle& points, const std::string& topology, double gap, const std::string& fallback,
-                      const std::string& refine, bool fast, bool grow, bool merge, bool self_intersections) {
+                      const std::string& refine, bool fast, bool grow, const std::string& method, bool merge,
+                      bool self_intersections) {
+  Criterion criterion = Criterion::Gamma;
+  if (parse_method(method, criterion))
+    raise({StatusCode::InvalidArgument, "topology: needs the constriction (method voronoi-skeleton gives one surface)"});
   Surfaces3Options so;
   if (!topology_from_name(topology, so.topology))
     raise({StatusCode::InvalidArgument, "topology must be 'single' or 'auto', not '" + topology + "'"});
   so.topology_gap = gap;
-  so.surface = options3(fallback, parse_refine(refine), fast, grow, Criterion::Gamma, SIZE_MAX, self_intersections);
+  so.surface = options3(fallback, parse_refine(refine), fast, grow, criterion, SIZE_MAX, self_intersections);
   const Input in = prepare(points, 3, merge);
   Surfaces3Result r;
   run_nogil([&] { return reconstruct_surfaces3(in.points, so, r); });
@@ -541,7 +545,8 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("points"), py::arg("boundary"));
   m.def("surfaces3", &surfaces3_py, py::arg("points"), py::arg("topology"), py::arg("topology_gap"), py::arg("fallback"),
-        py::arg("refine"), py::arg("fast"), py::arg("grow"), py::arg("merge"), py::arg("self_intersections"));
+        py::arg("refine"), py::arg("fast"), py::arg("grow"), py::arg("method"), py::arg("merge"),
+        py::arg("self_intersections"));
   m.def("rings2", &rings2_py, py::arg("points"), py::arg("topology"), py::arg("topology_gap"), py::arg("fallback"),
         py::arg("refine"), py::arg("method"), py::arg("stop_after"));
   m.def(

@@ -471,9 +471,9 @@ def reconstruct3(
     if fast and ref == "none":
         raise _invalid("fast=True does not apply with refine=False (the paper's algorithm is one run)")
     if topology != "single" or topology_gap != 2.0:
-        if method != "gamma" or stop_after is not None:
-            raise _invalid("topology: needs the gamma constriction run to the end (no method=, stop_after=)")
-        d = _core.surfaces3(points, topology, float(topology_gap), fallback, ref, fast, grow, merge_duplicates,
+        if stop_after is not None:
+            raise _invalid("topology: needs the constriction run to the end (no stop_after=)")
+        d = _core.surfaces3(points, topology, float(topology_gap), fallback, ref, fast, grow, method, merge_duplicates,
                             validate_self_intersections)
         d["skeleton"] = None
         return Surface(**d)
