@@ -307,6 +307,7 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
     list.push_back(x);
   }
   j["surfaces"] = list;
+  if (!j.contains("handles")) j["handles"] = nlohmann::json::array();  // (to_json lists them when any)
   j["topology"] = {{"mode", to_string(sr.topology)}, {"decision", to_string(sr.decision)}, {"parts", sr.parts},
                    {"part_sizes", sr.part_sizes}, {"small_parts_merged", sr.small_parts_merged}, {"gap_threshold", sr.gap_threshold},
                    {"min_gap_spacings", std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},

@@ -213,6 +213,20 @@ struct Constrict3Candidate {
   double ms = 0;  ///< constriction + fallback + post-passes of this candidate
 };
 
+/// One topology change the handle stage kept (Constrict3Options::handles; docs/topology.md §3D):
+/// what it did and what decided it.
+struct Handle3Change {
+  enum class Kind { CloseLoop, OpenTunnel, SealCavity };
+  Kind kind = Kind::CloseLoop;
+  std::size_t tetrahedra = 0;          ///< tetrahedra added or removed
+  int bridges_before = 0;              ///< bridge faces (kBridgeRatio) around it before ...
+  int bridges_after = 0;               ///< ... and after (kept: fewer)
+  double worst_ratio_before = 0, worst_ratio_after = 0;  ///< largest face ratio around it
+  bool separates_parts = false;        ///< kept because it separates two parts of the gap rule
+};
+/// "close-loop", "open-tunnel", "seal-cavity".
+const char* to_string(Handle3Change::Kind kind) noexcept;
+
 /// Result of reconstruct3().
 struct Mesh3Result {
   TriMesh3 mesh;                          ///< outward triangles over input ids
@@ -238,6 +252,7 @@ struct Mesh3Result {
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
   std::size_t handle_added = 0;           ///< tetrahedra the handle stage added (closing loops)
   std::size_t handle_removed = 0;         ///< ... and removed (opening tunnels)
+  std::vector<Handle3Change> handle_changes;  ///< what the handle stage kept, in order
   int genus = 0;                          ///< total genus of the surface (> 0 only with handles)
   int surfaces = 1;                       ///< its components (> 1 only with handles: inner shells)
   std::size_t grow_cavities = 0;          ///< points the growth placed by a mirrored star cavity

@@ -238,13 +238,17 @@ void Constrictor3::Impl::handles_stage(Mesh3Result& r) {
   const std::vector<std::uint8_t> state0 = body.state;
   handles_closed = handles_opened = {};
   const double conf = opt.carve_confidence <= 1 ? opt.carve_confidence : kFillConfidence;
+  auto log = std::make_shared<std::vector<Handle3Change>>();
   const std::size_t changed =
-      detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get()), handles_closed, handles_opened);
+      detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get(), log), handles_closed,
+                       handles_opened);
   // (Enclosed voids are the cavities of inner shells: allowed here.)
   if (changed > 0 && !body.side_connected(kAlive)) {
     body.state = state0;
     handles_closed.changed = handles_opened.changed = 0;
+    log->clear();
   }
+  r.handle_changes = std::move(*log);
   r.handle_added = handles_closed.changed;
   r.handle_removed = handles_opened.changed;
   r.stages.push_back({Stage3::Handles, 0, handles_opened.changed});

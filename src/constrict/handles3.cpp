@@ -53,15 +53,21 @@ int mixed_surfaces(const Body3& b, const std::vector<int>& part_of) {
 
 }  // namespace
 
-HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of) {
+HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
+                                      std::shared_ptr<std::vector<Handle3Change>> log) {
   // (The spacing on first use: most bodies have no candidate region.)
   auto spacing = std::make_shared<std::vector<double>>();
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
-  return [spacing, debug, part_of, mixed0](const Body3& b, const std::vector<int>& changed, bool added, long long dF) {
+  return [spacing, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added, long long dF) {
+    Handle3Change h;
+    h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
+    h.tetrahedra = changed.size();
     if (part_of && mixed0 > 0 && dF < 0 && mixed_surfaces(b, *part_of) < mixed0) {
       if (debug) std::fprintf(stderr, "handle seal: %zu tets separate two parts: kept\n", changed.size());
+      h.separates_parts = true;
+      if (log) log->push_back(h);
       return true;
     }
     if (spacing->empty()) *spacing = nearest_spacing3(b);
@@ -86,6 +92,13 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
         if (b.alive(t) != b.alive(m)) count(after, t, i);
       }
     const bool keep = after.faces < before.faces;
+    if (keep && log) {
+      h.bridges_before = before.faces;
+      h.bridges_after = after.faces;
+      h.worst_ratio_before = before.worst;
+      h.worst_ratio_after = after.worst;
+      log->push_back(h);
+    }
     if (debug)
       std::fprintf(stderr, "handle %s: %zu tets, bridges %d -> %d, worst %.2f -> %.2f: %s\n", added ? "close" : "open",
                    changed.size(), before.faces, after.faces, before.worst, after.worst, keep ? "kept" : "undone");
@@ -94,3 +107,14 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
 }
 
 }  // namespace constrict::detail
+
+namespace constrict {
+const char* to_string(Handle3Change::Kind k) noexcept {
+  switch (k) {
+    case Handle3Change::Kind::CloseLoop: return "close-loop";
+    case Handle3Change::Kind::OpenTunnel: return "open-tunnel";
+    case Handle3Change::Kind::SealCavity: return "seal-cavity";
+  }
+  return "?";
+}
+}  // namespace constrict

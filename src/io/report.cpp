@@ -46,6 +46,15 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   j["stuck_points"] = r.stuck_points;
   j["unplaced_points"] = r.unplaced_points;
   j["stages"] = stages_json(r.stages);
+  if (!r.handle_changes.empty()) {  // (the auto topology's handle stage; docs/topology.md §3D)
+    nlohmann::json h = nlohmann::json::array();
+    for (const Handle3Change& c : r.handle_changes)
+      h.push_back({{"kind", to_string(c.kind)}, {"tetrahedra", c.tetrahedra}, {"bridges_before", c.bridges_before},
+                   {"bridges_after", c.bridges_after}, {"worst_ratio_before", c.worst_ratio_before},
+                   {"worst_ratio_after", c.worst_ratio_after}, {"separates_parts", c.separates_parts}});
+    j["handles"] = h;
+    j["genus"] = r.genus;
+  }
   j["removed_one_face"] = r.removed_one_face;
   j["removed_two_face"] = r.removed_two_face;
   j["cavities"] = r.cavities;

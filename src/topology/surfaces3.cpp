@@ -496,6 +496,7 @@ void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
   sum.filled += r.filled;
   sum.handle_added += r.handle_added;
   sum.handle_removed += r.handle_removed;
+  sum.handle_changes.insert(sum.handle_changes.end(), r.handle_changes.begin(), r.handle_changes.end());
   sum.grow_cavities += r.grow_cavities;
   sum.cavities += r.cavities;
   sum.cavity_attempts += r.cavity_attempts;

@@ -185,7 +185,9 @@ std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const 
 // The decision of the engine (handles3.cpp): a change is kept when it lowers the bridge measure
 // of the surface around it; with part_of (the parts of the gap rule, per point; may be null) also
 // a sealed cavity that leaves fewer surfaces holding points of two parts.
-HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of);
+// log (may be null) receives every change the decision keeps.
+HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
+                                      std::shared_ptr<std::vector<Handle3Change>> log);
 
 // ---- edge flips (flips3.cpp; docs/reconstruction-3d.md §4) -------------------------------------
 
