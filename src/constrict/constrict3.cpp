@@ -19,6 +19,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict {
 
@@ -84,22 +85,14 @@ Status Constrict3Options::from_preset(const std::string& name, Constrict3Options
 // Edge-connected components of a surface over n points (vertex-disjoint surfaces: union-find on
 // the vertices of each triangle).
 static int surface_components(const TriMesh3& m, std::size_t n) {
-  std::vector<int> up(n);
-  for (std::size_t v = 0; v < n; ++v) up[v] = static_cast<int>(v);
-  const auto find = [&](int x) {
-    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
-    return x;
-  };
+  detail::UnionFind uf(n);
   for (const auto& t : m.triangles)
-    for (int k = 1; k < 3; ++k) {
-      const int a = find(t[0]), b = find(t[uz(k)]);
-      if (a != b) up[uz(std::max(a, b))] = std::min(a, b);
-    }
+    for (int k = 1; k < 3; ++k) uf.join(t[0], t[uz(k)]);
   std::vector<char> used(n, 0);
   for (const auto& t : m.triangles)
     for (int v : t) used[uz(v)] = 1;
   int c = 0;
-  for (std::size_t v = 0; v < n; ++v) c += used[v] && find(static_cast<int>(v)) == static_cast<int>(v);
+  for (std::size_t v = 0; v < n; ++v) c += used[v] && uf.find(static_cast<int>(v)) == static_cast<int>(v);
   return c;
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -21,28 +22,20 @@ struct BridgeCount {
 
 // Surfaces of the body holding points of two parts or more.
 int mixed_surfaces(const Body3& b, const std::vector<int>& part_of) {
-  std::vector<int> up(b.n);
-  for (std::size_t v = 0; v < b.n; ++v) up[v] = static_cast<int>(v);
-  const auto find = [&](int x) {
-    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
-    return x;
-  };
+  UnionFind uf(b.n);
   for (std::size_t t = 0; t < b.tets.size(); ++t) {
     if (b.state[t] != kAlive) continue;
     for (int i = 0; i < 4; ++i) {
       if (!b.boundary_face(static_cast<int>(t), i)) continue;
       const auto& v = b.tets[t];
-      for (int k = 1; k < 3; ++k) {
-        const int x = find(v[uz(kFaceOut[i][0])]), y = find(v[uz(kFaceOut[i][k])]);
-        if (x != y) up[uz(std::max(x, y))] = std::min(x, y);
-      }
+      for (int k = 1; k < 3; ++k) uf.join(v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][k])]);
     }
   }
   std::vector<int> part_at(b.n, -1);
   std::vector<char> mixed(b.n, 0);
   for (std::size_t v = 0; v < b.n; ++v) {
     if (!b.onb[v]) continue;
-    const int r = find(static_cast<int>(v));
+    const int r = uf.find(static_cast<int>(v));
     if (part_at[uz(r)] < 0) part_at[uz(r)] = part_of[v];
     else if (part_at[uz(r)] != part_of[v]) mixed[uz(r)] = 1;
   }

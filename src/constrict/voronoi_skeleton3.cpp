@@ -10,6 +10,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/voronoi_skeleton.hpp"
 #include "constrict/detail/skeleton_growth.hpp"
+#include "core/detail/tet_faces.hpp"
 
 namespace constrict {
 namespace {
@@ -20,8 +21,7 @@ double ms_since(Clock::time_point t0) {
 }
 std::size_t U(int i) { return static_cast<std::size_t>(i); }
 
-// Face opposite vertex i of a positively oriented tetrahedron, oriented outward.
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+using detail::kFaceOut;
 
 // Circumcentre of a tetrahedron (double arithmetic; only ranks dual edge lengths).
 std::array<double, 3> circumcentre3(const double* a, const double* b, const double* c, const double* d) {

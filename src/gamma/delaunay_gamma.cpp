@@ -21,6 +21,7 @@
 #include "constrict/predicates.hpp"
 #include "core/detail/big_vector.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/union_find.hpp"
 #include "gamma/detail/apex2.hpp"
 #include "gamma/detail/apex3.hpp"
 #include "gamma/detail/reconcile.hpp"
@@ -57,22 +58,7 @@ void for_blocks(std::size_t nblocks, const F& f) {
   });
 }
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  }
-};
+using detail::UnionFind;
 
 struct ArrayHash {
   template <std::size_t K>
@@ -285,7 +271,7 @@ Status complete_cocircular2(const PointSet& points, const std::vector<std::array
   std::vector<char> in_cluster(T, 0);
   for (const auto& v : cocirc)
     for (const auto& pr : v) {
-      clusters.unite(pr[0], pr[1]);
+      clusters.join(pr[0], pr[1]);
       in_cluster[static_cast<std::size_t>(pr[0])] = in_cluster[static_cast<std::size_t>(pr[1])] = 1;
     }
   std::unordered_map<int, std::vector<int>> members;
@@ -527,7 +513,7 @@ std::vector<int> distinct_vertices(const std::vector<int>& simplices, int V, con
 void Completion3::unite_clusters(const PairBlocks& cocirc) {
   for (const auto& v : cocirc)
     for (const auto& pr : v) {
-      clusters_.unite(pr[0], pr[1]);
+      clusters_.join(pr[0], pr[1]);
       in_cluster_[static_cast<std::size_t>(pr[0])] = in_cluster_[static_cast<std::size_t>(pr[1])] = 1;
     }
 }
@@ -551,7 +537,7 @@ void Completion3::find_side_tets() {
 
 void Completion3::unite_discs(const std::vector<std::array<int, 2>>& disc_pairs) {
   for (const auto& pr : disc_pairs) {
-    discs_.unite(pr[0], pr[1]);
+    discs_.join(pr[0], pr[1]);
     in_disc_[static_cast<std::size_t>(pr[0])] = in_disc_[static_cast<std::size_t>(pr[1])] = 1;
   }
 }
@@ -649,7 +635,7 @@ void Completion3::link_if_one_disc(const std::array<int, 2>& e, int f1, int f2) 
   const double* B = P(faces_.vertex(static_cast<std::size_t>(f1), 1));
   const double* C = P(faces_.vertex(static_cast<std::size_t>(f1), 2));
   if (orient3(A, B, C, P(d)) != 0 || in_circle_coplanar3(A, B, C, P(d)) != 0) return;
-  discs_.unite(f1, f2);
+  discs_.join(f1, f2);
   in_disc_[static_cast<std::size_t>(f1)] = in_disc_[static_cast<std::size_t>(f2)] = 1;
 }
 

@@ -14,6 +14,7 @@
 
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/union_find.hpp"
 #include "topology/detail/ring_nesting.hpp"
 
 namespace constrict {
@@ -124,21 +125,7 @@ class NnCrust {
   std::vector<int> nbr_;
 };
 
-struct UnionFind {
-  std::vector<int> up;
-  explicit UnionFind(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
-  int find(int x) {
-    while (up[static_cast<std::size_t>(x)] != x) x = up[static_cast<std::size_t>(x)] = up[static_cast<std::size_t>(up[static_cast<std::size_t>(x)])];
-    return x;
-  }
-  bool join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    up[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    return true;
-  }
-};
+using detail::UnionFind;
 
 // The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
 class Gaps {

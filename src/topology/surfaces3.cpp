@@ -29,6 +29,8 @@
 #include "constrict/topology.hpp"
 #include "constrict/detail/share3.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/tet_faces.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict {
 namespace {
@@ -36,26 +38,13 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 
-// Face opposite local vertex i of a positively oriented tetrahedron, oriented outward.
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+using detail::kFaceOut;
 
 bool lex_less3(const double* p, const double* q) {
   return std::lexicographical_compare(p, p + 3, q, q + 3);
 }
 
-struct UnionFind {
-  std::vector<int> up;
-  explicit UnionFind(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
-  int find(int x) {
-    while (up[uz(x)] != x) x = up[uz(x)] = up[uz(up[uz(x)])];
-    return x;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) up[uz(std::max(a, b))] = std::min(a, b);
-  }
-};
+using detail::UnionFind;
 
 // Calls f(p, q) for the 6 edges of every tetrahedron (an edge once per tetrahedron around it).
 template <class F>

@@ -14,12 +14,13 @@
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/tet_faces.hpp"
 
 namespace constrict {
 namespace {
 
 inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+using detail::kFaceOut;
 
 // A face occurrence in the group of its smallest vertex: the other two (ascending) and where it
 // came from (tetrahedron * 4 + face, or ~triangle for a surface triangle). 16 bytes.

@@ -17,12 +17,10 @@
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
 #include "core/detail/edge_key.hpp"
+#include "core/detail/tet_faces.hpp"
 
 namespace constrict::detail {
 
-// Face opposite local vertex i of a positively oriented tetrahedron, oriented outward (the
-// tetrahedron's vertex i lies on its negative side).
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 // Tetrahedron states: outside the body, in the body, replaced by a star cavity (gone for good).
 enum : std::uint8_t { kOutside = 0, kAlive = 1, kReplaced = 2 };
