@@ -149,6 +149,12 @@ class Grid {
   }
   std::vector<int>& edges(int i, int j) { return edges_in_cell_[index(i, j)]; }
 
+  // The cells a segment or triangle can touch, row by row (grid_cells.hpp, for_cells_of_hull).
+  template <class F> void for_cells_of_hull(const double* const* v, int m, F&& f) const {
+    const detail::GridFrame frame{minx_, miny_, std::max({std::fabs(minx_), std::fabs(maxx_), std::fabs(miny_), std::fabs(maxy_)}), hcs_, nx_, ny_};
+    detail::for_cells_of_hull(frame, v, m, f);
+  }
+
  private:
   static constexpr int kMaxCells = 4096;  // per axis
   double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
@@ -426,24 +432,32 @@ struct Constrictor2::Impl {
     const double* pb = P(b);
     const double* py = P(y);
     if (orient2(pa, pb, py) <= 0) return false;
-    const int i0 = grid.cx(std::min({pa[0], pb[0], py[0]})), i1 = grid.cx(std::max({pa[0], pb[0], py[0]}));
-    const int j0 = grid.cy(std::min({pa[1], pb[1], py[1]})), j1 = grid.cy(std::max({pa[1], pb[1], py[1]}));
+    // Only the cells the triangle and its new edges cross (Grid::for_cells_of_hull): the same
+    // points and edges are tested as over the whole bounding box, far fewer cells are read.
+    const double* tri[3] = {pa, pb, py};
     bool empty = true;
-    for (int j = j0; j <= j1 && empty; ++j)
-      for (int i = i0; i <= i1 && empty; ++i)
-        grid.points_in_cell(i, j, [&](int p) {
-          if (!empty || p == a || p == b || p == y) return;
-          const double* pp = P(p);
-          if (orient2(pa, pb, pp) >= 0 && orient2(pb, py, pp) >= 0 && orient2(py, pa, pp) >= 0) empty = false;
-        });
+    grid.for_cells_of_hull(tri, 3, [&](int i, int j) {
+      if (!empty) return;
+      grid.points_in_cell(i, j, [&](int p) {
+        if (!empty || p == a || p == b || p == y) return;
+        const double* pp = P(p);
+        if (orient2(pa, pb, pp) >= 0 && orient2(pb, py, pp) >= 0 && orient2(py, pa, pp) >= 0) empty = false;
+      });
+    });
     if (!empty) return false;
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
+    bool blocked = false;
+    for (const int s : {a, b}) {
+      const double* seg[2] = {P(s), py};
+      grid.for_cells_of_hull(seg, 2, [&](int i, int j) {
+        if (blocked) return;
         for (int id : grid.edges(i, j)) {
           const BEdge& e = bedges[U(id)];
           if (!e.alive || (e.u == a && e.v == b)) continue;
-          if (edge_blocks(e, a, y) || edge_blocks(e, b, y)) return false;
+          if (edge_blocks(e, s, y)) { blocked = true; return; }
         }
+      });
+      if (blocked) return false;
+    }
     return true;
   }
 

@@ -7,9 +7,11 @@
 // the cells of a box's corners finds everything inside the box, exactly.
 #pragma once
 #include <cfloat>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 namespace constrict::detail {
 
@@ -41,6 +43,77 @@ inline int cell_of(double x, double lo, double half_cell, int cells) noexcept {
   const double f = std::floor((0.5 * x - 0.5 * lo) / half_cell);
   if (!(f > 0)) return 0;
   return f >= cells ? cells - 1 : static_cast<int>(f);
+}
+
+/// A uniform grid as cell_of() sees it: its corner, the largest coordinate magnitude of its box,
+/// half the cell edge and the cell counts.
+struct GridFrame {
+  double lo_x, lo_y, magnitude, half_cell;
+  int nx, ny;
+  int cx(double x) const noexcept { return cell_of(x, lo_x, half_cell, nx); }
+  int cy(double y) const noexcept { return cell_of(y, lo_y, half_cell, ny); }
+};
+
+/// Calls f(i, j) for a set of cells that contains every cell (cell_of) of every point of the
+/// closed convex hull of the m vertices v (m = 2: a segment, m = 3: a triangle). Row by row over
+/// the bounding box; in each row only the columns the shape crosses within the row and one row
+/// above and below, widened by one column on each side. The widening is far larger than the
+/// rounding of the interpolation (a few ulps of the coordinates) when a cell is wider than 2^-30
+/// of the largest coordinate; otherwise, and for non-finite intermediates, the whole row of the
+/// box is visited. So a box query with it finds the same points and segments as one over the
+/// bounding box (exact), reading O(perimeter) cells instead of O(area): a long thin triangle
+/// across the plane reads a strip, not a square (the 2D noisy-curve fallback,
+/// docs/benchmarks.md). Precondition: 2 <= m <= 3.
+template <class F> void for_cells_of_hull(const GridFrame& g, const double* const* v, int m, F&& f) {
+  double x0 = v[0][0], x1 = v[0][0], y0 = v[0][1], y1 = v[0][1];
+  for (int k = 1; k < m; ++k) {
+    x0 = std::min(x0, v[k][0]);
+    x1 = std::max(x1, v[k][0]);
+    y0 = std::min(y0, v[k][1]);
+    y1 = std::max(y1, v[k][1]);
+  }
+  const int i0 = g.cx(x0), i1 = g.cx(x1), j0 = g.cy(y0), j1 = g.cy(y1);
+  bool narrow = i1 - i0 > 2 && std::ldexp(g.half_cell, 30) > g.magnitude;
+  double hx[3], hy[3];  // half units from the grid's corner, as cell_of() computes them
+  for (int k = 0; k < m; ++k) {
+    hx[k] = 0.5 * v[k][0] - 0.5 * g.lo_x;
+    hy[k] = 0.5 * v[k][1] - 0.5 * g.lo_y;
+    narrow = narrow && std::isfinite(hx[k]) && std::isfinite(hy[k]);
+  }
+  const int edges = m == 2 ? 1 : m;
+  for (int j = j0; j <= j1; ++j) {
+    int a = i0, b = i1;
+    if (narrow) {
+      const double lo = (j - 1) * g.half_cell, hi = (j + 2) * g.half_cell;  // the row, one row either side
+      double xl = HUGE_VAL, xh = -HUGE_VAL;
+      for (int k = 0; k < edges; ++k) {
+        const int l = (k + 1) % m;
+        double t0 = 0, t1 = 1;  // the part of edge k->l inside the band
+        const double dy = hy[l] - hy[k];
+        if (dy != 0) {
+          t0 = (lo - hy[k]) / dy;
+          t1 = (hi - hy[k]) / dy;
+          if (t0 > t1) std::swap(t0, t1);
+          t0 = std::max(t0, 0.0);
+          t1 = std::min(t1, 1.0);
+          if (t0 > t1) continue;  // misses the widened band
+        } else if (hy[k] < lo || hy[k] > hi) {
+          continue;
+        }
+        for (const double t : {t0, t1}) {
+          const double x = hx[k] + t * (hx[l] - hx[k]);
+          xl = std::min(xl, x);
+          xh = std::max(xh, x);
+        }
+      }
+      if (xl > xh) continue;  // the shape does not reach this row
+      if (std::isfinite(xl) && std::isfinite(xh)) {
+        a = std::max(i0, static_cast<int>(std::max(-1.0, std::floor(xl / g.half_cell))) - 1);
+        b = std::min(i1, static_cast<int>(std::min(static_cast<double>(g.nx), std::floor(xh / g.half_cell))) + 1);
+      }
+    }
+    for (int i = a; i <= b; ++i) f(i, j);
+  }
 }
 
 }  // namespace constrict::detail

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// for_cells_of_hull (core/detail/grid_cells.hpp): the strip of cells a segment or triangle is
+// looked up in must hold the cell of every point of the closed shape, as cell_of() files it.
+// Brute force: random shapes (long thin ones included) on grids at several scales and offsets,
+// points sampled inside them and on their edges, each point's cell must have been visited.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "constrict/predicates.hpp"
+#include "core/detail/grid_cells.hpp"
+
+namespace constrict {
+namespace {
+
+struct Case {
+  detail::GridFrame frame;
+  double hi_x, hi_y;
+};
+
+Case make_grid(double lo_x, double lo_y, double span, int cells) {
+  Case c;
+  const double half = 0.5 * (lo_x + span) - 0.5 * lo_x;
+  const double hcs = half / cells;
+  c.frame = detail::GridFrame{lo_x, lo_y, std::max({std::fabs(lo_x), std::fabs(lo_y), std::fabs(lo_x + span), std::fabs(lo_y + span)}), hcs,
+                              detail::cell_count(half, hcs, 4096), detail::cell_count(half, hcs, 4096)};
+  c.hi_x = lo_x + span;
+  c.hi_y = lo_y + span;
+  return c;
+}
+
+// Every sampled point of the shape (convex combinations, edges, vertices) lies in a visited cell;
+// returns the number of cells visited.
+std::size_t check_shape(const Case& c, const std::vector<std::array<double, 2>>& v, std::mt19937_64& rng, unsigned seed) {
+  const int m = static_cast<int>(v.size());
+  const double* ptr[3] = {v[0].data(), v[1].data(), m == 3 ? v[2].data() : nullptr};
+  std::vector<char> seen(static_cast<std::size_t>(c.frame.nx) * static_cast<std::size_t>(c.frame.ny), 0);
+  std::size_t visited = 0;
+  const auto at = [&](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(c.frame.nx) + static_cast<std::size_t>(i); };
+  detail::for_cells_of_hull(c.frame, ptr, m, [&](int i, int j) {
+    ASSERT_TRUE(i >= 0 && i < c.frame.nx && j >= 0 && j < c.frame.ny) << "seed " << seed;
+    visited += !seen[at(i, j)];
+    seen[at(i, j)] = 1;
+  });
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int s = 0; s < 400; ++s) {
+    double w[3] = {u(rng), u(rng), m == 3 ? u(rng) : 0};
+    if (s % 4 == 0) w[rng() % static_cast<unsigned>(m)] = 0;  // on an edge
+    if (s % 17 == 0) { w[0] = 1; w[1] = 0; w[2] = 0; }         // a vertex
+    const double sum = w[0] + w[1] + w[2];
+    double p[2] = {0, 0};
+    for (int k = 0; k < m; ++k)
+      for (int d = 0; d < 2; ++d) p[d] += w[k] / sum * v[static_cast<std::size_t>(k)][static_cast<std::size_t>(d)];
+    if (m == 3 && (orient2(ptr[0], ptr[1], p) * orient2(ptr[0], ptr[1], ptr[2]) < 0 ||
+                   orient2(ptr[1], ptr[2], p) * orient2(ptr[1], ptr[2], ptr[0]) < 0 ||
+                   orient2(ptr[2], ptr[0], p) * orient2(ptr[2], ptr[0], ptr[1]) < 0))
+      continue;  // rounded outside the closed triangle
+    if (m == 2 && orient2(ptr[0], ptr[1], p) != 0) continue;  // not exactly on the segment
+    const int i = c.frame.cx(p[0]), j = c.frame.cy(p[1]);
+    EXPECT_TRUE(seen[at(i, j)]) << "seed " << seed << ": point (" << p[0] << ", " << p[1] << ") in cell (" << i << ", " << j
+                                << ") not visited";
+  }
+  return visited;
+}
+
+TEST(GridCells, HullStripHoldsEveryPointsCell) {
+  const unsigned seed = 20261202;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const std::vector<std::array<double, 3>> grids = {{0, 0, 1}, {-3.5, 2.25, 7}, {1e6, -1e6, 1e-3}, {-1e-9, 1e-9, 3e-10}};
+  std::size_t strip = 0;
+  for (const auto& gspec : grids)
+    for (const int cells : {1, 7, 64, 1000}) {
+      const Case c = make_grid(gspec[0], gspec[1], gspec[2], cells);
+      const auto in_box = [&] {
+        return std::array<double, 2>{c.frame.lo_x + u(rng) * (c.hi_x - c.frame.lo_x), c.frame.lo_y + u(rng) * (c.hi_y - c.frame.lo_y)};
+      };
+      for (int t = 0; t < 60; ++t) {
+        std::vector<std::array<double, 2>> v = {in_box(), in_box(), in_box()};
+        if (t % 3 == 1) {  // long and thin: the third vertex next to the first
+          v[2] = {v[0][0] + 1e-3 * (v[1][0] - v[0][0]) + 1e-4 * (c.hi_x - c.frame.lo_x), v[0][1] + 1e-3 * (v[1][1] - v[0][1])};
+          v[2][0] = std::min(v[2][0], c.hi_x);
+        }
+        if (t % 5 == 2) v[1][1] = v[0][1];  // a horizontal edge
+        if (t % 7 == 3) v[1][0] = v[0][0];  // a vertical edge
+        strip += check_shape(c, v, rng, seed);
+        v.pop_back();
+        check_shape(c, v, rng, seed);
+      }
+    }
+  EXPECT_GT(strip, 0u);
+}
+
+// A long thin triangle across a fine grid reads a strip, not its bounding box.
+TEST(GridCells, ThinTriangleReadsAStrip) {
+  const Case c = make_grid(0, 0, 1, 1000);
+  const double a[2] = {0.001, 0.002}, b[2] = {0.998, 0.997}, d[2] = {0.0015, 0.003};
+  const double* v[3] = {a, b, d};
+  std::size_t cells = 0;
+  detail::for_cells_of_hull(c.frame, v, 3, [&](int, int) { ++cells; });
+  EXPECT_LT(cells, 10000u);  // the bounding box has about 10^6
+  EXPECT_GT(cells, 990u);    // at least the diagonal
+}
+
+}  // namespace
+}  // namespace constrict
