@@ -108,8 +108,11 @@ template <class F> void for_cells_of_hull(const GridFrame& g, const double* cons
       }
       if (xl > xh) continue;  // the shape does not reach this row
       if (std::isfinite(xl) && std::isfinite(xh)) {
-        a = std::max(i0, static_cast<int>(std::max(-1.0, std::floor(xl / g.half_cell))) - 1);
-        b = std::min(i1, static_cast<int>(std::min(static_cast<double>(g.nx), std::floor(xh / g.half_cell))) + 1);
+        const auto column = [&](double x) {  // clamped before the conversion (no overflow)
+          return static_cast<int>(std::min(static_cast<double>(g.nx), std::max(-1.0, std::floor(x / g.half_cell))));
+        };
+        a = std::max(i0, column(xl) - 1);
+        b = std::min(i1, column(xh) + 1);
       }
     }
     for (int i = a; i <= b; ++i) f(i, j);
