@@ -498,22 +498,34 @@ struct Constrictor2::Impl {
   // searches.
   void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
     double searched = 0;
-    search_sides(i, j, radius, ga, gb, blocked, searched);
+    bool partial = false;
+    search_sides(i, j, radius, -HUGE_VAL, ga, gb, blocked, searched, partial);
   }
-  // Cached side values: the stored search radius says which queries the entry answers.
-  struct SideCache { double ga, gb; bool blocked; double radius; };
+  // Cached side values: the stored search radius says which queries the entry answers. A partial
+  // entry holds values found on both sides below its stop threshold (upper bounds of the minima,
+  // search_sides), enough for every query whose threshold lies above them.
+  struct SideCache { double ga, gb; bool blocked; double radius; bool partial; };
   std::unordered_map<std::uint64_t, SideCache> side_cache;
-  void sides_cached(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
+  void sides_cached(int i, int j, double radius, double stop_below, double& ga, double& gb, bool& blocked) {
     auto it = side_cache.find(detail::edge_key(i, j));
-    if (it != side_cache.end() && (it->second.radius >= radius || it->second.blocked)) {
+    if (it != side_cache.end() && (it->second.radius >= radius || it->second.blocked) &&
+        (!it->second.partial || (it->second.ga < stop_below && it->second.gb < stop_below))) {
       ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
       return;
     }
     double searched = 0;
-    search_sides(i, j, radius, ga, gb, blocked, searched);
-    side_cache[detail::edge_key(i, j)] = SideCache{ga, gb, blocked, searched};
+    bool partial = false;
+    search_sides(i, j, radius, stop_below, ga, gb, blocked, searched, partial);
+    side_cache[detail::edge_key(i, j)] = SideCache{ga, gb, blocked, searched, partial};
   }
-  void search_sides(int i, int j, double radius, double& ga, double& gb, bool& blocked, double& searched) {
+  // The smallest apex value on each side of ij among the points within `radius` of the midpoint
+  // (see side_values_within), or -- as soon as both sides have a value below stop_below -- those
+  // values (partial: the minima are at most these, which decides Δ < stop_below). A long pair
+  // across a sampled band has a whole stretch of the band in its diametral disk, and the exact
+  // minima read all of it, while two witnesses are usually among the first cells reached (the
+  // 2D noisy-curve fallback, docs/benchmarks.md).
+  void search_sides(int i, int j, double radius, double stop_below, double& ga, double& gb, bool& blocked, double& searched,
+                    bool& partial) {
     const double* a = P(i);
     const double* b = P(j);
     ga = 1; gb = 1; blocked = false;
@@ -534,18 +546,20 @@ struct Constrictor2::Impl {
     const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
     auto cut = [&](double g) { return below_bound(len, g) + cs; };
     bool exhaustive = true;
-    for (int k = 0; k <= kmax && !blocked; ++k) {
+    partial = false;
+    for (int k = 0; k <= kmax && !blocked && !partial; ++k) {
       if (k >= 2) {
         const double d = static_cast<double>(k - 1) * cs;
         // Both sides complete: every point with a smaller value is nearer than the cutoff.
         if (d > std::max(cut(ga), cut(gb))) break;
         if (d > radius) { exhaustive = false; break; }
       }
-      for (int jj = cj - k; jj <= cj + k; ++jj) {
+      for (int jj = cj - k; jj <= cj + k && !partial; ++jj) {
         if (jj < 0 || jj >= grid.ny()) continue;
         const bool edge_row = (jj == cj - k || jj == cj + k);
         for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
           if (ii >= 0 && ii < grid.nx()) grid.points_in_cell(ii, jj, visit);
+          if (ga < stop_below && gb < stop_below) { partial = true; break; }
           if (k == 0) break;
         }
       }
@@ -592,8 +606,11 @@ struct Constrictor2::Impl {
     bool blocked;
     // Every point with apex value < gamma0 lies within reach(gamma0): m below is the exact minimum
     // whenever m < gamma0.
-    sides_cached(i, j, reach(i, j, gamma0), ga, gb, blocked);
+    sides_cached(i, j, reach(i, j, gamma0), gamma0, ga, gb, blocked);
     if (blocked) return false;
+    // Both sides below gamma0: the smaller m < gamma0 and the other side < gamma0 < 0 <= -m, out
+    // by the magnitude rule (also from a partial search).
+    if (ga < gamma0 && gb < gamma0) return false;
     const double m = std::min(ga, gb);
     if (m >= gamma0) return true;
     if (ga == gb) return false;  // both sides below gamma0 < 0 <= -m
