@@ -21,6 +21,7 @@
 #include "core/detail/edge_key.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/sparse_segments.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -52,14 +53,11 @@ struct Edge {
 // tests. Two layouts:
 // - dense (area-sized cells, every cell an array slot; each edge in every cell its bounding box
 //   meets), when the polygon's edges are about as long as the cells;
-// - sparse, when the median polygon edge is far below the area-sized cell (a curve sample: those
-//   cells would hold O(√N) edges each, and every move's test would read them all; the 2D
-//   noisy-curve refinement, docs/benchmarks.md): cells of twice the median edge, only the
-//   non-empty ones stored (open-addressing table of cell keys), each edge in the cells its strip
-//   crosses (for_cells_of_hull, grid_cells.hpp), edges longer than kLongCells cells in one list
-//   that every query reads (bounding box first).
-// A query reads a superset of the cells where a meeting point can lie in either layout, so the
-// answers, and the refinement, are the same.
+// - sparse (SparseSegments, core/detail/sparse_segments.hpp: cells of twice the median edge),
+//   when the median polygon edge is far below the area-sized cell: on a curve sample those cells
+//   would hold O(√N) edges each, and every move's test would read them all (the 2D noisy-curve
+//   refinement, docs/benchmarks.md).
+// Either layout finds every edge that can meet a query, so the moves are the same.
 class EdgeGrid {
  public:
   void build(const std::vector<double>& xy, double median_edge) {
@@ -72,146 +70,68 @@ class EdgeGrid {
     }
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
     const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
-    const double area_cell = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
-    mag_ = std::max({std::fabs(minx_), std::fabs(maxx_), std::fabs(miny_), std::fabs(maxy_)});
-    const double fine_cell = std::max({median_edge, std::ldexp(mag_, -28), w / kMaxSparseCells, h / kMaxSparseCells});
-    sparse_ = std::isfinite(fine_cell) && fine_cell > 0 && fine_cell <= kSparseRatio * area_cell;
-    hcs_ = sparse_ ? fine_cell : area_cell;
-    const int max_cells = sparse_ ? kMaxSparseCells : kMaxCells;
-    nx_ = detail::cell_count(w, hcs_, max_cells);
-    ny_ = detail::cell_count(h, hcs_, max_cells);
+    hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
+    const double mag = std::max({std::fabs(minx_), std::fabs(maxx_), std::fabs(miny_), std::fabs(maxy_)});
+    const double fine = std::max(median_edge, Sparse::min_half_cell(w, h, mag));
+    sparse_ = std::isfinite(fine) && fine > 0 && fine <= kSparseRatio * hcs_;
     if (sparse_) {
+      sparse_cells_.reset(minx_, miny_, maxx_, maxy_, fine);
       cells_.clear();
-      table_key_.assign(std::size_t{1} << 12, kEmpty);
-      table_slot_.assign(table_key_.size(), -1);
-      long_.clear();
     } else {
+      nx_ = detail::cell_count(w, hcs_, kMaxCells);
+      ny_ = detail::cell_count(h, hcs_, kMaxCells);
       cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
     }
     built_ = true;
   }
   bool built() const { return built_; }
   void add(const double* a, const double* b, std::uint64_t key) {
-    if (sparse_ && is_long(a, b)) {
-      long_.push_back(LongEdge{key, {std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])}});
-      return;
-    }
-    for_cells(a, b, true, [&](std::vector<std::uint64_t>& c) { c.push_back(key); return false; });
+    if (sparse_) return sparse_cells_.add(a, b, key);
+    for_cells(a, b, [&](std::vector<std::uint64_t>& c) { c.push_back(key); });
   }
   void remove(const double* a, const double* b, std::uint64_t key) {
-    if (sparse_ && is_long(a, b)) {
-      const auto it = std::find_if(long_.begin(), long_.end(), [&](const LongEdge& e) { return e.key == key; });
-      if (it != long_.end()) {
-        *it = long_.back();
-        long_.pop_back();
-      }
-      return;
-    }
-    for_cells(a, b, false, [&](std::vector<std::uint64_t>& c) {
+    if (sparse_) return sparse_cells_.remove(a, b, key);
+    for_cells(a, b, [&](std::vector<std::uint64_t>& c) {
       auto it = std::find(c.begin(), c.end(), key);
       if (it != c.end()) {
         *it = c.back();
         c.pop_back();
       }
-      return false;
     });
   }
   // Calls f(key) for the registered edges that can meet segment ab (an edge can be reported more
   // than once) until f returns true; true if it did.
   template <class F> bool any(const double* a, const double* b, F&& f) {
-    const bool hit = for_cells(a, b, false, [&](std::vector<std::uint64_t>& c) {
-      for (std::uint64_t k : c)
-        if (f(k)) return true;
-      return false;
-    });
-    if (hit) return true;
-    const double lo[2] = {std::min(a[0], b[0]), std::min(a[1], b[1])}, hi[2] = {std::max(a[0], b[0]), std::max(a[1], b[1])};
-    for (const LongEdge& e : long_)
-      if (!(e.box[2] < lo[0] || e.box[0] > hi[0] || e.box[3] < lo[1] || e.box[1] > hi[1]) && f(e.key)) return true;
+    if (sparse_) return sparse_cells_.any(a, b, f);
+    const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
+    const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        for (std::uint64_t k : cells_[index(i, j)])
+          if (f(k)) return true;
     return false;
   }
 
  private:
-  // Calls f(cell) for the cells of segment ab until f returns true (the sparse layout skips the
-  // cells not stored, or creates them when create); true if f did.
-  template <class F> bool for_cells(const double* a, const double* b, bool create, F&& f) {
-    if (!sparse_) {
-      const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
-      const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i)
-          if (f(cells_[index(i, j)])) return true;
-      return false;
-    }
-    const double* seg[2] = {a, b};
-    bool done = false;
-    detail::for_cells_of_hull(detail::GridFrame{minx_, miny_, mag_, hcs_, nx_, ny_}, seg, 2, [&](int i, int j) {
-      if (done) return;
-      const int c = slot(key(i, j), create);
-      if (c >= 0) done = f(cells_[static_cast<std::size_t>(c)]);
-    });
-    return done;
-  }
-  bool is_long(const double* a, const double* b) const {
-    return !(std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1])) <= kLongCells * 2 * hcs_);
-  }
-  static std::uint64_t key(int i, int j) {
-    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) << 32 | static_cast<std::uint32_t>(i);
-  }
-  std::size_t hash(std::uint64_t k) const { return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (table_key_.size() - 1); }
-  // The slot of cell k (open addressing, linear probing), -1 if absent and not create.
-  int slot(std::uint64_t k, bool create) {
-    std::size_t h = hash(k);
-    for (;; h = (h + 1) & (table_key_.size() - 1)) {
-      if (table_key_[h] == k) return table_slot_[h];
-      if (table_key_[h] == kEmpty) break;
-    }
-    if (!create) return -1;
-    if (2 * (cells_.size() + 1) > table_key_.size()) {
-      grow_table();
-      return slot(k, true);
-    }
-    table_key_[h] = k;
-    table_slot_[h] = static_cast<int>(cells_.size());
-    cells_.emplace_back();
-    return table_slot_[h];
-  }
-  void grow_table() {
-    std::vector<std::uint64_t> keys;
-    std::vector<int> slots;
-    keys.swap(table_key_);
-    slots.swap(table_slot_);
-    table_key_.assign(2 * keys.size(), kEmpty);
-    table_slot_.assign(table_key_.size(), -1);
-    for (std::size_t q = 0; q < keys.size(); ++q) {
-      if (keys[q] == kEmpty) continue;
-      std::size_t h = hash(keys[q]);
-      while (table_key_[h] != kEmpty) h = (h + 1) & (table_key_.size() - 1);
-      table_key_[h] = keys[q];
-      table_slot_[h] = slots[q];
-    }
+  using Sparse = detail::SparseSegments<std::uint64_t>;
+  template <class F> void for_cells(const double* a, const double* b, F&& f) {
+    const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
+    const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(cells_[index(i, j)]);
   }
   int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
   int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
   }
-  static constexpr int kMaxCells = 2048;               // per axis, dense
-  static constexpr int kMaxSparseCells = 1 << 28;      // per axis, sparse
-  static constexpr double kSparseRatio = 0.25;         // sparse when its cells are at most this fraction
-  static constexpr double kLongCells = 32;             // longer edges: the list
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-  struct LongEdge {
-    std::uint64_t key;
-    double box[4];  // min x, min y, max x, max y
-  };
-  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1, mag_ = 0;  // hcs_: half the cell edge
+  static constexpr int kMaxCells = 2048;        // per axis, dense
+  static constexpr double kSparseRatio = 0.25;  // sparse when its cells are at most this fraction
+  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
   bool built_ = false, sparse_ = false;
-  std::vector<std::vector<std::uint64_t>> cells_;  // dense: by index(); sparse: by slot
-  std::vector<std::uint64_t> table_key_;            // sparse: cell key per table entry (kEmpty: free)
-  std::vector<int> table_slot_;
-  std::vector<LongEdge> long_;
+  std::vector<std::vector<std::uint64_t>> cells_;
+  Sparse sparse_cells_;
 };
 
 // Starts the polygon at its vertex with the smallest stable id (order[v], or v itself).

@@ -6,12 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <random>
 #include <vector>
 
 #include "constrict/predicates.hpp"
+#include "constrict/detail/segments2.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/sparse_segments.hpp"
 
 namespace constrict {
 namespace {
@@ -104,6 +108,67 @@ TEST(GridCells, ThinTriangleReadsAStrip) {
   detail::for_cells_of_hull(c.frame, v, 3, [&](int, int) { ++cells; });
   EXPECT_LT(cells, 10000u);  // the bounding box has about 10^6
   EXPECT_GT(cells, 990u);    // at least the diagonal
+}
+
+// SparseSegments against brute force: random short and long segments (many meeting at shared
+// end points, some collinear overlaps) added and removed at random; every query must report every
+// registered segment that meets it (closed segments, exact), and nothing removed.
+TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
+  const unsigned seed = 7;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const double span : {1.0, 3e-7, 4e5}) {
+    const double lo = -0.3 * span;
+    std::vector<std::array<double, 2>> pts;
+    for (int k = 0; k < 400; ++k) pts.push_back({lo + span * u(rng), lo + span * u(rng)});
+    pts.push_back({lo, lo});
+    pts.push_back({lo + span, lo + span});
+    detail::SparseSegments<int> grid;
+    const double half_cell = std::max(span / 500, detail::SparseSegments<int>::min_half_cell(span / 2, span / 2, 2 * std::fabs(lo) + span));
+    grid.reset(lo, lo, lo + span, lo + span, half_cell);
+    std::vector<std::array<int, 2>> segs;
+    std::vector<char> live;
+    const auto random_segment = [&]() -> std::array<int, 2> {
+      const int a = static_cast<int>(rng() % pts.size());
+      if (rng() % 4 == 0) return {a, static_cast<int>(rng() % pts.size())};  // long
+      int best = -1;  // short: a near point
+      for (int t = 0; t < 8; ++t) {
+        const int b = static_cast<int>(rng() % pts.size());
+        if (b != a && (best < 0 || std::hypot(pts[b][0] - pts[a][0], pts[b][1] - pts[a][1]) <
+                                       std::hypot(pts[best][0] - pts[a][0], pts[best][1] - pts[a][1])))
+          best = b;
+      }
+      return {a, best};
+    };
+    for (int step = 0; step < 3000; ++step) {
+      const auto [a, b] = random_segment();
+      if (a == b) continue;
+      if (step % 3 != 2 || segs.empty()) {
+        segs.push_back({a, b});
+        live.push_back(1);
+        grid.add(pts[a].data(), pts[b].data(), static_cast<int>(segs.size() - 1));
+      } else {
+        const std::size_t k = rng() % segs.size();
+        if (!live[k]) continue;
+        live[k] = 0;
+        grid.remove(pts[segs[k][0]].data(), pts[segs[k][1]].data(), static_cast<int>(k));
+      }
+      // A query segment: every live segment meeting it must be reported, no dead one.
+      const auto [qa, qb] = random_segment();
+      if (qa == qb) continue;
+      std::vector<char> seen(segs.size(), 0);
+      grid.any(pts[qa].data(), pts[qb].data(), [&](int id) {
+        EXPECT_TRUE(live[static_cast<std::size_t>(id)]) << "seed " << seed << ": removed segment " << id << " reported";
+        seen[static_cast<std::size_t>(id)] = 1;
+        return false;
+      });
+      for (std::size_t k = 0; k < segs.size(); ++k)
+        if (live[k] && !seen[k] &&
+            detail::closed_segments_meet(pts[qa].data(), pts[qb].data(), pts[segs[k][0]].data(), pts[segs[k][1]].data()))
+          ADD_FAILURE() << "seed " << seed << " span " << span << " step " << step << ": segment " << k << " meets the query but was not reported";
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A sparse uniform grid of segments with cells sized for the spacing where the data are (the 2D
+// fallback's boundary edges, the refinement's polygon edges), for inputs whose points lie on a
+// curve: an area-sized grid would hold O(√N) segments per cell there, and every local test would
+// read them all (docs/benchmarks.md, the noisy curve). Only non-empty cells are stored: an
+// open-addressing table of cell keys in front of one id list per cell. A segment is registered in
+// the cells its strip crosses (for_cells_of_hull, grid_cells.hpp); a segment longer than
+// kLongCells cells goes to one list instead (a strip of thousands of cells each), which every
+// query reads, bounding box first. A query visits every cell where a point of the query segment
+// can lie, so it reports every registered segment that can meet it (exact candidate sets for
+// exact tests), possibly more than once.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/detail/grid_cells.hpp"
+
+namespace constrict::detail {
+
+template <class Id> class SparseSegments {
+ public:
+  static constexpr double kLongCells = 32;  ///< longer segments (in cells, either axis): the list
+
+  /// The smallest half cell edge for a box of half spans hw, hh and largest coordinate magnitude
+  /// mag: the strips stay narrow (for_cells_of_hull) and the cell counts fit an int.
+  static double min_half_cell(double hw, double hh, double mag) {
+    return std::max({std::ldexp(mag, -28), hw / kMaxCells, hh / kMaxCells});
+  }
+  /// An empty grid over the box [lo_x, hi_x] x [lo_y, hi_y], cells of edge 2 * half_cell
+  /// (>= min_half_cell).
+  void reset(double lo_x, double lo_y, double hi_x, double hi_y, double half_cell) {
+    const double mag = std::max({std::fabs(lo_x), std::fabs(hi_x), std::fabs(lo_y), std::fabs(hi_y)});
+    frame_ = GridFrame{lo_x, lo_y, mag, half_cell, cell_count(half_span(lo_x, hi_x), half_cell, kMaxCells),
+                       cell_count(half_span(lo_y, hi_y), half_cell, kMaxCells)};
+    cells_.clear();
+    table_key_.assign(std::size_t{1} << 12, kEmpty);
+    table_slot_.assign(table_key_.size(), -1);
+    long_.clear();
+  }
+  double cell_size() const { return 2 * frame_.half_cell; }
+  /// Does segment ab go to the long list (longer than kLongCells cells along an axis)?
+  bool is_long(const double* a, const double* b) const {
+    return !(std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1])) <= kLongCells * cell_size());
+  }
+  void add(const double* a, const double* b, Id id) {
+    if (is_long(a, b)) {
+      long_.push_back(Long{id, {std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])}});
+      return;
+    }
+    cells(a, b, true, [&](std::vector<Id>& c) {
+      c.push_back(id);
+      return false;
+    });
+  }
+  /// Removes one registration of id (added with the same a, b).
+  void remove(const double* a, const double* b, Id id) {
+    if (is_long(a, b)) {
+      const auto it = std::find_if(long_.begin(), long_.end(), [&](const Long& e) { return e.id == id; });
+      if (it != long_.end()) {
+        *it = long_.back();
+        long_.pop_back();
+      }
+      return;
+    }
+    cells(a, b, false, [&](std::vector<Id>& c) {
+      const auto it = std::find(c.begin(), c.end(), id);
+      if (it != c.end()) {
+        *it = c.back();
+        c.pop_back();
+      }
+      return false;
+    });
+  }
+  /// Calls f(id) for the registered segments that can meet segment ab until f returns true; true
+  /// if it did.
+  template <class F> bool any(const double* a, const double* b, F&& f) {
+    if (cells(a, b, false, [&](std::vector<Id>& c) {
+          for (const Id id : c)
+            if (f(id)) return true;
+          return false;
+        }))
+      return true;
+    const double lo[2] = {std::min(a[0], b[0]), std::min(a[1], b[1])}, hi[2] = {std::max(a[0], b[0]), std::max(a[1], b[1])};
+    for (const Long& e : long_)
+      if (!(e.box[2] < lo[0] || e.box[0] > hi[0] || e.box[3] < lo[1] || e.box[1] > hi[1]) && f(e.id)) return true;
+    return false;
+  }
+
+ private:
+  static constexpr int kMaxCells = 1 << 28;  // per axis
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  struct Long {
+    Id id;
+    double box[4];  // min x, min y, max x, max y
+  };
+  // Calls f(cell list) for the stored cells of segment ab's strip (created when create) until f
+  // returns true; true if it did.
+  template <class F> bool cells(const double* a, const double* b, bool create, F&& f) {
+    const double* seg[2] = {a, b};
+    bool done = false;
+    for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
+      if (done) return;
+      const int c = slot(key(i, j), create);
+      if (c >= 0) done = f(cells_[static_cast<std::size_t>(c)]);
+    });
+    return done;
+  }
+  static std::uint64_t key(int i, int j) {
+    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) << 32 | static_cast<std::uint32_t>(i);
+  }
+  std::size_t hash(std::uint64_t k) const {
+    return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (table_key_.size() - 1);
+  }
+  // The slot of cell k (linear probing), -1 if absent and not create.
+  int slot(std::uint64_t k, bool create) {
+    std::size_t h = hash(k);
+    for (;; h = (h + 1) & (table_key_.size() - 1)) {
+      if (table_key_[h] == k) return table_slot_[h];
+      if (table_key_[h] == kEmpty) break;
+    }
+    if (!create) return -1;
+    if (2 * (cells_.size() + 1) > table_key_.size()) {
+      grow();
+      return slot(k, true);
+    }
+    table_key_[h] = k;
+    table_slot_[h] = static_cast<int>(cells_.size());
+    cells_.emplace_back();
+    return table_slot_[h];
+  }
+  void grow() {
+    std::vector<std::uint64_t> keys;
+    std::vector<int> slots;
+    keys.swap(table_key_);
+    slots.swap(table_slot_);
+    table_key_.assign(2 * keys.size(), kEmpty);
+    table_slot_.assign(table_key_.size(), -1);
+    for (std::size_t q = 0; q < keys.size(); ++q) {
+      if (keys[q] == kEmpty) continue;
+      std::size_t h = hash(keys[q]);
+      while (table_key_[h] != kEmpty) h = (h + 1) & (table_key_.size() - 1);
+      table_key_[h] = keys[q];
+      table_slot_[h] = slots[q];
+    }
+  }
+  GridFrame frame_{0, 0, 0, 1, 1, 1};
+  std::vector<std::vector<Id>> cells_;  // by slot
+  std::vector<std::uint64_t> table_key_;  // cell key per table entry (kEmpty: free)
+  std::vector<int> table_slot_;
+  std::vector<Long> long_;
+};
+
+}  // namespace constrict::detail
