@@ -8,10 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "constrict/constrict.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/io.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
+#include "constrict/validate.hpp"
 
 namespace constrict {
 namespace {
@@ -88,6 +90,21 @@ TEST(FuzzRegressionSurfaces, SharedTetrahedralizationNotUsedAfterRescaling) {
     EXPECT_TRUE(r.valid()) << r.check;
     EXPECT_TRUE(validate_surfaces3(p, r.mesh.mesh, r.mesh.tets, true).is_ok());
   }
+}
+
+// 16 points spanning 1e-38 ... 9e20 (fuzz_reconstruct2, the first 30 s after the refinement got
+// its sparse edge grid). The median polygon edge was far below the area-sized cell, so the grid
+// went sparse with cells near the 2^-28 floor, and a move's long new edge was looked up along its
+// strip: 2^28 rows (a hang). A query that would cross more cells than are stored now reads the
+// stored cells (SparseSegments::cells). The polygon is the one of the dense grid.
+TEST(FuzzRegression2, RefineSparseGridLongQuery) {
+  const PointSet p = load("refine2_sparse_long_query_mixed_magnitudes.xy");
+  ASSERT_EQ(p.size(), 16u);
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, {}, r).is_ok());
+  ASSERT_TRUE(r.complete);
+  EXPECT_TRUE(validate_polygon(p, r.boundary).is_ok());
+  EXPECT_LE(r.perimeter, r.perimeter_before_refine);
 }
 
 }  // namespace

@@ -171,5 +171,25 @@ TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
   }
 }
 
+// A long query on a grid of cells near the 2^-28 floor: its strip would be 2^28 rows; the query
+// reads the stored cells instead and still finds the short segment it crosses and the long one.
+TEST(GridCells, SparseSegmentsLongQueryOnFineCells) {
+  detail::SparseSegments<int> grid;
+  const double half_cell = detail::SparseSegments<int>::min_half_cell(0.5, 0.5, 1);
+  grid.reset(0, 0, 1, 1, half_cell);
+  const double a[2] = {0.5, 0.5}, b[2] = {0.5 + 4 * half_cell, 0.5}, c[2] = {0, 0.9}, d[2] = {1, 0.9};
+  grid.add(a, b, 1);  // short, across the query
+  grid.add(c, d, 2);  // long, across the query
+  const double q0[2] = {0.5 + 2 * half_cell, 0}, q1[2] = {0.5 + 2 * half_cell, 1};
+  std::vector<int> seen;
+  grid.any(q0, q1, [&](int id) {
+    seen.push_back(id);
+    return false;
+  });
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  EXPECT_EQ(seen, (std::vector<int>{1, 2}));
+}
+
 }  // namespace
 }  // namespace constrict

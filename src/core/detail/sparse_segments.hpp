@@ -97,8 +97,18 @@ template <class Id> class SparseSegments {
     double box[4];  // min x, min y, max x, max y
   };
   // Calls f(cell list) for the stored cells of segment ab's strip (created when create) until f
-  // returns true; true if it did.
+  // returns true; true if it did. A query whose strip would cross more cells than are stored (a
+  // long one on a fine grid: up to 2^28 rows) reads every stored cell instead.
   template <class F> bool cells(const double* a, const double* b, bool create, F&& f) {
+    if (!create) {
+      const double rows = std::fabs(static_cast<double>(frame_.cy(a[1])) - frame_.cy(b[1])) + 1;
+      const double cols = std::fabs(static_cast<double>(frame_.cx(a[0])) - frame_.cx(b[0])) + 1;
+      if (3 * (rows + cols) > static_cast<double>(cells_.size())) {
+        for (auto& c : cells_)
+          if (f(c)) return true;
+        return false;
+      }
+    }
     const double* seg[2] = {a, b};
     bool done = false;
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
