@@ -558,7 +558,10 @@ struct Constrictor2::Impl {
         if (jj < 0 || jj >= grid.ny()) continue;
         const bool edge_row = (jj == cj - k || jj == cj + k);
         for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
-          if (ii >= 0 && ii < grid.nx()) grid.points_in_cell(ii, jj, visit);
+          // A cell wholly beyond the search radius and the cutoff holds nothing to find (the
+          // cutoff only shrinks as the minima fall): the ring's corners of a long pair's disk.
+          if (ii >= 0 && ii < grid.nx() && cell_distance(ii - ci, jj - cj, cs) <= std::min(radius, std::max(cut(ga), cut(gb))))
+            grid.points_in_cell(ii, jj, visit);
           if (ga < stop_below && gb < stop_below) { partial = true; break; }
           if (k == 0) break;
         }
@@ -617,8 +620,18 @@ struct Constrictor2::Impl {
     // In iff the other side has no point with value < -m. -m can be close to 1, where the region
     // to search is nearly the whole half-plane: stop at the first witness instead (the usual
     // answer); only pairs with a nearly empty other side are searched far.
-    return !witness_below(i, j, ga == m ? -1 : 1, -m);
+    // The other side's answer is a property of the pair (m is its exact minimum): kept for the
+    // later stages of the γ0 schedule, which test the same pairs again.
+    const int side = ga == m ? -1 : 1;
+    const std::uint64_t key = detail::edge_key(i, j);
+    if (const auto it = witness_cache.find(key); it != witness_cache.end() && it->second.side == side && it->second.thr == -m)
+      return !it->second.found;
+    const bool found = witness_below(i, j, side, -m);
+    witness_cache[key] = WitnessCache{side, -m, found};
+    return !found;
   }
+  struct WitnessCache { int side; double thr; bool found; };
+  std::unordered_map<std::uint64_t, WitnessCache> witness_cache;
 
   // Is there a point p with orient2(x_i, x_j, p) == side and apex value < thr, or a point in the
   // open segment ij? Ring search around the midpoint, nearest cells first, first witness wins.
@@ -646,12 +659,19 @@ struct Constrictor2::Impl {
         if (jj < 0 || jj >= grid.ny()) continue;
         const bool edge_row = (jj == cj - k || jj == cj + k);
         for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
-          if (ii >= 0 && ii < grid.nx()) grid.points_in_cell(ii, jj, visit);
+          if (ii >= 0 && ii < grid.nx() && cell_distance(ii - ci, jj - cj, cs) <= far) grid.points_in_cell(ii, jj, visit);
           if (k == 0) break;
         }
       }
     }
     return found;
+  }
+  // A lower bound of the distance from a point in cell (ci, cj) to any point of the cell di, dj
+  // cells away: a whole cell less per axis (the point may sit anywhere in its cell, and cell_of
+  // rounds), so a cell is skipped only when all of it is farther.
+  static double cell_distance(int di, int dj, double cs) {
+    const double x = std::max(0, std::abs(di) - 1), y = std::max(0, std::abs(dj) - 1);
+    return cs * std::sqrt(x * x + y * y);
   }
 
   // ---------------------------------------------------------------- local constriction
