@@ -134,6 +134,7 @@ class Grid {
     std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) ids_[fill[cell[i]]++] = static_cast<int>(i);
     edges_in_cell_.assign(nc, {});
+    frame_ = detail::GridFrame{minx_, miny_, detail::box_magnitude(minx_, miny_, maxx_, maxy_), hcs_, nx_, ny_};
   }
   int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
   int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
@@ -151,14 +152,14 @@ class Grid {
 
   // The cells a segment or triangle can touch, row by row (grid_cells.hpp, for_cells_of_hull).
   template <class F> void for_cells_of_hull(const double* const* v, int m, F&& f) const {
-    const detail::GridFrame frame{minx_, miny_, std::max({std::fabs(minx_), std::fabs(maxx_), std::fabs(miny_), std::fabs(maxy_)}), hcs_, nx_, ny_};
-    detail::for_cells_of_hull(frame, v, m, f);
+    detail::for_cells_of_hull(frame_, v, m, f);
   }
 
  private:
   static constexpr int kMaxCells = 4096;  // per axis
   double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
+  detail::GridFrame frame_{0, 0, 0, 1, 1, 1};  // the same, for for_cells_of_hull
   std::vector<std::size_t> start_;
   std::vector<int> ids_;
   std::vector<std::vector<int>> edges_in_cell_;
@@ -560,7 +561,7 @@ struct Constrictor2::Impl {
         for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
           // A cell wholly beyond the search radius and the cutoff holds nothing to find (the
           // cutoff only shrinks as the minima fall): the ring's corners of a long pair's disk.
-          if (ii >= 0 && ii < grid.nx() && cell_distance(ii - ci, jj - cj, cs) <= std::min(radius, std::max(cut(ga), cut(gb))))
+          if (ii >= 0 && ii < grid.nx() && cell_within(ii - ci, jj - cj, cs, std::min(radius, std::max(cut(ga), cut(gb)))))
             grid.points_in_cell(ii, jj, visit);
           if (ga < stop_below && gb < stop_below) { partial = true; break; }
           if (k == 0) break;
@@ -614,9 +615,8 @@ struct Constrictor2::Impl {
     // Both sides below gamma0: the smaller m < gamma0 and the other side < gamma0 < 0 <= -m, out
     // by the magnitude rule (also from a partial search).
     if (ga < gamma0 && gb < gamma0) return false;
-    const double m = std::min(ga, gb);
+    const double m = std::min(ga, gb);  // (below gamma0 on one side only from here on)
     if (m >= gamma0) return true;
-    if (ga == gb) return false;  // both sides below gamma0 < 0 <= -m
     // In iff the other side has no point with value < -m. -m can be close to 1, where the region
     // to search is nearly the whole half-plane: stop at the first witness instead (the usual
     // answer); only pairs with a nearly empty other side are searched far.
@@ -659,19 +659,20 @@ struct Constrictor2::Impl {
         if (jj < 0 || jj >= grid.ny()) continue;
         const bool edge_row = (jj == cj - k || jj == cj + k);
         for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
-          if (ii >= 0 && ii < grid.nx() && cell_distance(ii - ci, jj - cj, cs) <= far) grid.points_in_cell(ii, jj, visit);
+          if (ii >= 0 && ii < grid.nx() && cell_within(ii - ci, jj - cj, cs, far)) grid.points_in_cell(ii, jj, visit);
           if (k == 0) break;
         }
       }
     }
     return found;
   }
-  // A lower bound of the distance from a point in cell (ci, cj) to any point of the cell di, dj
-  // cells away: a whole cell less per axis (the point may sit anywhere in its cell, and cell_of
-  // rounds), so a cell is skipped only when all of it is farther.
-  static double cell_distance(int di, int dj, double cs) {
+  // Can a point of the cell di, dj cells away from a point's own cell lie within `limit` of it?
+  // A whole cell less per axis (the point may sit anywhere in its cell, and cell_of rounds), so a
+  // cell is skipped only when all of it is farther. Compared in squared cell units (no root).
+  static bool cell_within(int di, int dj, double cs, double limit) {
     const double x = std::max(0, std::abs(di) - 1), y = std::max(0, std::abs(dj) - 1);
-    return cs * std::sqrt(x * x + y * y);
+    const double r = limit / cs;
+    return !(x * x + y * y > r * r);
   }
 
   // ---------------------------------------------------------------- local constriction

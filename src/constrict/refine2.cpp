@@ -71,8 +71,7 @@ class EdgeGrid {
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
     const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
     hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
-    const double mag = std::max({std::fabs(minx_), std::fabs(maxx_), std::fabs(miny_), std::fabs(maxy_)});
-    const double fine = std::max(median_edge, Sparse::min_half_cell(w, h, mag));
+    const double fine = std::max(median_edge, Sparse::min_half_cell(w, h, detail::box_magnitude(minx_, miny_, maxx_, maxy_)));
     sparse_ = std::isfinite(fine) && fine > 0 && fine <= kSparseRatio * hcs_;
     if (sparse_) {
       sparse_cells_.reset(minx_, miny_, maxx_, maxy_, fine);

@@ -6,8 +6,8 @@
 // same as with the plain formulas. Cell indices are monotone in the coordinate: a box query over
 // the cells of a box's corners finds everything inside the box, exactly.
 #pragma once
-#include <cfloat>
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -45,8 +45,13 @@ inline int cell_of(double x, double lo, double half_cell, int cells) noexcept {
   return f >= cells ? cells - 1 : static_cast<int>(f);
 }
 
-/// A uniform grid as cell_of() sees it: its corner, the largest coordinate magnitude of its box,
-/// half the cell edge and the cell counts.
+/// The largest coordinate magnitude of the box [lo_x, hi_x] x [lo_y, hi_y].
+inline double box_magnitude(double lo_x, double lo_y, double hi_x, double hi_y) noexcept {
+  return std::max({std::fabs(lo_x), std::fabs(hi_x), std::fabs(lo_y), std::fabs(hi_y)});
+}
+
+/// A uniform grid as cell_of() sees it: its corner, the largest coordinate magnitude of its box
+/// (box_magnitude), half the cell edge and the cell counts.
 struct GridFrame {
   double lo_x, lo_y, magnitude, half_cell;
   int nx, ny;

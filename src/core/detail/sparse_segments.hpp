@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A sparse uniform grid of segments with cells sized for the spacing where the data are (the 2D
-// fallback's boundary edges, the refinement's polygon edges), for inputs whose points lie on a
-// curve: an area-sized grid would hold O(√N) segments per cell there, and every local test would
+// refinement's polygon edges), for inputs whose points lie on a curve: an area-sized grid would hold O(√N) segments per cell there, and every local test would
 // read them all (docs/benchmarks.md, the noisy curve). Only non-empty cells are stored: an
 // open-addressing table of cell keys in front of one id list per cell. A segment is registered in
 // the cells its strip crosses (for_cells_of_hull, grid_cells.hpp); a segment longer than
@@ -32,8 +31,7 @@ template <class Id> class SparseSegments {
   /// An empty grid over the box [lo_x, hi_x] x [lo_y, hi_y], cells of edge 2 * half_cell
   /// (>= min_half_cell).
   void reset(double lo_x, double lo_y, double hi_x, double hi_y, double half_cell) {
-    const double mag = std::max({std::fabs(lo_x), std::fabs(hi_x), std::fabs(lo_y), std::fabs(hi_y)});
-    frame_ = GridFrame{lo_x, lo_y, mag, half_cell, cell_count(half_span(lo_x, hi_x), half_cell, kMaxCells),
+    frame_ = GridFrame{lo_x, lo_y, box_magnitude(lo_x, lo_y, hi_x, hi_y), half_cell, cell_count(half_span(lo_x, hi_x), half_cell, kMaxCells),
                        cell_count(half_span(lo_y, hi_y), half_cell, kMaxCells)};
     cells_.clear();
     table_key_.assign(std::size_t{1} << 12, kEmpty);
