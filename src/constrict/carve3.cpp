@@ -8,7 +8,9 @@
 // (vertex- and edge-manifold, still in the body) and the surface has 2N-4 faces (Euler
 // characteristic 2). The region's removals after its last valid state are undone. Connectivity
 // is checked once at the end. The fill is the mirror image after the growth: it adds the regions
-// of inside tetrahedra the body left out.
+// of inside tetrahedra the body left out; a region whose end state is invalid at a few vertices
+// only is first repaired by single toggles at those vertices (docs/reconstruction-3d.md §4.9).
+#include <algorithm>
 #include <cmath>
 #include <queue>
 #include <utility>
@@ -59,6 +61,7 @@ class Regions {
       ++s_.regions;
       const std::size_t F0 = F_;
       peel_region();
+      if (add_ && rule_ == Rule::Genus0) local_search();
       repair_and_settle();
       if (rule_ == Rule::Handles) decide_region(F0);
     }
@@ -239,6 +242,53 @@ class Regions {
     }
     flush();
   }
+
+  // Fill: when the region's end state is not valid only at a few vertices, single toggles at those
+  // vertices (adding an outside tetrahedron of the vertex, or taking back one the region added),
+  // each time the one that leaves the fewest non-manifold vertices, while that number drops.
+  std::size_t defect() const {
+    const std::size_t dF = F_ > targetF_ ? F_ - targetF_ : targetF_ - F_;
+    return 4 * nbad_ + dF;
+  }
+  void local_search() {
+    flush();
+    if (nbad_ == 0 && F_ == targetF_) return;
+    if (nbad_ > 8) return;
+    for (int step = 0; step < 16 && (nbad_ > 0 || F_ != targetF_); ++step) {
+      std::vector<int> bad;
+      for (int x : pending_)
+        for (int y : b_.tets[uz(x)])
+          if (bad_of_[uz(y)]) bad.push_back(y);
+      std::sort(bad.begin(), bad.end());
+      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      if (bad.empty()) return;
+      const std::size_t d0 = defect();
+      std::size_t best_d = d0;
+      int best_t = -1;
+      for (int v : bad)
+        for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
+          const int t = vt_idx_[uz(k)];
+          const bool alive = b_.alive(t);
+          if (alive && !in_pending(t)) continue;  // only the region's own additions are taken back
+          toggle(t, !alive);
+          flush();
+          const std::size_t d = defect();
+          toggle(t, alive);
+          flush();
+          if (d < best_d || (d == best_d && best_t >= 0 && t < best_t && d < d0)) {
+            best_d = d;
+            best_t = t;
+          }
+        }
+      if (best_t < 0) return;
+      const bool alive = b_.alive(best_t);
+      toggle(best_t, !alive);
+      flush();
+      if (!alive) pending_.push_back(best_t);
+      if (valid_now()) pending_.clear();
+    }
+  }
+  bool in_pending(int t) const { return std::find(pending_.begin(), pending_.end(), t) != pending_.end(); }
 
   // Repair: put back toggled tetrahedra at the vertices that are not manifold, latest first, a
   // few rounds; keep the state if it is valid then, else undo back to the last valid state.

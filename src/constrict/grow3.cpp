@@ -7,17 +7,19 @@
 // (never three faces: that would bury a vertex). Every vertex in the body is therefore on its
 // surface. Order: tetrahedra labelled inside by the largest circumradius first (from the medial
 // axis outwards, which keeps the growth front from wrapping around pockets); when none is left, a
-// tetrahedron labelled outside only if it brings a new point into the body (one-face rule), least
-// confident first (thin parts the labels miss).
+// tetrahedron labelled outside only if it brings a new point into the body (one-face rule), the
+// smallest first relative to the spacing (thin parts the labels miss: a point is reached by the
+// shortest step, through its own part, not across the gap to a nearby part).
 #include <algorithm>
+#include <cmath>
 
 #include "constrict/detail/stages3.hpp"
 
 namespace constrict::detail {
 namespace {
 
-// Keys: inside tetrahedra kInsideKeyBase + ln r (ln r clamped below at kMinLogRadius, so every
-// inside key is above every outside key); outside tetrahedra 1 - confidence, in [0, 1].
+// Keys: inside tetrahedra kInsideKeyBase + ln r (ln r clamped below at kMinLogRadius); outside
+// tetrahedra (their own heap, popped only when no inside one is left) minus their size ratio.
 constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
 
 class Growth3 {
@@ -40,8 +42,11 @@ class Growth3 {
     b_.onb.assign(b_.n, 0);
     b_.n_onb = 0;
     add(seed);
-    while (!heap_.empty()) {
-      const HeapEntry e = heap_.pop(b_.tets);
+    for (;;) {
+      if (heap_.empty() && !outside_ready_) ready_outside();
+      TetHeap& h = heap_.empty() ? out_heap_ : heap_;
+      if (h.empty()) break;
+      const HeapEntry e = h.pop(b_.tets);
       queued_[uz(e.tet)] = 0;
       if (b_.alive(e.tet)) continue;
       // Outside: the one-face rule only (its fourth vertex is a new point).
@@ -66,7 +71,35 @@ class Growth3 {
   double key(int t) const {
     const double l = l_.label[uz(t)];
     if (l < 0) return kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[uz(t)]);
-    return 1.0 - l;
+    // Outside: the smallest first, by the size ratio of the bridge measure (longest edge over the
+    // largest nearest-neighbour distance of its vertices). Measured against "least confident
+    // first" on the shared models and their random halves and quarters (docs/reconstruction-3d.md
+    // §4.9): the labels are near 1 on both a thin part's own tetrahedra and those across a gap.
+    const auto& v = b_.tets[uz(t)];
+    double le = 0, sp = 0;
+    for (int i = 0; i < 4; ++i) {
+      sp = std::max(sp, spacing_[uz(v[uz(i)])]);
+      for (int j = i + 1; j < 4; ++j) {
+        const double* a = b_.P(v[uz(i)]);
+        const double* c = b_.P(v[uz(j)]);
+        le = std::max(le, (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
+      }
+    }
+    return -std::sqrt(le) / sp;
+  }
+  // The outside tetrahedra met so far go to their own heap once no inside one is left (their keys
+  // need the spacing, computed only then). With every point in the body none of them can join.
+  void ready_outside() {
+    outside_ready_ = true;
+    if (waiting_.empty() || b_.n_onb == b_.n) {
+      waiting_.clear();
+      return;
+    }
+    spacing_ = nearest_spacing3(b_);
+    for (int m : waiting_)
+      if (!b_.alive(m)) out_heap_.push({key(m), m, 0}, b_.tets);
+      else queued_[uz(m)] = 0;
+    waiting_.clear();
   }
   void add(int t) {
     b_.state[uz(t)] = kAlive;
@@ -78,14 +111,19 @@ class Growth3 {
     for (int m : b_.nbr[uz(t)])
       if (m >= 0 && uz(m) < b_.T0 && !b_.alive(m) && !queued_[uz(m)]) {
         queued_[uz(m)] = 1;
-        heap_.push({key(m), m, 0}, b_.tets);
+        if (l_.label[uz(m)] < 0) heap_.push({key(m), m, 0}, b_.tets);
+        else if (outside_ready_) out_heap_.push({key(m), m, 0}, b_.tets);
+        else waiting_.push_back(m);
       }
   }
 
   Body3& b_;
   const Labels3& l_;
   Growth3Stats& s_;
-  TetHeap heap_;
+  TetHeap heap_, out_heap_;  // inside tetrahedra; outside ones (only when no inside one is left)
+  std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
+  bool outside_ready_ = false;
+  std::vector<double> spacing_;
   std::vector<char> queued_;  // in the heap (its key is static: one entry is enough)
 };
 
