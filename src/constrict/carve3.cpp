@@ -22,6 +22,10 @@ namespace {
 
 // Rounds of putting back the removals at non-manifold vertices before a region is undone.
 constexpr int kRepairRounds = 16;
+// The fill's local repair: regions with at most this many bad vertices, at most this many single
+// toggles kept, at most this many tried per region.
+constexpr std::size_t kLocalMaxBad = 8, kLocalTrials = 4096;
+constexpr int kLocalSteps = 16;
 
 enum class Toggle { Remove, Add };  // carve: take tetrahedra out of the body; fill: put them in
 // Genus0: a valid state is a closed genus-0 2-manifold through every point (F = 2N - 4, manifold
@@ -253,8 +257,13 @@ class Regions {
   void local_search() {
     flush();
     if (nbad_ == 0 && F_ == targetF_) return;
-    if (nbad_ > 8) return;
-    for (int step = 0; step < 16 && (nbad_ > 0 || F_ != targetF_); ++step) {
+    if (nbad_ > kLocalMaxBad) return;
+    // Trials (each re-evaluates the links of 4 vertices) per region: a bound for the stars of
+    // degenerate inputs with thousands of tetrahedra at one point.
+    std::size_t trials = 0;
+    std::vector<int> mine = pending_;  // the region's additions since the last valid state, sorted
+    std::sort(mine.begin(), mine.end());
+    for (int step = 0; step < kLocalSteps && (nbad_ > 0 || F_ != targetF_) && trials < kLocalTrials; ++step) {
       std::vector<int> bad;
       for (int x : pending_)
         for (int y : b_.tets[uz(x)])
@@ -269,7 +278,9 @@ class Regions {
         for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
           const int t = vt_idx_[uz(k)];
           const bool alive = b_.alive(t);
-          if (alive && !in_pending(t)) continue;  // only the region's own additions are taken back
+          // Only the region's own additions are taken back.
+          if (alive && !std::binary_search(mine.begin(), mine.end(), t)) continue;
+          if (++trials > kLocalTrials) break;
           toggle(t, !alive);
           flush();
           const std::size_t d = defect();
@@ -284,11 +295,16 @@ class Regions {
       const bool alive = b_.alive(best_t);
       toggle(best_t, !alive);
       flush();
-      if (!alive) pending_.push_back(best_t);
-      if (valid_now()) pending_.clear();
+      if (!alive) {
+        pending_.push_back(best_t);
+        mine.insert(std::upper_bound(mine.begin(), mine.end(), best_t), best_t);
+      }
+      if (valid_now()) {
+        pending_.clear();
+        mine.clear();
+      }
     }
   }
-  bool in_pending(int t) const { return std::find(pending_.begin(), pending_.end(), t) != pending_.end(); }
 
   // Repair: put back toggled tetrahedra at the vertices that are not manifold, latest first, a
   // few rounds; keep the state if it is valid then, else undo back to the last valid state.
