@@ -6,14 +6,13 @@
 // Usage: constrict_afsr FILE.xyz OUT.off
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <fast_float/fast_float.h>
 
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <iterator>
-#include <string>
 #include <vector>
+
+#include "read_numbers.hpp"
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
@@ -22,27 +21,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: constrict_afsr FILE.xyz OUT.off\n");
     return 2;
   }
-  std::ifstream in(argv[1], std::ios::binary);
-  if (!in) {
-    std::fprintf(stderr, "constrict_afsr: cannot open %s\n", argv[1]);
-    return 3;
-  }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::vector<double> c;
-  const char* p = text.data();
-  const char* end = p + text.size();
-  while (p < end) {
-    while (p < end && (*p == ' ' || *p == '\t' || *p == ',' || *p == '\r' || *p == '\n')) ++p;
-    if (p >= end) break;
-    double v = 0;
-    const auto r = fast_float::from_chars(p, end, v);
-    if (r.ec != std::errc()) {
-      std::fprintf(stderr, "constrict_afsr: not a number at byte %ld\n", static_cast<long>(p - text.data()));
-      return 5;
-    }
-    c.push_back(v);
-    p = r.ptr;
-  }
+  if (const int rc = read_numbers("constrict_afsr", argv[1], c)) return rc;
   if (c.size() % 3 != 0 || c.size() < 12) {
     std::fprintf(stderr, "constrict_afsr: %s: expected x y z per line, at least 4 points\n", argv[1]);
     return 5;

@@ -7,14 +7,13 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <fast_float/fast_float.h>
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
+
+#include "read_numbers.hpp"
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
@@ -24,27 +23,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int dim = argv[1][0] - '0';
-  std::ifstream in(argv[2], std::ios::binary);
-  if (!in) {
-    std::fprintf(stderr, "constrict_yardstick: cannot open %s\n", argv[2]);
-    return 3;
-  }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::vector<double> c;
-  const char* p = text.data();
-  const char* end = p + text.size();
-  while (p < end) {
-    while (p < end && (*p == ' ' || *p == '\t' || *p == ',' || *p == '\r' || *p == '\n')) ++p;
-    if (p >= end) break;
-    double v = 0;
-    const auto r = fast_float::from_chars(p, end, v);
-    if (r.ec != std::errc()) {
-      std::fprintf(stderr, "constrict_yardstick: not a number at byte %ld\n", static_cast<long>(p - text.data()));
-      return 5;
-    }
-    c.push_back(v);
-    p = r.ptr;
-  }
+  if (const int rc = read_numbers("constrict_yardstick", argv[2], c)) return rc;
   const std::size_t n = c.size() / static_cast<std::size_t>(dim);
   if (dim == 2) {
     std::vector<K::Point_2> pts;
