@@ -328,9 +328,7 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
   const std::size_t n = points.size();
   auto items = sorted_input<2, K::Point_2>(points);
-  // CGAL's insertion is sequential: the second core meanwhile writes the ranked points and
-  // zero-fills the output arrays (at their upper bound 2n; the export shrinks them), which would
-  // otherwise be page faults on the critical path.
+  // CGAL's insertion is sequential: the second core meanwhile writes the ranked points.
   tbb::task_group side;
   side.run([&] {
     ranked.dim = 2;
@@ -341,13 +339,14 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
       ranked.coords[2 * k + 1] = items[k].first.y();
       id[k] = items[k].second;
     }
-    detail::resize_big(out.triangles, 2 * n);
-    detail::resize_big(out.neighbors, 2 * n);
   });
   DT2 dt;
   insert_sorted(dt, items);
   side.wait();
   std::vector<std::pair<K::Point_2, int>>().swap(items);  // lower peak memory during the export
+  // The output arrays (at their upper bound 2n; the export shrinks them) only now, after the
+  // sorted input is gone (24 bytes per point less at the peak), zero-filled on both cores.
+  tbb::parallel_invoke([&] { detail::resize_big(out.triangles, 2 * n); }, [&] { detail::resize_big(out.neighbors, 2 * n); });
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
   if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
   detail::LocalMesh<2> unused;
