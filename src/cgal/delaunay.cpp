@@ -306,7 +306,7 @@ namespace detail {
 Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
   const std::size_t n = points.size();
-  const auto items = sorted_input<2, K::Point_2>(points);
+  auto items = sorted_input<2, K::Point_2>(points);
   DT2 dt;
   insert_sorted(dt, items);
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
@@ -315,6 +315,7 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
   detail::LocalMesh<2> local_own;
   detail::LocalMesh<2>& lm = local ? *local : local_own;
   fill_local<2>(items, lm, local != nullptr);
+  std::vector<std::pair<K::Point_2, int>>().swap(items);  // lower peak memory during the export
   const detail::BigArray<int>& id = lm.id;
 
   // Finite faces in CGAL's finite_faces order (= all faces, infinite ones skipped).
@@ -359,7 +360,7 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
 Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local) {
   if (points.dim != 3) return {StatusCode::InvalidArgument, "build_delaunay3: points are not 3D"};
   const std::size_t n = points.size();
-  const auto items = sorted_input<3, K::Point_3>(points);
+  auto items = sorted_input<3, K::Point_3>(points);
   DT3 dt;
   {
     DT3::Vertex_handle hint;
@@ -376,6 +377,7 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   detail::LocalMesh<3> local_own;
   detail::LocalMesh<3>& lm = local ? *local : local_own;
   fill_local<3>(items, lm, local != nullptr);
+  std::vector<std::pair<K::Point_3, int>>().swap(items);  // lower peak memory during the export
   const detail::BigArray<int>& id = lm.id;
 
   // Finite cells in CGAL's finite_cells order (= all cells, infinite ones skipped).
