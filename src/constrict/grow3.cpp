@@ -112,8 +112,9 @@ class Growth3 {
       if (m >= 0 && uz(m) < b_.T0 && !b_.alive(m) && !queued_[uz(m)]) {
         queued_[uz(m)] = 1;
         if (l_.label[uz(m)] < 0) heap_.push({key(m), m, 0}, b_.tets);
-        else if (outside_ready_) out_heap_.push({key(m), m, 0}, b_.tets);
-        else waiting_.push_back(m);
+        else if (!spacing_.empty()) out_heap_.push({key(m), m, 0}, b_.tets);
+        else if (!outside_ready_) waiting_.push_back(m);
+        // (else: every point was in the body when the inside heap ran dry; none can join.)
       }
   }
 
