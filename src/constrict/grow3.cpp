@@ -11,7 +11,6 @@
 // smallest first relative to the spacing (thin parts the labels miss: a point is reached by the
 // shortest step, through its own part, not across the gap to a nearby part).
 #include <algorithm>
-#include <cmath>
 
 #include "constrict/detail/stages3.hpp"
 
@@ -75,17 +74,7 @@ class Growth3 {
     // largest nearest-neighbour distance of its vertices). Measured against "least confident
     // first" on the shared models and their random halves and quarters (docs/reconstruction-3d.md
     // §4.9): the labels are near 1 on both a thin part's own tetrahedra and those across a gap.
-    const auto& v = b_.tets[uz(t)];
-    double le = 0, sp = 0;
-    for (int i = 0; i < 4; ++i) {
-      sp = std::max(sp, spacing_[uz(v[uz(i)])]);
-      for (int j = i + 1; j < 4; ++j) {
-        const double* a = b_.P(v[uz(i)]);
-        const double* c = b_.P(v[uz(j)]);
-        le = std::max(le, (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
-      }
-    }
-    return -std::sqrt(le) / sp;
+    return -bridge_ratio3(*b_.pts, spacing_, b_.tets[uz(t)]);
   }
   // The outside tetrahedra met so far go to their own heap once no inside one is left (their keys
   // need the spacing, computed only then). With every point in the body none of them can join.

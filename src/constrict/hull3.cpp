@@ -68,6 +68,19 @@ double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, in
   return h > 0 ? longest / h : 0;
 }
 
+double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, const std::array<int, 4>& t) {
+  double longest = 0, h = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    h = std::max(h, spacing[uz(t[i])]);
+    for (std::size_t j = i + 1; j < 4; ++j) {
+      const double* p = pts[uz(t[i])];
+      const double* q = pts[uz(t[j])];
+      longest = std::max(longest, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+  }
+  return h > 0 ? std::sqrt(longest) / h : 0;
+}
+
 std::shared_ptr<const std::vector<double>> compute_face_log3(const Body3& b, const DelaunayGamma3& dg,
                                                              const std::vector<double>& spacing) {
   const GammaFaces& f = dg.faces;

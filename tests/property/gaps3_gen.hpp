@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "constrict/points.hpp"
+#include "unit/test_fixtures.hpp"
 
 namespace constrict::test {
 
@@ -61,12 +62,7 @@ inline double capsule_sdf(const Capsule& c, const P& p) {
 
 struct Rng {
   std::uint64_t s;
-  double next() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  }
+  double next() { return static_cast<double>(splitmix64(s) >> 11) * 0x1.0p-53; }
 };
 
 // A uniform point on the capsule's boundary.

@@ -21,6 +21,7 @@
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
+#include "unit/test_fixtures.hpp"
 
 namespace constrict {
 namespace {
@@ -252,12 +253,8 @@ double half_hausdorff(const std::string& name, std::uint64_t seed) {
   EXPECT_TRUE(read_points(xyz, ro, all).is_ok());
   half.dim = 3;
   std::uint64_t s = seed;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    if ((z ^ (z >> 31)) >> 63) half.coords.insert(half.coords.end(), all[i], all[i] + 3);
-  }
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (test::splitmix64(s) >> 63) half.coords.insert(half.coords.end(), all[i], all[i] + 3);
   TriMesh3 gt;
   for (auto t : read_gt_faces(kDir + name + "_gt.off")) gt.triangles.push_back(t);
   Mesh3Result r;

@@ -523,12 +523,7 @@ TEST(Constrict3Unit, StepperAndStopAfter) {
 // Uniform clouds whose Delaunay constriction locks (found by search; splitmix64 so the points are
 // the same on every platform): the lock is reported, the star-cavity fallback places the stuck
 // point, and the body contains non-Delaunay tetrahedra. Fallback3::None returns the lock.
-std::uint64_t splitmix(std::uint64_t& s) {
-  std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
+std::uint64_t splitmix(std::uint64_t& s) { return test::splitmix64(s); }
 
 TEST(Constrict3Unit, LockedCloudsAreCompletedByTheCavityFallback) {
   for (std::uint64_t seed : {78u, 151u, 189u, 284u}) {

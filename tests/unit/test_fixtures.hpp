@@ -3,11 +3,20 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "constrict/points.hpp"
 
 namespace constrict::test {
+
+/// splitmix64: the next value of the sequence of state s (the same numbers on every platform).
+inline std::uint64_t splitmix64(std::uint64_t& s) {
+  std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
 
 /// A 2D PointSet from coordinate pairs.
 inline PointSet make2(const std::vector<std::array<double, 2>>& xy) {

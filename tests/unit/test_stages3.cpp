@@ -56,12 +56,7 @@ PointSet cloud(std::size_t n, unsigned seed) {
 // the same points on every platform); the paper's constriction locks on them.
 PointSet locking_cloud(std::uint64_t seed) {
   std::uint64_t s = seed;
-  const auto next = [&s] {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  };
+  const auto next = [&s] { return test::splitmix64(s); };
   PointSet p;
   p.dim = 3;
   for (int i = 0; i < 3 * 150; ++i) p.coords.push_back(static_cast<double>(next() >> 11) * 0x1.0p-53);

@@ -95,6 +95,8 @@ class HullConstriction3 {
 };
 // Bridge ratio of the triangle abc: its longest edge over the largest spacing of its vertices.
 double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, int a, int b, int c);
+// The same for a tetrahedron: its longest edge over the largest spacing of its four vertices.
+double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, const std::array<int, 4>& tet);
 
 // ---- star cavities (cavity3.cpp; docs/reconstruction-3d.md §3) ---------------------------------
 
