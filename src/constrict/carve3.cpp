@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
+#include <set>
 #include <utility>
 
 #include "constrict/detail/stages3.hpp"
@@ -24,7 +25,7 @@ namespace {
 constexpr int kRepairRounds = 16;
 // The fill's local repair: regions with at most this many bad vertices, at most this many single
 // toggles kept, at most this many tried per region.
-constexpr std::size_t kLocalMaxBad = 8, kLocalTrials = 4096;
+constexpr std::size_t kLocalMaxBad = 8, kLocalTrials = 4096, kLocalMaxBadHandles = 32;
 constexpr int kLocalSteps = 16;
 
 enum class Toggle { Remove, Add };  // carve: take tetrahedra out of the body; fill: put them in
@@ -38,9 +39,9 @@ class Regions {
   // Candidates: the Delaunay tetrahedra with sign * score >= threshold (carve: label >= min_conf;
   // fill: -label >= min_conf; bridges: edge ratio >= the bridge ratio), most scored first.
   Regions(Body3& b, const std::vector<float>& score, float sign, double threshold, Toggle dir, Carve3Stats& st,
-          Rule rule = Rule::Genus0, const HandleDecision* decide = nullptr)
+          Rule rule = Rule::Genus0, const HandleDecision* decide = nullptr, bool local_repair = true)
       : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st), rule_(rule),
-        decide_(decide) {}
+        decide_(decide), local_repair_(add_ && local_repair) {}
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
   bool run() {
@@ -57,6 +58,7 @@ class Regions {
     anchor_.assign(b_.tets.size(), 0);
     if (!add_) choose_anchors();
     seen_.assign(b_.tets.size(), 0);
+    touched_at_.assign(b_.tets.size(), 0);
     bad_of_.assign(b_.n, 0);
     dirty_.assign(b_.n, 0);
     for (std::size_t s0 = 0; s0 < b_.T0; ++s0) {
@@ -65,9 +67,12 @@ class Regions {
       ++s_.regions;
       const std::size_t F0 = F_;
       peel_region();
-      if (add_ && rule_ == Rule::Genus0) local_search();
+      if (local_repair_) local_search();
+      flush();
       repair_and_settle();
       if (rule_ == Rule::Handles) decide_region(F0);
+      for (int t : touched_) touched_at_[uz(t)] = 0;
+      touched_.clear();
     }
     return true;
   }
@@ -170,6 +175,10 @@ class Regions {
   }
 
   void toggle(int t, bool make_alive) {
+    if (!touched_at_[uz(t)]) {  // the region's changes, with each tetrahedron's state before it
+      touched_at_[uz(t)] = b_.alive(t) ? 2 : 1;
+      touched_.push_back(t);
+    }
     if (make_alive) {
       for (int x : b_.tets[uz(t)]) ++alive_at_[uz(x)];
       b_.state[uz(t)] = kAlive;
@@ -242,7 +251,10 @@ class Regions {
       pending_.push_back(t);
       for (int m : b_.nbr[uz(t)])
         if (m >= 0 && cand(m)) pq.push({prio(m), -m});
-      if (valid_now()) pending_.clear();  // a valid state: keep it
+      if (valid_now()) {  // a valid state: keep it
+        pending_.clear();
+        dimples_.clear();
+      }
     }
     flush();
   }
@@ -251,19 +263,24 @@ class Regions {
   // vertices (adding an outside tetrahedron of the vertex, or taking back one the region added),
   // each time the one that leaves the fewest non-manifold vertices, while that number drops.
   std::size_t defect() const {
+    if (rule_ == Rule::Handles) return nbad_;
     const std::size_t dF = F_ > targetF_ ? F_ - targetF_ : targetF_ - F_;
     return 4 * nbad_ + dF;
   }
   void local_search() {
     flush();
-    if (nbad_ == 0 && F_ == targetF_) return;
-    if (nbad_ > kLocalMaxBad) return;
+    if (valid_now()) return;
+    const std::size_t max_bad = rule_ == Rule::Handles ? kLocalMaxBadHandles : kLocalMaxBad;
+    if (nbad_ > max_bad) return;
+    const int max_steps = rule_ == Rule::Handles ? static_cast<int>(2 * max_bad) : kLocalSteps;
     // Trials (each re-evaluates the links of 4 vertices) per region: a bound for the stars of
     // degenerate inputs with thousands of tetrahedra at one point.
     std::size_t trials = 0;
+    const bool handles = rule_ == Rule::Handles;
+    std::set<int> tabu;
     std::vector<int> mine = pending_;  // the region's additions since the last valid state, sorted
     std::sort(mine.begin(), mine.end());
-    for (int step = 0; step < kLocalSteps && (nbad_ > 0 || F_ != targetF_) && trials < kLocalTrials; ++step) {
+    for (int step = 0; step < max_steps && !valid_now() && trials < kLocalTrials; ++step) {
       std::vector<int> bad;
       for (int x : pending_)
         for (int y : b_.tets[uz(x)])
@@ -278,29 +295,39 @@ class Regions {
         for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
           const int t = vt_idx_[uz(k)];
           const bool alive = b_.alive(t);
-          // Only the region's own additions are taken back.
-          if (alive && !std::binary_search(mine.begin(), mine.end(), t)) continue;
+          // Only the region's own additions are taken back; for a handle also a body tetrahedron
+          // at the surface (a dimple that uncovers a point the closed loop buried).
+          if (alive && !std::binary_search(mine.begin(), mine.end(), t) &&
+              (rule_ != Rule::Handles || b_.surface_faces_of(t) == 0))
+            continue;
+          if (handles && tabu.count(t)) continue;
           if (++trials > kLocalTrials) break;
           toggle(t, !alive);
           flush();
           const std::size_t d = defect();
           toggle(t, alive);
           flush();
-          if (d < best_d || (d == best_d && best_t >= 0 && t < best_t && d < d0)) {
+          // (A handle may take a sideways step: a closed loop's rim has plateaus of one or two
+          // bad vertices; the tabu list keeps the walk from going back.)
+          if (d < best_d || (d == best_d && (best_t < 0 ? handles : t < best_t) && (d < d0 || handles))) {
             best_d = d;
             best_t = t;
           }
         }
       if (best_t < 0) return;
+      if (handles) tabu.insert(best_t);
       const bool alive = b_.alive(best_t);
       toggle(best_t, !alive);
       flush();
       if (!alive) {
         pending_.push_back(best_t);
         mine.insert(std::upper_bound(mine.begin(), mine.end(), best_t), best_t);
+      } else if (!std::binary_search(mine.begin(), mine.end(), best_t)) {
+        dimples_.push_back(best_t);
       }
       if (valid_now()) {
         pending_.clear();
+        dimples_.clear();
         mine.clear();
       }
     }
@@ -323,10 +350,15 @@ class Regions {
     std::vector<int> still;
     for (int t : pending_)
       if (b_.alive(t) == add_) still.push_back(t);
-    if (nbad_ == 0 && (F_ == targetF_ || rule_ == Rule::Handles)) still.clear();
+    const bool keep = nbad_ == 0 && (F_ == targetF_ || rule_ == Rule::Handles);
+    if (keep) still.clear();
     s_.undone += still.size();
     // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
     for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, !add_);
+    if (!keep)
+      for (auto it = dimples_.rbegin(); it != dimples_.rend(); ++it)
+        if (b_.alive(*it) != add_) toggle(*it, add_);
+    dimples_.clear();
     flush();
     CONSTRICT_CHECK((F_ == targetF_ || rule_ == Rule::Handles) && nbad_ == 0, "carve undo did not restore the surface");
   }
@@ -336,8 +368,8 @@ class Regions {
   // agrees; else put the region back as it was.
   void decide_region(std::size_t F0) {
     changed_.clear();
-    for (int t : region_)
-      if (b_.alive(t) == add_) changed_.push_back(t);
+    for (int t : touched_)
+      if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
     if (changed_.empty()) return;
     // Carving must not split the body (F would drop); a fill that drops F seals a cavity (an inner
     // shell: the caller decides whether enclosed voids are allowed).
@@ -347,7 +379,7 @@ class Regions {
       return;
     }
     s_.undone += changed_.size();
-    for (int t : changed_) toggle(t, !add_);
+    for (int t : changed_) toggle(t, !b_.alive(t));
     flush();
     CONSTRICT_CHECK(F_ == F0 && nbad_ == 0, "handle undo did not restore the surface");
   }
@@ -360,12 +392,16 @@ class Regions {
   Carve3Stats& s_;
   const Rule rule_;
   const HandleDecision* decide_;
+  const bool local_repair_;  // fill and handle closing: single-toggle repair of an invalid end state
   std::vector<int> changed_;
   std::vector<int> vt_off_, vt_idx_;
   std::size_t F_ = 0, targetF_ = 0, nbad_ = 0;
   std::vector<int> alive_at_;  // body tetrahedra per vertex
   std::vector<char> anchor_, seen_, bad_of_, dirty_;
+  std::vector<char> touched_at_;  // 0: not toggled in this region; 1 / 2: outside / alive before
+  std::vector<int> touched_;
   std::vector<int> dirty_list_, region_, pending_;
+  std::vector<int> dimples_;  // body tetrahedra the handle's local search took out since the last valid state
   std::vector<std::array<int, 2>> link_;
 };
 
@@ -412,7 +448,7 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
 }
 
 std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const HandleDecision& decide,
-                     Carve3Stats& closed, Carve3Stats& opened) {
+                     Carve3Stats& closed, Carve3Stats& opened, bool local_repair) {
   // Loops first (the genus-0 growth leaves a cut in every handle of the object), then tunnels;
   // each pass only when a candidate touches the surface (usually none: O(T) to find out).
   bool close = false, open = false;
@@ -423,7 +459,7 @@ std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const 
     for (int m : body.nbr[t])
       if (alive ? !body.alive(m) : body.alive(m)) (alive ? open : close) = true;
   }
-  if (close) Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, closed, Rule::Handles, &decide).run();
+  if (close) Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, closed, Rule::Handles, &decide, local_repair).run();
   if (open) Regions(body, labels.label, 1.0f, min_conf, Toggle::Remove, opened, Rule::Handles, &decide).run();
   return closed.changed + opened.changed;
 }

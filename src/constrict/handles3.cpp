@@ -15,6 +15,9 @@
 namespace constrict::detail {
 namespace {
 
+// The fewest bridge faces (Mesh3Result::kBridgeRatio) around a region for it to be a handle's cut.
+constexpr int kMinCutBridges = 3;
+
 struct BridgeCount {
   int faces = 0;
   double worst = 0;
@@ -63,6 +66,9 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       if (log) log->push_back(h);
       return true;
     }
+    // A cavity sealed inside one part is not an inner shell (that one lies a gap away: a part of
+    // its own): a void left between the two sheets of a closed cut (noisy samples).
+    if (dF < 0) return false;
     if (spacing->empty()) *spacing = nearest_spacing3(b);
     std::vector<int> sorted = changed;
     std::sort(sorted.begin(), sorted.end());
@@ -84,7 +90,9 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
         if (alive_before(t) != alive_before(m)) count(before, t, i);
         if (b.alive(t) != b.alive(m)) count(after, t, i);
       }
-    const bool keep = after.faces < before.faces;
+    // A cut shows as a few long faces at least (a tube two spacings wide: several); one long face
+    // less is a sparse spot, not a handle (a random quarter of a genus-0 model).
+    const bool keep = after.faces < before.faces && before.faces >= kMinCutBridges;
     if (keep && log) {
       h.bridges_before = before.faces;
       h.bridges_after = after.faces;
@@ -93,8 +101,8 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       log->push_back(h);
     }
     if (debug)
-      std::fprintf(stderr, "handle %s: %zu tets, bridges %d -> %d, worst %.2f -> %.2f: %s\n", added ? "close" : "open",
-                   changed.size(), before.faces, after.faces, before.worst, after.worst, keep ? "kept" : "undone");
+      std::fprintf(stderr, "handle %s: %zu tets, dF %lld, bridges %d -> %d, worst %.2f -> %.2f: %s\n", added ? "close" : "open",
+                   changed.size(), dF, before.faces, after.faces, before.worst, after.worst, keep ? "kept" : "undone");
     return keep;
   };
 }

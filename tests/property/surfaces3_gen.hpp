@@ -19,7 +19,7 @@
 
 namespace constrict::test {
 
-enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut };
+enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window };
 
 struct Sample3 {
   PointSet points;
@@ -76,6 +76,37 @@ inline P on_torus(std::mt19937_64& rng, double R, double r) {
     if (u(rng) * (R + r) > R + r * std::cos(v)) continue;
     return {(R + r * std::cos(v)) * std::cos(a), (R + r * std::cos(v)) * std::sin(a), r * std::sin(v)};
   }
+}
+// Uniform (by area) random point of the capsule (tube of radius r around segment ab, round ends).
+inline P on_capsule(std::mt19937_64& rng, const P& a, const P& b, double r) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const P d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (u(rng) * (len + 2 * r) >= len) {  // the round ends: area 4 pi r^2 against 2 pi r len
+    const P q = on_sphere(rng, {0, 0, 0}, r);
+    const bool at_b = q[0] * d[0] + q[1] * d[1] + q[2] * d[2] > 0;
+    const P& c = at_b ? b : a;
+    return {c[0] + q[0], c[1] + q[1], c[2] + q[2]};
+  }
+  // The tube: a frame (d / len, e, f) around the axis.
+  const P t{d[0] / len, d[1] / len, d[2] / len};
+  P e = std::fabs(t[0]) < 0.9 ? P{0, -t[2], t[1]} : P{t[2], 0, -t[0]};
+  const double le = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+  for (double& x : e) x /= le;
+  const P f{t[1] * e[2] - t[2] * e[1], t[2] * e[0] - t[0] * e[2], t[0] * e[1] - t[1] * e[0]};
+  const double s = u(rng) * len, ph = 2 * M_PI * u(rng);
+  P p{};
+  for (int k = 0; k < 3; ++k) p[k] = a[k] + s * t[k] + r * (std::cos(ph) * e[k] + std::sin(ph) * f[k]);
+  return p;
+}
+// Distance from p to segment ab.
+inline double segment_distance(const P& p, const P& a, const P& b) {
+  const P d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  double t = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1] + (p[2] - a[2]) * d[2]) / l2;
+  t = std::min(1.0, std::max(0.0, t));
+  const P q{a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1], a[2] + t * d[2] - p[2]};
+  return std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
 }
 }  // namespace detail_gen3
 
@@ -143,6 +174,25 @@ inline Sample3 make_surfaces3(Family3 f, double gap, unsigned seed, double h = 0
       throw_on(4 * M_PI, [&] { return detail_gen3::on_sphere(rng, {1.4, 0, 0}, 1); },
                [](const P& p) { return p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1; });
       break;
+    case Family3::Window: {  // a frame of two square windows: tubes of radius 5 h, genus 2
+      s.genus = 2;
+      const double r = 5 * h;
+      const std::vector<std::array<P, 2>> bars = {{P{0, 0, 0}, P{2, 0, 0}}, {P{0, 1, 0}, P{2, 1, 0}},
+                                                  {P{0, 0, 0}, P{0, 1, 0}}, {P{1, 0, 0}, P{1, 1, 0}},
+                                                  {P{2, 0, 0}, P{2, 1, 0}}};
+      for (std::size_t i = 0; i < bars.size(); ++i) {
+        const P& a = bars[i][0];
+        const P& b = bars[i][1];
+        const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+        throw_on(2 * M_PI * r * len + 4 * M_PI * r * r, [&] { return detail_gen3::on_capsule(rng, a, b, r); },
+                 [&](const P& p) {  // the boundary of the union: outside every other tube
+                   for (std::size_t j = 0; j < bars.size(); ++j)
+                     if (j != i && detail_gen3::segment_distance(p, bars[j][0], bars[j][1]) < r) return false;
+                   return true;
+                 });
+      }
+      break;
+    }
   }
   // A random rotation (three angles), scale and offset; then shuffled.
   const double a = 2 * M_PI * u(rng), b = 2 * M_PI * u(rng), c = 2 * M_PI * u(rng);
