@@ -2,7 +2,12 @@
 // The constrict command line: parse arguments, call the library, write results. No geometry here.
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <new>
 #include <string>
 #include <vector>
@@ -11,7 +16,34 @@
 #include "constrict/status.hpp"
 #include "constrict/version.hpp"
 
+namespace {
+
+// Transparent huge pages for the large arrays (the Delaunay simplices, the engines' per-simplex
+// state): each of their pages is touched once, and the kernel's page faults were a fifth of a 10^6
+// run (docs/benchmarks.md, "Huge pages"). Where the kernel gives huge pages only on request
+// (transparent_hugepage "madvise", Debian's default), glibc requests them when its tunable
+// glibc.malloc.hugetlb=1 is set at program start: the CLI runs itself again once with it. Outputs
+// are unchanged. Not done when the user set the tunable (any value), under valgrind (whose child
+// would run unchecked), or with CONSTRICT_NO_HUGEPAGES set.
+void reexec_with_huge_pages(char** argv) {
+  if (std::getenv("CONSTRICT_NO_HUGEPAGES")) return;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
+  if (const char* pre = std::getenv("LD_PRELOAD"); pre && std::strstr(pre, "vgpreload")) return;
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  if (!std::getline(mode, line) || line.find("[madvise]") == std::string::npos) return;
+  const std::string value = tunables && *tunables ? std::string(tunables) + ":glibc.malloc.hugetlb=1" : "glibc.malloc.hugetlb=1";
+  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+  execv("/proc/self/exe", argv);  // returns only on failure: go on as we are
+  unsetenv("GLIBC_TUNABLES");
+  if (tunables) setenv("GLIBC_TUNABLES", tunables, 1);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  reexec_with_huge_pages(argv);
   using namespace constrict;
   CLI::App app{"constrict " CONSTRICT_VERSION_STRING
                " - object reconstruction with the gamma-neighborhood graph (Veltkamp)"};
