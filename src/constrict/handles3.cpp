@@ -15,8 +15,9 @@
 namespace constrict::detail {
 namespace {
 
-// The fewest bridge faces (Mesh3Result::kBridgeRatio) around a region for it to be a handle's cut.
-constexpr int kMinCutBridges = 3;
+// The fewest bridge faces (Mesh3Result::kBridgeRatio) around a region, per loop it closes, for it
+// to be a handle's cut.
+constexpr int kMinCutBridges = 4;
 
 struct BridgeCount {
   int faces = 0;
@@ -90,9 +91,12 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
         if (alive_before(t) != alive_before(m)) count(before, t, i);
         if (b.alive(t) != b.alive(m)) count(after, t, i);
       }
-    // A cut shows as a few long faces at least (a tube two spacings wide: several); one long face
-    // less is a sparse spot, not a handle (a random quarter of a genus-0 model).
-    const bool keep = after.faces < before.faces && before.faces >= kMinCutBridges;
+    // A cut shows as a few long faces at least (a tube two spacings wide: several), for each loop
+    // the region closes (dF = 4 per loop); one long face less is a sparse spot, not a handle (a
+    // random quarter of a genus-0 model), and a region closing two loops across 7 long faces held
+    // a false one (a noisy chain).
+    const long long loops = std::max(1LL, dF / 4);
+    const bool keep = after.faces < before.faces && before.faces >= kMinCutBridges * loops;
     if (keep && log) {
       h.bridges_before = before.faces;
       h.bridges_after = after.faces;
