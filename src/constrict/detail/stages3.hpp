@@ -164,6 +164,7 @@ bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt
 
 struct Carve3Stats {
   std::size_t changed = 0, regions = 0, undone = 0;  // tetrahedra kept removed / added; ...
+  std::size_t trials = 0;  // single toggles the local repair tried (all regions of the pass)
 };
 // Removes the surface-connected regions of body tetrahedra labelled outside (confidence >=
 // min_conf), keeping each region's removals up to its last valid state (closed 2-manifold of
