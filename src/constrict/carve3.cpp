@@ -68,7 +68,6 @@ class Regions {
       const std::size_t F0 = F_;
       peel_region();
       if (local_repair_) local_search();
-      flush();
       repair_and_settle();
       if (rule_ == Rule::Handles) decide_region(F0);
       for (int t : touched_) touched_at_[uz(t)] = 0;
@@ -259,13 +258,14 @@ class Regions {
     flush();
   }
 
-  // Fill: when the region's end state is not valid only at a few vertices, single toggles at those
-  // vertices (adding an outside tetrahedron of the vertex, or taking back one the region added),
-  // each time the one that leaves the fewest non-manifold vertices, while that number drops.
-  // All regions of a pass together: a bound linear in the points (noisy samples have a pocket of
-  // inside tetrahedra every few points, each of which may try up to kLocalTrials toggles; measured:
-  // at most 0.6 trials per point, noisy frames and igea with noise).
+  // The local search's trials of all regions of a pass together: a bound linear in the points
+  // (noisy samples have a pocket of inside tetrahedra every few points, each of which may try up to
+  // kLocalTrials toggles; measured: at most 0.6 trials per point, noisy frames and igea with noise).
   std::size_t trial_budget() const { return kLocalTrialsPerPoint * b_.n + kLocalTrials; }
+  // Fill and handle closing: when the region's end state is not valid only at a few vertices,
+  // single toggles at those vertices (adding an outside tetrahedron of the vertex, or taking back
+  // one the region added; for a handle also a dimple), each time the one that leaves the fewest
+  // non-manifold vertices, while that number drops (for a handle: or stays, under a tabu list).
   std::size_t defect() const {
     if (rule_ == Rule::Handles) return nbad_;
     const std::size_t dF = F_ > targetF_ ? F_ - targetF_ : targetF_ - F_;
@@ -274,13 +274,13 @@ class Regions {
   void local_search() {
     flush();
     if (valid_now()) return;
-    const std::size_t max_bad = rule_ == Rule::Handles ? kLocalMaxBadHandles : kLocalMaxBad;
+    const bool handles = rule_ == Rule::Handles;
+    const std::size_t max_bad = handles ? kLocalMaxBadHandles : kLocalMaxBad;
     if (nbad_ > max_bad) return;
-    const int max_steps = rule_ == Rule::Handles ? static_cast<int>(2 * max_bad) : kLocalSteps;
+    const int max_steps = handles ? static_cast<int>(2 * max_bad) : kLocalSteps;
     // Trials (each re-evaluates the links of 4 vertices) per region: a bound for the stars of
     // degenerate inputs with thousands of tetrahedra at one point.
     std::size_t trials = 0;
-    const bool handles = rule_ == Rule::Handles;
     std::set<int> tabu;
     std::vector<int> mine = pending_;  // the region's additions since the last valid state, sorted
     std::sort(mine.begin(), mine.end());
@@ -301,8 +301,7 @@ class Regions {
           const bool alive = b_.alive(t);
           // Only the region's own additions are taken back; for a handle also a body tetrahedron
           // at the surface (a dimple that uncovers a point the closed loop buried).
-          if (alive && !std::binary_search(mine.begin(), mine.end(), t) &&
-              (rule_ != Rule::Handles || b_.surface_faces_of(t) == 0))
+          if (alive && !std::binary_search(mine.begin(), mine.end(), t) && (!handles || b_.surface_faces_of(t) == 0))
             continue;
           if (handles && tabu.count(t)) continue;
           if (++trials > kLocalTrials || ++s_.trials > trial_budget()) break;

@@ -184,11 +184,10 @@ using HandleDecision = std::function<bool(const Body3& body, const std::vector<i
 // outside in the body (opening tunnels), under the manifold rule without the genus-0 condition; a
 // region's change is kept only when it adds a handle and decide agrees. Returns the tetrahedra changed.
 // local_repair: a closing region whose end state has a few non-manifold points is repaired by
-// single toggles (dimples at buried points, voids the closed cut trapped filled) before its undo
-// (noisy samples); off for the run on several parts, whose seals are decided by the parts.
+// single toggles (also dimples that free buried points) before its undo (noisy samples); off for
+// the run on several parts, whose seals are decided by the parts.
 std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const HandleDecision& decide,
-                     Carve3Stats& closed, Carve3Stats& opened,
-                     bool local_repair = true);
+                     Carve3Stats& closed, Carve3Stats& opened, bool local_repair = true);
 // The decision of the engine (handles3.cpp): a change is kept when it lowers the bridge measure
 // of the surface around it; with part_of (the parts of the gap rule, per point; may be null) also
 // a sealed cavity that leaves fewer surfaces holding points of two parts.
