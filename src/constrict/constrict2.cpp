@@ -21,13 +21,16 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/refine2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/edge_key.hpp"
+#include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/sparse_segments.hpp"
 #include "cgal/detail/delaunay_local.hpp"
 
 namespace constrict {
@@ -35,6 +38,7 @@ namespace {
 using detail::closed_segments_meet;
 using detail::on_closed_segment;
 using detail::same_side_collinear;
+using detail::orient2_fast;
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) {
@@ -105,64 +109,186 @@ struct TriEntryLess {
 using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLess>;
 
 
-// Uniform bucket grid over the bounding box. Cell indices are monotone in the coordinates, so a
-// bounding-box range query finds every point / registered segment inside the box (exactly).
+// Bucket grids of the points and of the boundary edges, for the fallback's local tests. Cell
+// indices are monotone in the coordinates, so a query over the cells a shape can touch finds
+// every point / registered segment in it (exact candidate sets for the exact tests). Two layers:
+// - coarse: area-sized cells, every cell an array slot (always);
+// - fine: cells of twice the median boundary edge, only non-empty cells stored (a CellTable for
+//   the points, SparseSegments for the edges), when that edge is far below the coarse cell: on a
+//   curve sample the coarse cells hold O(√N) points each, and every side search read hundreds of
+//   them (the noisy curve's fallback, docs/benchmarks.md). Near queries read the fine cells; a
+//   search that grows far (a pair with an empty side) goes on over the coarse cells, where an
+//   empty plane is few cells.
+// Either layer offers every point and edge a query can need, so the decisions are the same.
 class Grid {
  public:
-  void build(const PointSet& pts) {
+  void build(const PointSet& pts, double median_edge) {
     const std::size_t n = pts.size();
-    minx_ = maxx_ = pts[0][0];
-    miny_ = maxy_ = pts[0][1];
+    double minx = pts[0][0], maxx = pts[0][0], miny = pts[0][1], maxy = pts[0][1];
     for (std::size_t i = 1; i < n; ++i) {
-      minx_ = std::min(minx_, pts[i][0]); maxx_ = std::max(maxx_, pts[i][0]);
-      miny_ = std::min(miny_, pts[i][1]); maxy_ = std::max(maxy_, pts[i][1]);
+      minx = std::min(minx, pts[i][0]); maxx = std::max(maxx, pts[i][0]);
+      miny = std::min(miny, pts[i][1]); maxy = std::max(maxy, pts[i][1]);
     }
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
-    const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
-    hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
-    nx_ = detail::cell_count(w, hcs_, kMaxCells);
-    ny_ = detail::cell_count(h, hcs_, kMaxCells);
-    const std::size_t nc = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
-    start_.assign(nc + 1, 0);
-    std::vector<std::size_t> cell(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      cell[i] = index(cx(pts[i][0]), cy(pts[i][1]));
-      ++start_[cell[i] + 1];
+    const double w = detail::half_span(minx, maxx), h = detail::half_span(miny, maxy);
+    const double mag = detail::box_magnitude(minx, miny, maxx, maxy);
+    const double hcs = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
+    coarse_.frame = detail::GridFrame{minx, miny, mag, hcs, detail::cell_count(w, hcs, kMaxCells), detail::cell_count(h, hcs, kMaxCells)};
+    const double fine = std::max(median_edge, Sparse::min_half_cell(w, h, mag));
+    fine_on_ = std::isfinite(fine) && fine > 0 && fine <= kFineRatio * hcs;
+    std::vector<int> cell(n);
+    const std::size_t nc = static_cast<std::size_t>(coarse_.frame.nx) * static_cast<std::size_t>(coarse_.frame.ny);
+    for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<int>(coarse_.index(pts[i]));
+    coarse_.group(cell, nc);
+    if (fine_on_) {
+      fine_.frame = detail::GridFrame{minx, miny, mag, fine, detail::cell_count(w, fine, kMaxFineCells), detail::cell_count(h, fine, kMaxFineCells)};
+      fine_.table.clear(n / 2);
+      for (std::size_t i = 0; i < n; ++i) cell[i] = fine_.table.insert(fine_.frame.cx(pts[i][0]), fine_.frame.cy(pts[i][1]));
+      fine_.group(cell, fine_.table.size());
+      edges_fine_.reset(minx, miny, maxx, maxy, fine);
+      // The fine search stops where its cells would outnumber a few coarse cells' points.
+      std::size_t occupied = 0;
+      for (std::size_t c = 0; c < nc; ++c) occupied += coarse_.start[c + 1] > coarse_.start[c];
+      const double per_cell = static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(occupied, 1));
+      fine_cells_ = kFineBudget * per_cell;
+      fine_rings_ = static_cast<int>(std::ceil(0.5 * (std::sqrt(fine_cells_) - 1)));
     }
-    for (std::size_t c = 0; c < nc; ++c) start_[c + 1] += start_[c];
-    ids_.assign(n, 0);
-    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) ids_[fill[cell[i]]++] = static_cast<int>(i);
-    edges_in_cell_.assign(nc, {});
-    frame_ = detail::GridFrame{minx_, miny_, detail::box_magnitude(minx_, miny_, maxx_, maxy_), hcs_, nx_, ny_};
+    edges_coarse_.assign(nc, {});
   }
-  int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
-  int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
-  std::size_t index(int i, int j) const {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
-  }
-  int nx() const { return nx_; }
-  int ny() const { return ny_; }
-  double cell_size() const { return 2 * hcs_; }  // +inf at most for a box near the double range
-  template <class F> void points_in_cell(int i, int j, F&& f) const {
-    const std::size_t c = index(i, j);
-    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) f(ids_[k]);
-  }
-  std::vector<int>& edges(int i, int j) { return edges_in_cell_[index(i, j)]; }
+  /// The coarse cell edge (the search radii add it as a margin).
+  double cell_size() const { return coarse_.cell_size(); }
 
-  // The cells a segment or triangle can touch, row by row (grid_cells.hpp, for_cells_of_hull).
-  template <class F> void for_cells_of_hull(const double* const* v, int m, F&& f) const {
-    detail::for_cells_of_hull(frame_, v, m, f);
+  /// Ring search around (x, y): calls visit(p) for the points of the square rings of cells
+  /// k = 0, 1, ... around the cell of (x, y), skipping a cell wholly farther than limit() (read
+  /// before each cell; it may shrink as the search goes), until a ring lies wholly beyond limit()
+  /// or done() holds (asked after each cell). visit must not care about order or repeats (a
+  /// minimum, a flag): a search that outgrows the fine cells starts again on the coarse ones.
+  /// Returns a distance within which every point was visited (limit() < it), or HUGE_VAL when
+  /// every ring was read or done() ended the search.
+  template <class Limit, class Visit, class Done> double rings(double x, double y, Limit&& limit, Visit&& visit, Done&& done) const {
+    if (fine_on_) {
+      const double r = fine_.rings(x, y, fine_rings_, limit, visit, done);
+      if (r >= 0) return r;
+    }
+    return coarse_.rings(x, y, std::max(coarse_.frame.nx, coarse_.frame.ny), limit, visit, done);
+  }
+  /// Calls f(p) for every point that can lie in the closed convex hull of the m vertices v
+  /// (m = 2, 3), and maybe more, until done() (asked after each cell).
+  template <class F, class Done> void points_in_hull(const double* const* v, int m, F&& f, Done&& done) const {
+    const Layer& l = fine_on_ && fine_.hull_cells(v, m) <= fine_cells_ ? fine_ : coarse_;
+    bool stop = false;
+    detail::for_cells_of_hull(l.frame, v, m, [&](int i, int j) {
+      if (stop) return;
+      l.points_in_cell(i, j, f);
+      stop = done();
+    });
+  }
+  void add_edge(const double* a, const double* b, int id) {
+    if (fine_on_) edges_fine_.add(a, b, id);
+    const auto& g = coarse_.frame;
+    for (int j = g.cy(std::min(a[1], b[1])); j <= g.cy(std::max(a[1], b[1])); ++j)
+      for (int i = g.cx(std::min(a[0], b[0])); i <= g.cx(std::max(a[0], b[0])); ++i)
+        edges_coarse_[coarse_.index(i, j)].push_back(id);
+  }
+  /// Calls f(id) for the registered edges that can meet segment ab (maybe more than once) until f
+  /// returns true; true if it did.
+  template <class F> bool any_edge(const double* a, const double* b, F&& f) {
+    const double* seg[2] = {a, b};
+    if (fine_on_ && fine_.hull_cells(seg, 2) <= fine_cells_) return edges_fine_.any(a, b, f);
+    bool done = false;
+    detail::for_cells_of_hull(coarse_.frame, seg, 2, [&](int i, int j) {
+      for (const int id : edges_coarse_[coarse_.index(i, j)])
+        if (done || (done = f(id))) return;
+    });
+    return done;
   }
 
  private:
-  static constexpr int kMaxCells = 4096;  // per axis
-  double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
-  int nx_ = 1, ny_ = 1;
-  detail::GridFrame frame_{0, 0, 0, 1, 1, 1};  // the same, for for_cells_of_hull
-  std::vector<std::size_t> start_;
-  std::vector<int> ids_;
-  std::vector<std::vector<int>> edges_in_cell_;
+  using Sparse = detail::SparseSegments<int>;
+  // One layer: its cells, and the points grouped by cell (by dense index or by table slot).
+  struct Layer {
+    detail::GridFrame frame{0, 0, 0, 1, 1, 1};
+    detail::CellTable table;  // fine layer: cell -> slot
+    bool sparse = false;
+    std::vector<std::size_t> start;
+    std::vector<int> ids;
+    double cell_size() const { return 2 * frame.half_cell; }  // +inf at most for a box near the double range
+    std::size_t index(int i, int j) const {
+      return static_cast<std::size_t>(j) * static_cast<std::size_t>(frame.nx) + static_cast<std::size_t>(i);
+    }
+    std::size_t index(const double* p) const { return index(frame.cx(p[0]), frame.cy(p[1])); }
+    void group(const std::vector<int>& cell, std::size_t nc) {
+      sparse = table.size() > 0;
+      start.assign(nc + 1, 0);
+      for (const int c : cell) ++start[static_cast<std::size_t>(c) + 1];
+      for (std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
+      ids.assign(cell.size(), 0);
+      std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+      for (std::size_t i = 0; i < cell.size(); ++i) ids[fill[static_cast<std::size_t>(cell[i])]++] = static_cast<int>(i);
+    }
+    template <class F> void points_in_cell(int i, int j, F&& f) const {
+      const int c = sparse ? table.find(i, j) : static_cast<int>(index(i, j));
+      if (c < 0) return;
+      for (std::size_t k = start[static_cast<std::size_t>(c)]; k < start[static_cast<std::size_t>(c) + 1]; ++k) f(ids[k]);
+    }
+    // About the cells for_cells_of_hull reads for the hull of v: its strip along the edges and
+    // the cells inside, at most its bounding box.
+    double hull_cells(const double* const* v, int m) const {
+      int i0 = frame.cx(v[0][0]), i1 = i0, j0 = frame.cy(v[0][1]), j1 = j0;
+      for (int k = 1; k < m; ++k) {
+        const int i = frame.cx(v[k][0]), j = frame.cy(v[k][1]);
+        i0 = std::min(i0, i); i1 = std::max(i1, i);
+        j0 = std::min(j0, j); j1 = std::max(j1, j);
+      }
+      const double cols = static_cast<double>(i1) - i0 + 1, rows = static_cast<double>(j1) - j0 + 1;
+      double inside = 0;
+      if (m == 3) {
+        const double cs = cell_size();
+        inside = 0.5 * std::fabs((v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0])) / cs / cs;
+      }
+      return std::min(cols * rows, 3 * (cols + rows) + inside);
+    }
+    // Grid::rings on this layer, out to ring max_k: -1 if the search would go beyond it.
+    template <class Limit, class Visit, class Done>
+    double rings(double x, double y, int max_k, Limit&& limit, Visit&& visit, Done&& done) const {
+      const int ci = frame.cx(x), cj = frame.cy(y);
+      const double cs = cell_size();
+      for (int k = 0; k <= max_k; ++k) {
+        if (k >= 2) {
+          const double d = static_cast<double>(k - 1) * cs;
+          if (d > limit()) return d;
+        }
+        for (int jj = cj - k; jj <= cj + k; ++jj) {
+          if (jj < 0 || jj >= frame.ny) continue;
+          const bool edge_row = (jj == cj - k || jj == cj + k);
+          for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
+            if (ii >= 0 && ii < frame.nx && cell_within(ii - ci, jj - cj, cs, limit())) points_in_cell(ii, jj, visit);
+            if (done()) return HUGE_VAL;
+            if (k == 0) break;
+          }
+        }
+      }
+      return max_k >= std::max(frame.nx, frame.ny) ? HUGE_VAL : -1;
+    }
+  };
+  // Can a point of the cell di, dj cells away from a point's own cell lie within `limit` of it?
+  // A whole cell less per axis (the point may sit anywhere in its cell, and cell_of rounds), so a
+  // cell is skipped only when all of it is farther. Compared in squared cell units (no root).
+  static bool cell_within(int di, int dj, double cs, double limit) {
+    const double x = std::max(0, std::abs(di) - 1), y = std::max(0, std::abs(dj) - 1);
+    const double r = limit / cs;
+    return !(x * x + y * y > r * r);
+  }
+  static constexpr int kMaxCells = 4096;        // per axis, coarse
+  static constexpr int kMaxFineCells = 1 << 28;  // per axis, fine (SparseSegments' bound)
+  static constexpr double kFineRatio = 0.25;     // fine layer when its cells are at most this fraction
+  static constexpr double kFineBudget = 16;      // fine cells read per coarse cell's points, at most
+  Layer coarse_, fine_;
+  bool fine_on_ = false;
+  double fine_cells_ = 0;  // fine cells a query may read (kFineBudget coarse cells' points)
+  int fine_rings_ = 0;     // the rings of about that many cells
+  std::vector<std::vector<int>> edges_coarse_;
+  Sparse edges_fine_;  // with the fine layer (short queries)
 };
 
 }  // namespace
@@ -357,7 +483,18 @@ struct Constrictor2::Impl {
     if (fb_ready) return;
     fb_ready = true;
     build_adjacency();
-    grid.build(*pts);
+    // The median boundary edge (largest coordinate difference) sizes a sparse grid's cells.
+    std::vector<double> len;
+    len.reserve(n_onb);
+    for (std::size_t v = 0; v < n; ++v)
+      if (onb[v]) {
+        const double* p = P(static_cast<int>(v));
+        const double* q = P(nxt[v]);
+        len.push_back(std::max(std::fabs(p[0] - q[0]), std::fabs(p[1] - q[1])));
+      }
+    const auto mid = len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2);
+    std::nth_element(len.begin(), mid, len.end());
+    grid.build(*pts, len.empty() ? 0.0 : *mid);
     out_edge.assign(n, -1);
     for (std::size_t v = 0; v < n; ++v)
       if (onb[v]) out_edge[v] = add_edge(static_cast<int>(v), nxt[v]);
@@ -406,11 +543,7 @@ struct Constrictor2::Impl {
   int add_edge(int u, int v) {
     const int id = static_cast<int>(bedges.size());
     bedges.push_back(BEdge{u, v, true});
-    const double* a = P(u);
-    const double* b = P(v);
-    for (int j = grid.cy(std::min(a[1], b[1])); j <= grid.cy(std::max(a[1], b[1])); ++j)
-      for (int i = grid.cx(std::min(a[0], b[0])); i <= grid.cx(std::max(a[0], b[0])); ++i)
-        grid.edges(i, j).push_back(id);
+    grid.add_edge(P(u), P(v), id);
     return id;
   }
 
@@ -419,7 +552,7 @@ struct Constrictor2::Impl {
   bool edge_blocks(const BEdge& e, int s, int t) const {
     if (e.u == s || e.v == s) {
       const int o = e.u == s ? e.v : e.u;
-      return orient2(P(s), P(o), P(t)) == 0 && same_side_collinear(P(s), P(o), P(t));
+      return orient2_fast(P(s), P(o), P(t)) == 0 && same_side_collinear(P(s), P(o), P(t));
     }
     return closed_segments_meet(P(e.u), P(e.v), P(s), P(t));
   }
@@ -432,33 +565,26 @@ struct Constrictor2::Impl {
     const double* pa = P(a);
     const double* pb = P(b);
     const double* py = P(y);
-    if (orient2(pa, pb, py) <= 0) return false;
-    // Only the cells the triangle and its new edges cross (Grid::for_cells_of_hull): the same
-    // points and edges are tested as over the whole bounding box, far fewer cells are read.
+    if (orient2_fast(pa, pb, py) <= 0) return false;
+    // Only the cells the triangle and its new edges cross (Grid::points_in_hull, any_edge): the
+    // same points and edges are tested as over the whole bounding box, far fewer cells are read.
     const double* tri[3] = {pa, pb, py};
     bool empty = true;
-    grid.for_cells_of_hull(tri, 3, [&](int i, int j) {
-      if (!empty) return;
-      grid.points_in_cell(i, j, [&](int p) {
-        if (!empty || p == a || p == b || p == y) return;
-        const double* pp = P(p);
-        if (orient2(pa, pb, pp) >= 0 && orient2(pb, py, pp) >= 0 && orient2(py, pa, pp) >= 0) empty = false;
-      });
-    });
+    grid.points_in_hull(
+        tri, 3,
+        [&](int p) {
+          if (!empty || p == a || p == b || p == y) return;
+          const double* pp = P(p);
+          if (orient2_fast(pa, pb, pp) >= 0 && orient2_fast(pb, py, pp) >= 0 && orient2_fast(py, pa, pp) >= 0) empty = false;
+        },
+        [&] { return !empty; });
     if (!empty) return false;
-    bool blocked = false;
-    for (const int s : {a, b}) {
-      const double* seg[2] = {P(s), py};
-      grid.for_cells_of_hull(seg, 2, [&](int i, int j) {
-        if (blocked) return;
-        for (int id : grid.edges(i, j)) {
-          const BEdge& e = bedges[U(id)];
-          if (!e.alive || (e.u == a && e.v == b)) continue;
-          if (edge_blocks(e, s, y)) { blocked = true; return; }
-        }
-      });
-      if (blocked) return false;
-    }
+    for (const int s : {a, b})
+      if (grid.any_edge(P(s), py, [&](int id) {
+            const BEdge& e = bedges[U(id)];
+            return e.alive && !(e.u == a && e.v == b) && edge_blocks(e, s, y);
+          }))
+        return false;
     return true;
   }
 
@@ -492,51 +618,13 @@ struct Constrictor2::Impl {
     return out;
   }
 
-  // Side values of pair (i, j), i < j (spec §2.1; exact signs), restricted to the points within
-  // distance `radius` of the midpoint (ring search on the grid; the true minimum on a side is
-  // found whenever it is attained inside the radius). Points with apex value below g lie within
-  // below_bound(|ij|, g) of the midpoint (they see ij under a wider angle), which bounds the
-  // searches.
-  void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
-    double searched = 0;
-    bool partial = false;
-    search_sides(i, j, radius, -HUGE_VAL, ga, gb, blocked, searched, partial);
-  }
-  // Cached side values: the stored search radius says which queries the entry answers. A partial
-  // entry holds values found on both sides below its stop threshold (upper bounds of the minima,
-  // search_sides), enough for every query whose threshold lies above them.
-  struct SideCache { double ga, gb; bool blocked; double radius; bool partial; };
-  std::unordered_map<std::uint64_t, SideCache> side_cache;
-  void sides_cached(int i, int j, double radius, double stop_below, double& ga, double& gb, bool& blocked) {
-    auto it = side_cache.find(detail::edge_key(i, j));
-    if (it != side_cache.end() && (it->second.radius >= radius || it->second.blocked) &&
-        (!it->second.partial || (it->second.ga < stop_below && it->second.gb < stop_below))) {
-      ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
-      return;
-    }
-    double searched = 0;
-    bool partial = false;
-    search_sides(i, j, radius, stop_below, ga, gb, blocked, searched, partial);
-    side_cache[detail::edge_key(i, j)] = SideCache{ga, gb, blocked, searched, partial};
-  }
-  // The smallest apex value on each side of ij among the points within `radius` of the midpoint
-  // (see side_values_within), or -- as soon as both sides have a value below stop_below -- those
-  // values (partial: the minima are at most these, which decides Δ < stop_below). A long pair
-  // across a sampled band has a whole stretch of the band in its diametral disk, and the exact
-  // minima read all of it, while two witnesses are usually among the first cells reached (the
-  // 2D noisy-curve fallback, docs/benchmarks.md).
-  void search_sides(int i, int j, double radius, double stop_below, double& ga, double& gb, bool& blocked, double& searched,
-                    bool& partial) {
-    const double* a = P(i);
-    const double* b = P(j);
-    ga = 1; gb = 1; blocked = false;
-    const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
-    const int ci = grid.cx(mx), cj = grid.cy(my);
-    const double cs = grid.cell_size();
-    const int kmax = std::max(grid.nx(), grid.ny());
-    auto visit = [&](int p) {
+  // The visitor that folds point p into the side values of pair (i, j).
+  auto side_visitor(int i, int j, double& ga, double& gb, bool& blocked) const {
+    return [this, i, j, &ga, &gb, &blocked](int p) {
       if (p == i || p == j) return;
-      const int o = orient2(a, b, P(p));
+      const double* a = P(i);
+      const double* b = P(j);
+      const int o = orient2_fast(a, b, P(p));
       if (o == 0) {
         if (diametral_side2(a, b, P(p)) < 0) blocked = true;
         return;
@@ -544,31 +632,99 @@ struct Constrictor2::Impl {
       const double g = apex_gamma2(a, b, P(p));
       if (o > 0) ga = std::min(ga, g); else gb = std::min(gb, g);
     };
+  }
+
+  // Side values of pair (i, j), i < j (spec §2.1; exact signs), over the points within distance
+  // `radius` of the midpoint (ring search on the grid; the true minimum on a side is found
+  // whenever it is attained inside the radius). Points with apex value below g lie within
+  // below_bound(|ij|, g) of the midpoint (they see ij under a wider angle), which ends the search
+  // early once both sides have a value.
+  void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked) {
+    const double* a = P(i);
+    const double* b = P(j);
+    ga = 1; gb = 1; blocked = false;
+    const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
     const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-    auto cut = [&](double g) { return below_bound(len, g) + cs; };
-    bool exhaustive = true;
-    partial = false;
-    for (int k = 0; k <= kmax && !blocked && !partial; ++k) {
-      if (k >= 2) {
-        const double d = static_cast<double>(k - 1) * cs;
-        // Both sides complete: every point with a smaller value is nearer than the cutoff.
-        if (d > std::max(cut(ga), cut(gb))) break;
-        if (d > radius) { exhaustive = false; break; }
-      }
-      for (int jj = cj - k; jj <= cj + k && !partial; ++jj) {
-        if (jj < 0 || jj >= grid.ny()) continue;
-        const bool edge_row = (jj == cj - k || jj == cj + k);
-        for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
-          // A cell wholly beyond the search radius and the cutoff holds nothing to find (the
-          // cutoff only shrinks as the minima fall): the ring's corners of a long pair's disk.
-          if (ii >= 0 && ii < grid.nx() && cell_within(ii - ci, jj - cj, cs, std::min(radius, std::max(cut(ga), cut(gb)))))
-            grid.points_in_cell(ii, jj, visit);
-          if (ga < stop_below && gb < stop_below) { partial = true; break; }
-          if (k == 0) break;
-        }
-      }
+    const double cs = grid.cell_size();
+    auto cut = [&] { return std::max(below_bound(len, ga), below_bound(len, gb)) + cs; };
+    // A cell wholly beyond the radius and the cutoff holds nothing to find (the cutoff only
+    // shrinks as the minima fall).
+    grid.rings(mx, my, [&] { return std::min(radius, cut()); }, side_visitor(i, j, ga, gb, blocked), [&] { return blocked; });
+  }
+  // Side values of pair (i, j) for a threshold t < 0 (delta_at_least): on each side the exact
+  // minimum when it is below t, else a value >= t; or, once both sides have a value below t, those
+  // (partial: upper bounds of the minima, which decide Δ < t). Every point with apex value below
+  // t lies in the trapezoid lens(|ij|, t) on its side of the segment, thin at the segment's ends.
+  // So the search reads the cells of trapezoids on the segment: thin ones on both sides first,
+  // then on each side the one of that side's value so far (or of t). A long pair's diametral disk
+  // can hold long stretches of a sampled band, on both sides and far from the segment but near
+  // its ends; the trapezoids read only a few points there (the noisy curve's fallback,
+  // docs/benchmarks.md).
+  // Cached per pair: an entry answers every threshold up to the one it was searched for (a partial
+  // one, every threshold above both its values).
+  struct SideCache { double ga, gb; bool blocked; double below; bool partial, one_sided; };
+  static bool answers(const SideCache& c, double t) {
+    if (c.blocked) return true;
+    if (c.partial) return c.ga < t && c.gb < t;
+    return t <= c.below && (!c.one_sided || std::min(c.ga, c.gb) < t);
+  }
+  std::unordered_map<std::uint64_t, SideCache> side_cache;
+  void sides_below(int i, int j, double t, double& ga, double& gb, bool& blocked) {
+    const std::uint64_t key = detail::edge_key(i, j);
+    if (const auto it = side_cache.find(key);
+        it != side_cache.end() && answers(it->second, t)) {
+      ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
+      return;
     }
-    searched = exhaustive ? HUGE_VAL : radius;
+    const double* a = P(i);
+    const double* b = P(j);
+    ga = 1; gb = 1; blocked = false;
+    auto visit = side_visitor(i, j, ga, gb, blocked);
+    // The points under one side's arc for threshold tv (ApexLens2), up to height cap: the cells
+    // of its trapezoid (cut at that height), and in them the test of each point's offsets.
+    bool partial = false;  // both sides below t: Δ < t decided, the search ends
+    auto done = [&] { return blocked || partial; };
+    auto scan = [&](double side, double tv, double cap) {
+      const detail::ApexLens2 lens(a, b, tv);
+      const double h = std::min(lens.height(), cap);
+      double c[2], d[2];
+      lens.trapezoid(side, h, c, d);
+      const double* t1[3] = {a, b, c};
+      const double* t2[3] = {a, c, d};
+      auto inside = [&](int p) {
+        if (done() || !lens.may_hold(P(p), side, h)) return;
+        visit(p);
+        partial = ga < t && gb < t;
+      };
+      grid.points_in_hull(t1, 3, inside, done);
+      grid.points_in_hull(t2, 3, inside, done);
+      return h;
+    };
+    // Layers of growing height, nearest the segment first (the widest angles, so the smallest
+    // values, are there); a side is complete once its layers reach the top of the arc of its
+    // value so far (or of t): then its value is exact below t. A side without a value below t
+    // is not completed once the other side has one: delta_at_least then asks only whether it has
+    // a point below -m > 0 > t (witness_below), which a point below t would be too; the entry
+    // answers no other threshold then.
+    const double full = detail::ApexLens2(a, b, t).height();
+    double scanned[2] = {-1, -1};  // height read on the left, right side
+    bool one_sided = false;
+    for (const double part : {1.0 / 64, 1.0 / 8, 1.0}) {
+      for (int k = 0; k < 2 && !done(); ++k) {
+        const double g = std::min(k == 0 ? ga : gb, t), other = k == 0 ? gb : ga;
+        if (scanned[k] >= detail::ApexLens2(a, b, g).height()) continue;
+        if (g == t && other < t) {
+          one_sided = true;
+          continue;
+        }
+        scanned[k] = scan(k == 0 ? 1 : -1, g, part * full);
+      }
+      if (done()) break;
+    }
+    if (!done())
+      one_sided = one_sided && !(scanned[0] >= detail::ApexLens2(a, b, std::min(ga, t)).height() &&
+                                 scanned[1] >= detail::ApexLens2(a, b, std::min(gb, t)).height());
+    side_cache[key] = SideCache{ga, gb, blocked, t, partial, one_sided && !done()};
   }
   // Every point whose apex value for a segment of length len is below g lies within this distance
   // of the segment's midpoint (1.001: margin for the rounding of len and of the distances): for
@@ -608,9 +764,8 @@ struct Constrictor2::Impl {
     const int i = std::min(u, v), j = std::max(u, v);
     double ga, gb;
     bool blocked;
-    // Every point with apex value < gamma0 lies within reach(gamma0): m below is the exact minimum
-    // whenever m < gamma0.
-    sides_cached(i, j, reach(i, j, gamma0), gamma0, ga, gb, blocked);
+    // m below is the exact minimum whenever m < gamma0 (sides_below).
+    sides_below(i, j, gamma0, ga, gb, blocked);
     if (blocked) return false;
     // Both sides below gamma0: the smaller m < gamma0 and the other side < gamma0 < 0 <= -m, out
     // by the magnitude rule (also from a partial search).
@@ -639,42 +794,25 @@ struct Constrictor2::Impl {
     const double* a = P(i);
     const double* b = P(j);
     const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
-    const int ci = grid.cx(mx), cj = grid.cy(my);
-    const double cs = grid.cell_size();
-    const int kmax = std::max(grid.nx(), grid.ny());
     const double far = reach(i, j, thr);
     bool found = false;
     auto visit = [&](int p) {
       if (found || p == i || p == j) return;
-      const int o = orient2(a, b, P(p));
+      const int o = orient2_fast(a, b, P(p));
       if (o == 0) {
         if (diametral_side2(a, b, P(p)) < 0) found = true;
         return;
       }
       if (o == side && apex_gamma2(a, b, P(p)) < thr) found = true;
     };
-    for (int k = 0; k <= kmax && !found; ++k) {
-      if (k >= 2 && static_cast<double>(k - 1) * cs > far) break;
-      for (int jj = cj - k; jj <= cj + k && !found; ++jj) {
-        if (jj < 0 || jj >= grid.ny()) continue;
-        const bool edge_row = (jj == cj - k || jj == cj + k);
-        for (int ii = ci - k; ii <= ci + k; ii += (edge_row ? 1 : 2 * k)) {
-          if (ii >= 0 && ii < grid.nx() && cell_within(ii - ci, jj - cj, cs, far)) grid.points_in_cell(ii, jj, visit);
-          if (k == 0) break;
-        }
-      }
-    }
+    // The DT neighbours of the pair's ends first: on a long pair's other side, the points next
+    // to its ends see it under a right angle or so, witnesses for any threshold above 0.
+    for (const int w : {i, j})
+      for (int q = adj_off[U(w)]; q < adj_off[U(w) + 1] && !found; ++q) visit(adj[U(q)]);
+    if (found) return true;
+    grid.rings(mx, my, [far] { return far; }, visit, [&] { return found; });
     return found;
   }
-  // Can a point of the cell di, dj cells away from a point's own cell lie within `limit` of it?
-  // A whole cell less per axis (the point may sit anywhere in its cell, and cell_of rounds), so a
-  // cell is skipped only when all of it is farther. Compared in squared cell units (no root).
-  static bool cell_within(int di, int dj, double cs, double limit) {
-    const double x = std::max(0, std::abs(di) - 1), y = std::max(0, std::abs(dj) - 1);
-    const double r = limit / cs;
-    return !(x * x + y * y > r * r);
-  }
-
   // ---------------------------------------------------------------- local constriction
   // Graph predicate for the edges (apex, boundary vertex) of a candidate triangle.
   enum class Graph { Gamma0, Degree4, Complete };
@@ -685,11 +823,38 @@ struct Constrictor2::Impl {
     return delta_at_least(u, v, gamma0);
   }
 
+  // Δ(u, v) < gamma0 (< 0) shown by the DT neighbours of u and v alone: a point on the open
+  // segment, or points with apex value below gamma0 on both sides (the magnitude rule, as for a
+  // partial search in delta_at_least). Exact; false when these few points do not decide it.
+  bool outside_near(int u, int v, double gamma0) {
+    if (is_dt_edge(u, v)) return false;
+    const double* a = P(u);
+    const double* b = P(v);
+    bool left = false, right = false;
+    for (const int w : {u, v})
+      for (int q = adj_off[U(w)]; q < adj_off[U(w) + 1]; ++q) {
+        const int p = adj[U(q)];
+        if (p == u || p == v) continue;
+        const int o = orient2_fast(a, b, P(p));
+        if (o == 0) {
+          if (diametral_side2(a, b, P(p)) < 0) return true;
+          continue;
+        }
+        if ((o > 0 ? left : right) || !(apex_gamma2(a, b, P(p)) < gamma0)) continue;
+        (o > 0 ? left : right) = true;
+        if (left && right) return true;
+      }
+    return false;
+  }
+
   void push_candidate(Heap& h, Graph g, double gamma0, int a, int z) {
     const int b = nxt[U(a)];
     if (b < 0 || onb[U(z)]) return;
-    if (orient2(P(a), P(b), P(z)) <= 0) return;
-    // The geometric test is cheaper than the side-value searches of in_graph().
+    if (orient2_fast(P(a), P(b), P(z)) <= 0) return;
+    // Witnesses among the endpoints' neighbours rule most pairs out at once (a long pair across
+    // an empty interior has very obtuse angles behind both ends); then the geometric test, which
+    // is cheaper than the side-value searches of in_graph().
+    if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return;
     if (!valid_insert(a, b, z)) return;
     if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
     h.push(Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0});
@@ -813,13 +978,13 @@ struct Constrictor2::Impl {
       return a[0] != b[0] ? std::fabs(a[0] - po[0]) < std::fabs(b[0] - po[0]) : a[1] < b[1];
     };
     std::sort(ord.begin(), ord.end(), [&](int p, int q) {
-      const int s = orient2(po, P(p), P(q));
+      const int s = orient2_fast(po, P(p), P(q));
       if (s != 0) return s > 0;
       return closer(p, q);
     });
     // Points on the last ray go outward-in so the polygon closes without overlap.
     std::size_t first_last = ord.size() - 1;
-    while (first_last > 0 && orient2(po, P(ord[first_last - 1]), P(ord.back())) == 0) --first_last;
+    while (first_last > 0 && orient2_fast(po, P(ord[first_last - 1]), P(ord.back())) == 0) --first_last;
     std::reverse(ord.begin() + static_cast<std::ptrdiff_t>(first_last), ord.end());
     ord.insert(ord.begin(), o);
     for (std::size_t i = 0; i < n; ++i) {

@@ -12,8 +12,14 @@
 #include <random>
 #include <vector>
 
+#include <map>
+#include <utility>
+
+#include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/segments2.hpp"
+#include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/sparse_segments.hpp"
 
@@ -189,6 +195,105 @@ TEST(GridCells, SparseSegmentsLongQueryOnFineCells) {
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
   EXPECT_EQ(seen, (std::vector<int>{1, 2}));
+}
+
+// CellTable against std::map: cells along curves and scattered ones (growth, collisions), far
+// apart and near the ends of the int range; slots are dense and in first-insertion order.
+TEST(GridCells, CellTableMatchesAMap) {
+  const unsigned seed = 11;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  detail::CellTable table;
+  table.clear();
+  std::map<std::pair<int, int>, int> ref;
+  for (int step = 0; step < 200000; ++step) {
+    int i, j;
+    switch (rng() % 3) {
+      case 0: {  // along a curve: neighbours of the last cells
+        const double t = static_cast<double>(step) * 1e-3;
+        i = static_cast<int>(1000 * std::cos(t)) + static_cast<int>(rng() % 3);
+        j = static_cast<int>(1000 * std::sin(t)) + static_cast<int>(rng() % 3);
+        break;
+      }
+      case 1:  // one column: the same i, many j (a poor hash clusters these)
+        i = 7;
+        j = static_cast<int>(rng() % 50000);
+        break;
+      default:  // anywhere, up to the ends of the range
+        i = static_cast<int>(rng() % 2147483647u);
+        j = static_cast<int>(rng() % 2147483647u);
+    }
+    if (rng() % 2) {
+      const auto it = ref.find({i, j});
+      ASSERT_EQ(table.find(i, j), it == ref.end() ? -1 : it->second) << "seed " << seed << " step " << step;
+    } else {
+      const auto [it, added] = ref.emplace(std::make_pair(i, j), static_cast<int>(ref.size()));
+      ASSERT_EQ(table.insert(i, j), it->second) << "seed " << seed << " step " << step << (added ? " (new)" : "");
+      ASSERT_EQ(table.size(), ref.size());
+    }
+  }
+  for (const auto& [cell, slot] : ref) ASSERT_EQ(table.find(cell.first, cell.second), slot);
+}
+
+// ApexLens2 against the definition: for random segments (lengths over many magnitudes, at
+// offsets far from the origin) and points, every point whose apex value lies below t must lie in
+// the trapezoid of its side (exact orientation tests against its corners, up to the one-cell
+// widening of the grid queries: far below here) and pass may_hold; points just inside the arc are
+// the hard cases, so a third of them are placed near it. It must also be tight enough to matter:
+// most points well outside the arc are rejected.
+TEST(GridCells, ApexLensHoldsEveryPointBelowTheThreshold) {
+  const unsigned seed = 12;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::size_t below = 0, rejected_far = 0, far = 0;
+  for (int round = 0; round < 4000; ++round) {
+    const double scale = std::ldexp(1.0, static_cast<int>(rng() % 40) - 20), offset = (rng() % 2) ? 1e3 * scale : 0;
+    const double a[2] = {offset + scale * u(rng), offset + scale * u(rng)};
+    const double b[2] = {offset + scale * u(rng), offset + scale * u(rng)};
+    if (a[0] == b[0] && a[1] == b[1]) continue;
+    const double t = -u(rng) * (rng() % 8 == 0 ? 1e-6 : 1.0);  // some thresholds near 0
+    const detail::ApexLens2 lens(a, b, t);
+    const double len = lens.length(), mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const double ux = (b[0] - a[0]) / len, uy = (b[1] - a[1]) / len;
+    for (int k = 0; k < 50; ++k) {
+      double p[2];
+      if (k % 3 == 0) {  // near the arc: on the circle of the threshold angle, jittered
+        const double alpha = std::asin(std::min(1.0, 1.0 + t)), r = 0.5 * len / std::sin(alpha), c = 0.5 * len / std::tan(alpha);
+        const double side = (rng() % 2) ? 1 : -1, phi = (u(rng) - 0.5) * 2 * alpha;
+        const double x = r * std::sin(phi), w = r * std::cos(phi) - c, jitter = 1 + (u(rng) - 0.5) * 1e-7;
+        p[0] = mx + x * ux - side * w * jitter * uy;
+        p[1] = my + x * uy + side * w * jitter * ux;
+      } else {
+        p[0] = mx + (u(rng) - 0.5) * 1.5 * len;
+        p[1] = my + (u(rng) - 0.5) * 1.5 * len;
+      }
+      const int o = orient2(a, b, p);
+      if (o == 0) continue;
+      const double side = o;
+      const double g = apex_gamma2(a, b, p);
+      if (g < t) {
+        ++below;
+        ASSERT_TRUE(lens.may_hold(p, side, lens.height())) << "seed " << seed << " round " << round << " point " << k;
+        double c[2], d[2];
+        lens.trapezoid(side, lens.height(), c, d);
+        // Inside the closed trapezoid (a, b, c, d), counter-clockwise on the left side.
+        const double* q[4] = {a, b, c, d};
+        for (int e = 0; e < 4; ++e) {
+          const double* s0 = q[e];
+          const double* s1 = q[(e + 1) % 4];
+          const double cross = (s1[0] - s0[0]) * (p[1] - s0[1]) - (s1[1] - s0[1]) * (p[0] - s0[0]);
+          ASSERT_GE(side * cross, -1e-9 * len * len) << "seed " << seed << " round " << round << " point " << k << " edge " << e;
+        }
+      } else if (g > t + 0.05 && k % 3 != 0) {
+        ++far;
+        rejected_far += !lens.may_hold(p, side, lens.height());
+      }
+    }
+  }
+  std::printf("[ GridCells ] %zu points below the threshold held; %zu of %zu well above it rejected\n", below, rejected_far, far);
+  EXPECT_GT(below, 10000u);
+  EXPECT_GT(rejected_far, far * 9 / 10);
 }
 
 }  // namespace

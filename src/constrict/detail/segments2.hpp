@@ -4,8 +4,17 @@
 #include <algorithm>
 
 #include "constrict/predicates.hpp"
+#include "core/detail/semi_static.hpp"
 
 namespace constrict::detail {
+
+// orient2 (exact) with its semi-static filter inline: the hot loops of the fallback (segment and
+// side tests) call it hundreds of millions of times, and most signs are clear at once.
+inline int orient2_fast(const double* a, const double* b, const double* c) {
+  bool ok = false;
+  const int s = orient2_filtered(a, b, c, ok);
+  return ok ? s : orient2(a, b, c);
+}
 
 // q and r lie on the same side of v along their common line (all three collinear).
 inline bool same_side_collinear(const double* v, const double* q, const double* r) {
@@ -21,8 +30,9 @@ inline bool on_closed_segment(const double* a, const double* b, const double* p)
 
 // Do the closed segments pq and rs share a point? Exact.
 inline bool closed_segments_meet(const double* p, const double* q, const double* r, const double* s) {
-  const int o1 = orient2(p, q, r), o2 = orient2(p, q, s);
-  const int o3 = orient2(r, s, p), o4 = orient2(r, s, q);
+  const int o1 = orient2_fast(p, q, r), o2 = orient2_fast(p, q, s);
+  if (o1 * o2 > 0) return false;  // both ends of rs strictly on one side of pq
+  const int o3 = orient2_fast(r, s, p), o4 = orient2_fast(r, s, q);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
   if (o1 == 0 && on_closed_segment(p, q, r)) return true;
   if (o2 == 0 && on_closed_segment(p, q, s)) return true;

@@ -15,6 +15,15 @@ namespace constrict::detail {
 constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
 inline bool safe_range(double m) { return m > 1e-250 && m < 1e250; }
 
+// sign((b-a) x (c-a)); depth 3.
+inline int orient2_filtered(const double* a, const double* b, const double* c, bool& ok) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - a[0], vy = c[1] - a[1];
+  const double d = ux * vy - uy * vx;
+  const double m = std::fabs(ux * vy) + std::fabs(uy * vx);
+  ok = safe_range(m) && std::fabs(d) > 6 * kU * m;
+  return d > 0 ? 1 : (d < 0 ? -1 : 0);
+}
+
 // sign((a-p).(b-p)); depth 3.
 inline int diametral2_filtered(const double* a, const double* b, const double* p, bool& ok) {
   const double ux = a[0] - p[0], uy = a[1] - p[1], vx = b[0] - p[0], vy = b[1] - p[1];

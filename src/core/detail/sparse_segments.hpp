@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // A sparse uniform grid of segments with cells sized for the spacing where the data are (the 2D
-// refinement's polygon edges), for inputs whose points lie on a curve: an area-sized grid would hold O(√N) segments per cell there, and every local test would
-// read them all (docs/benchmarks.md, the noisy curve). Only non-empty cells are stored: an
-// open-addressing table of cell keys in front of one id list per cell. A segment is registered in
+// refinement's polygon edges, the fallback's boundary edges), for inputs whose points lie on a
+// curve: an area-sized grid would hold O(√N) segments per cell there, and every local test would
+// read them all (docs/benchmarks.md, the noisy curve). Only non-empty cells are stored: a
+// CellTable (cell_table.hpp) in front of one id list per cell. A segment is registered in
 // the cells its strip crosses (for_cells_of_hull, grid_cells.hpp); a segment longer than
 // kLongCells cells goes to one list instead (a strip of thousands of cells each), which every
 // query reads, bounding box first. A query visits every cell where a point of the query segment
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 
 namespace constrict::detail {
@@ -34,8 +36,7 @@ template <class Id> class SparseSegments {
     frame_ = GridFrame{lo_x, lo_y, box_magnitude(lo_x, lo_y, hi_x, hi_y), half_cell, cell_count(half_span(lo_x, hi_x), half_cell, kMaxCells),
                        cell_count(half_span(lo_y, hi_y), half_cell, kMaxCells)};
     cells_.clear();
-    table_key_.assign(std::size_t{1} << 12, kEmpty);
-    table_slot_.assign(table_key_.size(), -1);
+    table_.clear();
     long_.clear();
   }
   double cell_size() const { return 2 * frame_.half_cell; }
@@ -89,7 +90,6 @@ template <class Id> class SparseSegments {
 
  private:
   static constexpr int kMaxCells = 1 << 28;  // per axis
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
   struct Long {
     Id id;
     double box[4];  // min x, min y, max x, max y
@@ -111,53 +111,15 @@ template <class Id> class SparseSegments {
     bool done = false;
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
       if (done) return;
-      const int c = slot(key(i, j), create);
+      const int c = create ? table_.insert(i, j) : table_.find(i, j);
+      if (create && static_cast<std::size_t>(c) == cells_.size()) cells_.emplace_back();
       if (c >= 0) done = f(cells_[static_cast<std::size_t>(c)]);
     });
     return done;
   }
-  static std::uint64_t key(int i, int j) {
-    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) << 32 | static_cast<std::uint32_t>(i);
-  }
-  std::size_t hash(std::uint64_t k) const {
-    return static_cast<std::size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (table_key_.size() - 1);
-  }
-  // The slot of cell k (linear probing), -1 if absent and not create.
-  int slot(std::uint64_t k, bool create) {
-    std::size_t h = hash(k);
-    for (;; h = (h + 1) & (table_key_.size() - 1)) {
-      if (table_key_[h] == k) return table_slot_[h];
-      if (table_key_[h] == kEmpty) break;
-    }
-    if (!create) return -1;
-    if (2 * (cells_.size() + 1) > table_key_.size()) {
-      grow();
-      return slot(k, true);
-    }
-    table_key_[h] = k;
-    table_slot_[h] = static_cast<int>(cells_.size());
-    cells_.emplace_back();
-    return table_slot_[h];
-  }
-  void grow() {
-    std::vector<std::uint64_t> keys;
-    std::vector<int> slots;
-    keys.swap(table_key_);
-    slots.swap(table_slot_);
-    table_key_.assign(2 * keys.size(), kEmpty);
-    table_slot_.assign(table_key_.size(), -1);
-    for (std::size_t q = 0; q < keys.size(); ++q) {
-      if (keys[q] == kEmpty) continue;
-      std::size_t h = hash(keys[q]);
-      while (table_key_[h] != kEmpty) h = (h + 1) & (table_key_.size() - 1);
-      table_key_[h] = keys[q];
-      table_slot_[h] = slots[q];
-    }
-  }
   GridFrame frame_{0, 0, 0, 1, 1, 1};
   std::vector<std::vector<Id>> cells_;  // by slot
-  std::vector<std::uint64_t> table_key_;  // cell key per table entry (kEmpty: free)
-  std::vector<int> table_slot_;
+  CellTable table_;                       // cell -> slot
   std::vector<Long> long_;
 };
 
