@@ -177,10 +177,13 @@ class Grid {
   template <class F, class Done> void points_in_hull(const double* const* v, int m, F&& f, Done&& done) const {
     const Layer& l = fine_on_ && fine_.hull_cells(v, m) <= fine_cells_ ? fine_ : coarse_;
     bool stop = false;
-    detail::for_cells_of_hull(l.frame, v, m, [&](int i, int j) {
+    detail::for_rows_of_hull(l.frame, v, m, [&](int j, int a, int b) {
       if (stop) return;
-      l.points_in_cell(i, j, f);
-      stop = done();
+      l.occupied_in_row(j, a, b, [&](int i) {
+        if (stop) return;
+        l.points_in_cell(i, j, f);
+        stop = done();
+      });
     });
   }
   void add_edge(const double* a, const double* b, int id) {
@@ -212,6 +215,8 @@ class Grid {
     bool sparse = false;
     std::vector<std::size_t> start;
     std::vector<int> ids;
+    std::vector<std::uint64_t> occupied;  // dense layer: a bit per non-empty cell, rows of words
+    std::size_t words_per_row = 0;
     double cell_size() const { return 2 * frame.half_cell; }  // +inf at most for a box near the double range
     std::size_t index(int i, int j) const {
       return static_cast<std::size_t>(j) * static_cast<std::size_t>(frame.nx) + static_cast<std::size_t>(i);
@@ -225,6 +230,32 @@ class Grid {
       ids.assign(cell.size(), 0);
       std::vector<std::size_t> fill(start.begin(), start.end() - 1);
       for (std::size_t i = 0; i < cell.size(); ++i) ids[fill[static_cast<std::size_t>(cell[i])]++] = static_cast<int>(i);
+      if (sparse) return;
+      words_per_row = (static_cast<std::size_t>(frame.nx) + 63) / 64;
+      occupied.assign(words_per_row * static_cast<std::size_t>(frame.ny), 0);
+      for (int j = 0; j < frame.ny; ++j)
+        for (int i = 0; i < frame.nx; ++i)
+          if (start[index(i, j) + 1] > start[index(i, j)])
+            occupied[static_cast<std::size_t>(j) * words_per_row + static_cast<std::size_t>(i >> 6)] |= std::uint64_t{1} << (i & 63);
+    }
+    // Calls f(i) for the cells (i, j), a <= i <= b, that may hold points: on the dense layer only
+    // the non-empty ones, 64 cells per word of its bitmap (a large shape over an empty plane
+    // reads few words); on the sparse one every cell (the table says).
+    template <class F> void occupied_in_row(int j, int a, int b, F&& f) const {
+      if (sparse) {
+        for (int i = a; i <= b; ++i) f(i);
+        return;
+      }
+      const std::uint64_t* row = occupied.data() + static_cast<std::size_t>(j) * words_per_row;
+      for (int w = a >> 6; w <= b >> 6; ++w) {
+        std::uint64_t bits = row[w];
+        if (w == a >> 6) bits &= ~std::uint64_t{0} << (a & 63);
+        if (w == b >> 6 && (b & 63) != 63) bits &= (std::uint64_t{1} << ((b & 63) + 1)) - 1;
+        while (bits) {
+          f((w << 6) + __builtin_ctzll(bits));
+          bits &= bits - 1;
+        }
+      }
     }
     template <class F> void points_in_cell(int i, int j, F&& f) const {
       const int c = sparse ? table.find(i, j) : static_cast<int>(index(i, j));
@@ -852,11 +883,12 @@ struct Constrictor2::Impl {
     if (b < 0 || onb[U(z)]) return;
     if (orient2_fast(P(a), P(b), P(z)) <= 0) return;
     // Witnesses among the endpoints' neighbours rule most pairs out at once (a long pair across
-    // an empty interior has very obtuse angles behind both ends); then the geometric test, which
-    // is cheaper than the side-value searches of in_graph().
+    // an empty interior has very obtuse angles behind both ends); then the graph test (its side
+    // searches read little, sides_below) before the geometric one, which rejects few and reads
+    // a long candidate's whole strip.
     if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return;
-    if (!valid_insert(a, b, z)) return;
     if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
+    if (!valid_insert(a, b, z)) return;
     h.push(Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0});
   }
 

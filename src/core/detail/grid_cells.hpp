@@ -59,8 +59,9 @@ struct GridFrame {
   int cy(double y) const noexcept { return cell_of(y, lo_y, half_cell, ny); }
 };
 
-/// Calls f(i, j) for a set of cells that contains every cell (cell_of) of every point of the
-/// closed convex hull of the m vertices v (m = 2: a segment, m = 3: a triangle). Row by row over
+/// Calls f(j, a, b) for rows j of cells with a <= b, such that the cells (i, j), a <= i <= b,
+/// contain every cell (cell_of) of every point of the closed convex hull of the m vertices v
+/// (m = 2: a segment, m = 3: a triangle). Row by row over
 /// the bounding box; in each row only the columns the shape crosses within the row and one row
 /// above and below, widened by one column on each side. The widening is far larger than the
 /// rounding of the interpolation (a few ulps of the coordinates) when a cell is wider than 2^-30
@@ -69,7 +70,7 @@ struct GridFrame {
 /// bounding box (exact), reading O(perimeter) cells instead of O(area): a long thin triangle
 /// across the plane reads a strip, not a square (the 2D noisy-curve fallback,
 /// docs/benchmarks.md). Precondition: 2 <= m <= 3.
-template <class F> void for_cells_of_hull(const GridFrame& g, const double* const* v, int m, F&& f) {
+template <class F> void for_rows_of_hull(const GridFrame& g, const double* const* v, int m, F&& f) {
   double x0 = v[0][0], x1 = v[0][0], y0 = v[0][1], y1 = v[0][1];
   for (int k = 1; k < m; ++k) {
     x0 = std::min(x0, v[k][0]);
@@ -120,8 +121,15 @@ template <class F> void for_cells_of_hull(const GridFrame& g, const double* cons
         b = std::min(i1, column(xh) + 1);
       }
     }
-    for (int i = a; i <= b; ++i) f(i, j);
+    if (a <= b) f(j, a, b);
   }
+}
+
+/// Calls f(i, j) for the cells of for_rows_of_hull, row by row.
+template <class F> void for_cells_of_hull(const GridFrame& g, const double* const* v, int m, F&& f) {
+  for_rows_of_hull(g, v, m, [&](int j, int a, int b) {
+    for (int i = a; i <= b; ++i) f(i, j);
+  });
 }
 
 }  // namespace constrict::detail
