@@ -614,9 +614,12 @@ class Refiner {
   // interleaved cross edges of a sparse spiral are removed. Both exchanges must shorten, and so
   // their sum; the candidates come from the region of the deep phase.
   bool try_double_bridge() {
+    // i, j: the positions of t1, t3 (fixed until a move is applied), kept beside them: the pair
+    // scan below reads them for every pair, and pos_ is a random access each.
     struct Split {
       double gain;
       int t1, t3;
+      std::size_t i, j;
     };
     std::vector<Split> splits;
     for (const int t1 : tour_) {
@@ -624,15 +627,14 @@ class Refiner {
       if (!node()) return false;
       for_each_split(t1, [&](int t3, double gain) {
         // The same exchange seen from t3 is (t3, t4, t1, t2): keep the one with t1 first.
-        if (pos_[U(t1)] < pos_[U(t3)]) splits.push_back({gain, t1, t3});
-        else splits.push_back({gain, t3, t1});
+        const std::size_t p1 = U(pos_[U(t1)]), p3 = U(pos_[U(t3)]);
+        if (p1 < p3) splits.push_back({gain, t1, t3, p1, p3});
+        else splits.push_back({gain, t3, t1, p3, p1});
         return false;
       });
     }
     // Largest gain first; ties by polygon position (deterministic), duplicates removed.
-    const auto by_pos = [&](const Split& a, const Split& b) {
-      return pos_[U(a.t1)] != pos_[U(b.t1)] ? pos_[U(a.t1)] < pos_[U(b.t1)] : pos_[U(a.t3)] < pos_[U(b.t3)];
-    };
+    const auto by_pos = [](const Split& a, const Split& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; };
     std::sort(splits.begin(), splits.end(), by_pos);
     splits.erase(std::unique(splits.begin(), splits.end(),
                              [](const Split& a, const Split& b) { return a.t1 == b.t1 && a.t3 == b.t3; }),
@@ -640,11 +642,11 @@ class Refiner {
     std::stable_sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) { return a.gain > b.gain; });
     for (std::size_t x = 0; x < splits.size(); ++x) {
       const Split& A = splits[x];
-      const std::size_t i = U(pos_[U(A.t1)]), j = U(pos_[U(A.t3)]);  // i < j
+      const std::size_t i = A.i, j = A.j;  // i < j
       for (std::size_t y = x + 1; y < splits.size(); ++y) {
         const Split& B = splits[y];
         if (!node()) return false;
-        const std::size_t k = U(pos_[U(B.t1)]), l = U(pos_[U(B.t3)]);
+        const std::size_t k = B.i, l = B.j;
         if (k == i || k == j || l == i || l == j) continue;
         if ((i < k && k < j) == (i < l && l < j)) continue;  // not interleaved
         const int a2 = succ(A.t1), a4 = succ(A.t3), b2 = succ(B.t1), b4 = succ(B.t3);
