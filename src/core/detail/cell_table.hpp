@@ -55,9 +55,15 @@ class CellTable {
   static std::uint64_t key(int i, int j) {
     return static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) << 32 | static_cast<std::uint32_t>(i);
   }
-  // The first entry to probe: Fibonacci hashing (the top bits of the product, where every bit of
-  // i and of j counts).
-  std::size_t home(int i, int j) const { return static_cast<std::size_t>((key(i, j) * 0x9E3779B97F4A7C15ull) >> shift_); }
+  // The first entry to probe: the 2 x 2 block of the cell picks an aligned group of 4 entries (one
+  // cache line) by Fibonacci hashing (the top bits of the product, where every bit of i and j
+  // counts), the cell its place in it. Queries read neighbouring cells (strips, rings), which then
+  // share cache lines: 2-6 % off the noisy 1e6 curve's fallback and refinement.
+  std::size_t home(int i, int j) const {
+    const std::uint64_t block = key(static_cast<int>(static_cast<std::uint32_t>(i) >> 1), static_cast<int>(static_cast<std::uint32_t>(j) >> 1));
+    return (static_cast<std::size_t>((block * 0x9E3779B97F4A7C15ull) >> shift_) & ~std::size_t{3}) |
+           (static_cast<std::size_t>(i) & 1u) | (static_cast<std::size_t>(j) & 1u) << 1;
+  }
   void set_shift() {
     shift_ = 64;
     for (std::size_t c = entries_.size(); c > 1; c >>= 1) --shift_;
