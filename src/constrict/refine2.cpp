@@ -385,11 +385,14 @@ class Refiner {
       len = n_ - len;
     }
     work_ += len;
-    for (std::size_t k = 0; k < len / 2; ++k) {
-      const std::size_t a = (i + k) % n_, b = (j + n_ - k) % n_;
+    // a walks forward from i, b backward from j, both wrapping (no division per element: the
+    // reversals are most of a budget-bound refinement's element work).
+    for (std::size_t k = 0, a = i, b = j; k < len / 2; ++k) {
       std::swap(tour_[a], tour_[b]);
       pos_[U(tour_[a])] = static_cast<int>(a);
       pos_[U(tour_[b])] = static_cast<int>(b);
+      a = a + 1 == n_ ? 0 : a + 1;
+      b = b == 0 ? n_ - 1 : b - 1;
     }
     if (work_ > budget_) st_.budget_hit = true;
   }
@@ -722,7 +725,10 @@ class Refiner {
     for (std::size_t o = 0; o < m; ++o) {
       const auto [s, fwd] = order[o];
       const std::size_t len = length(s);
-      for (std::size_t t = 0; t < len; ++t) buf_.push_back(tour_[fwd ? (first(s) + t) % n_ : (last(s) + n_ - t) % n_]);
+      for (std::size_t t = 0, p = fwd ? first(s) : last(s); t < len; ++t) {
+        buf_.push_back(tour_[p]);
+        p = fwd ? (p + 1 == n_ ? 0 : p + 1) : (p == 0 ? n_ - 1 : p - 1);
+      }
     }
     std::size_t p = (last(keep) + 1) % n_;
     for (const int v : buf_) {
