@@ -368,7 +368,8 @@ struct Constrictor2::Impl {
   int G(int v) const { return v < 0 ? v : gid[U(v)]; }
   std::array<int, 3> sorted_gid3(int a, int b, int c) const { return sorted3(G(a), G(b), G(c)); }
 
-  void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const std::string& stage) {
+  // stage: a C string, so that the million removals without a visitor build no std::string.
+  void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const char* stage) {
     if (!visitor) return;
     Constrict2Event ev;
     ev.kind = k;
@@ -906,7 +907,7 @@ struct Constrictor2::Impl {
   // Constricts the region still inside by inserting stuck points into boundary edges, widest
   // apex angle first (same criterion as §3.4; spec §3.6 "cheaper variant"). Returns points placed.
   std::size_t local_constrict(Graph g, double gamma0, int k, const std::string& stage) {
-    emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, stage);
+    emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, stage.c_str());
     Heap h;
     for (std::size_t z = 0; z < n; ++z)
       if (!onb[z]) push_candidates_of(h, g, gamma0, static_cast<int>(z), k);
@@ -917,7 +918,7 @@ struct Constrictor2::Impl {
       if (!valid_insert(e.a, e.b, e.y)) continue;  // validity only decays (spec §3.6)
       insert_point(e.a, e.b, e.y);
       ++placed;
-      emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage);
+      emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage.c_str());
       // Only the two new edges are new candidates; stuck points near them get them offered.
       for (int z : neighbourhood({e.a, e.y, e.b}, k)) {
         if (onb[U(z)]) continue;
