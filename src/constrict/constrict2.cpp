@@ -113,7 +113,7 @@ using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLes
 // indices are monotone in the coordinates, so a query over the cells a shape can touch finds
 // every point / registered segment in it (exact candidate sets for the exact tests). Two layers:
 // - coarse: area-sized cells, every cell an array slot (always);
-// - fine: cells of twice the median boundary edge, only non-empty cells stored (a CellTable for
+// - fine: cells of 16 median boundary edges, only non-empty cells stored (a CellTable for
 //   the points, SparseSegments for the edges), when that edge is far below the coarse cell: on a
 //   curve sample the coarse cells hold O(√N) points each, and every side search read hundreds of
 //   them (the noisy curve's fallback, docs/benchmarks.md). Near queries read the fine cells; a
@@ -134,7 +134,7 @@ class Grid {
     const double mag = detail::box_magnitude(minx, miny, maxx, maxy);
     const double hcs = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
     coarse_.frame = detail::GridFrame{minx, miny, mag, hcs, detail::cell_count(w, hcs, kMaxCells), detail::cell_count(h, hcs, kMaxCells)};
-    const double fine = std::max(median_edge, Sparse::min_half_cell(w, h, mag));
+    const double fine = std::max(kFineEdges * median_edge, Sparse::min_half_cell(w, h, mag));
     fine_on_ = std::isfinite(fine) && fine > 0 && fine <= kFineRatio * hcs;
     std::vector<int> cell(n);
     const std::size_t nc = static_cast<std::size_t>(coarse_.frame.nx) * static_cast<std::size_t>(coarse_.frame.ny);
@@ -313,6 +313,10 @@ class Grid {
   static constexpr int kMaxCells = 4096;        // per axis, coarse
   static constexpr int kMaxFineCells = 1 << 28;  // per axis, fine (SparseSegments' bound)
   static constexpr double kFineRatio = 0.25;     // fine layer when its cells are at most this fraction
+  // Fine cells: 2 * kFineEdges median boundary edges wide (as refine2's sparse cells: its lookups
+  // miss the cache, fewer and fuller cells are faster). Noisy 10⁶ fallback: 1 -> 2.2 s, 4 -> 1.9,
+  // 8 -> 1.8, 16 -> 2.1-2.6 (3 runs each); 10⁵: 99 -> 81 ms.
+  static constexpr double kFineEdges = 8;
   static constexpr double kFineBudget = 16;      // fine cells read per coarse cell's points, at most
   Layer coarse_, fine_;
   bool fine_on_ = false;
