@@ -113,9 +113,9 @@ using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLes
 // indices are monotone in the coordinates, so a query over the cells a shape can touch finds
 // every point / registered segment in it (exact candidate sets for the exact tests). Two layers:
 // - coarse: area-sized cells, every cell an array slot (always);
-// - fine: cells of 16 median boundary edges, only non-empty cells stored (a CellTable for
-//   the points, SparseSegments for the edges), when that edge is far below the coarse cell: on a
-//   curve sample the coarse cells hold O(√N) points each, and every side search read hundreds of
+// - fine: cells of 16 median boundary edges (SparseSegments::sparse_half_cell), only non-empty
+//   cells stored (a CellTable for the points, SparseSegments for the edges), when that edge is far
+//   below the coarse cell: on a curve sample the coarse cells hold O(√N) points each, and every side search read hundreds of
 //   them (the noisy curve's fallback, docs/benchmarks.md). Near queries read the fine cells; a
 //   search that grows far (a pair with an empty side) goes on over the coarse cells, where an
 //   empty plane is few cells.
@@ -134,17 +134,17 @@ class Grid {
     const double mag = detail::box_magnitude(minx, miny, maxx, maxy);
     const double hcs = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
     coarse_.frame = detail::GridFrame{minx, miny, mag, hcs, detail::cell_count(w, hcs, kMaxCells), detail::cell_count(h, hcs, kMaxCells)};
-    const double fine = std::max(kFineEdges * median_edge, Sparse::min_half_cell(w, h, mag));
-    fine_on_ = std::isfinite(fine) && fine > 0 && fine <= kFineRatio * hcs;
+    const double fine = Sparse::sparse_half_cell(median_edge, w, h, mag, hcs);
+    fine_on_ = fine > 0;
     std::vector<int> cell(n);
     const std::size_t nc = static_cast<std::size_t>(coarse_.frame.nx) * static_cast<std::size_t>(coarse_.frame.ny);
     for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<int>(coarse_.index(pts[i]));
-    coarse_.group(cell, nc);
+    coarse_.group(cell, nc, false);
     if (fine_on_) {
       fine_.frame = detail::GridFrame{minx, miny, mag, fine, detail::cell_count(w, fine, kMaxFineCells), detail::cell_count(h, fine, kMaxFineCells)};
       fine_.table.clear(n / 2);
       for (std::size_t i = 0; i < n; ++i) cell[i] = fine_.table.insert(fine_.frame.cx(pts[i][0]), fine_.frame.cy(pts[i][1]));
-      fine_.group(cell, fine_.table.size());
+      fine_.group(cell, fine_.table.size(), true);
       edges_fine_.reset(minx, miny, maxx, maxy, fine);
       // The fine search stops where its cells would outnumber a few coarse cells' points.
       std::size_t occupied = 0;
@@ -222,8 +222,9 @@ class Grid {
       return static_cast<std::size_t>(j) * static_cast<std::size_t>(frame.nx) + static_cast<std::size_t>(i);
     }
     std::size_t index(const double* p) const { return index(frame.cx(p[0]), frame.cy(p[1])); }
-    void group(const std::vector<int>& cell, std::size_t nc) {
-      sparse = table.size() > 0;
+    // Groups the points by cell (cell[i]: point i's dense index, or its table slot when sparse).
+    void group(const std::vector<int>& cell, std::size_t nc, bool sparse_layer) {
+      sparse = sparse_layer;
       start.assign(nc + 1, 0);
       for (const int c : cell) ++start[static_cast<std::size_t>(c) + 1];
       for (std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
@@ -312,11 +313,6 @@ class Grid {
   }
   static constexpr int kMaxCells = 4096;        // per axis, coarse
   static constexpr int kMaxFineCells = 1 << 28;  // per axis, fine (SparseSegments' bound)
-  static constexpr double kFineRatio = 0.25;     // fine layer when its cells are at most this fraction
-  // Fine cells: 2 * kFineEdges median boundary edges wide (as refine2's sparse cells: its lookups
-  // miss the cache, fewer and fuller cells are faster). Noisy 10⁶ fallback: 1 -> 2.2 s, 4 -> 1.9,
-  // 8 -> 1.8, 16 -> 2.1-2.6 (3 runs each); 10⁵: 99 -> 81 ms.
-  static constexpr double kFineEdges = 8;
   static constexpr double kFineBudget = 16;      // fine cells read per coarse cell's points, at most
   Layer coarse_, fine_;
   bool fine_on_ = false;
@@ -864,21 +860,13 @@ struct Constrictor2::Impl {
   // partial search in delta_at_least). Exact; false when these few points do not decide it.
   bool outside_near(int u, int v, double gamma0) {
     if (is_dt_edge(u, v)) return false;
-    const double* a = P(u);
-    const double* b = P(v);
-    bool left = false, right = false;
+    double ga = 1, gb = 1;
+    bool blocked = false;
+    auto visit = side_visitor(u, v, ga, gb, blocked);
     for (const int w : {u, v})
       for (int q = adj_off[U(w)]; q < adj_off[U(w) + 1]; ++q) {
-        const int p = adj[U(q)];
-        if (p == u || p == v) continue;
-        const int o = orient2_fast(a, b, P(p));
-        if (o == 0) {
-          if (diametral_side2(a, b, P(p)) < 0) return true;
-          continue;
-        }
-        if ((o > 0 ? left : right) || !(apex_gamma2(a, b, P(p)) < gamma0)) continue;
-        (o > 0 ? left : right) = true;
-        if (left && right) return true;
+        visit(adj[U(q)]);
+        if (blocked || (ga < gamma0 && gb < gamma0)) return true;
       }
     return false;
   }

@@ -53,7 +53,8 @@ struct Edge {
 // tests. Two layouts:
 // - dense (area-sized cells, every cell an array slot; each edge in every cell its bounding box
 //   meets), when the polygon's edges are about as long as the cells;
-// - sparse (SparseSegments, core/detail/sparse_segments.hpp: cells of 16 median edges),
+// - sparse (SparseSegments, core/detail/sparse_segments.hpp: cells of 16 median edges,
+//   sparse_half_cell),
 //   when the median polygon edge is far below the area-sized cell: on a curve sample those cells
 //   would hold O(√N) edges each, and every move's test would read them all (the 2D noisy-curve
 //   refinement, docs/benchmarks.md).
@@ -71,8 +72,8 @@ class EdgeGrid {
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
     const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
     hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
-    const double fine = std::max(kSparseEdges * median_edge, Sparse::min_half_cell(w, h, detail::box_magnitude(minx_, miny_, maxx_, maxy_)));
-    sparse_ = std::isfinite(fine) && fine > 0 && fine <= kSparseRatio * hcs_;
+    const double fine = Sparse::sparse_half_cell(median_edge, w, h, detail::box_magnitude(minx_, miny_, maxx_, maxy_), hcs_);
+    sparse_ = fine > 0;
     if (sparse_) {
       sparse_cells_.reset(minx_, miny_, maxx_, maxy_, fine);
       cells_.clear();
@@ -125,12 +126,6 @@ class EdgeGrid {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
   }
   static constexpr int kMaxCells = 2048;        // per axis, dense
-  static constexpr double kSparseRatio = 0.25;  // sparse when its cells are at most this fraction
-  // Sparse cells: 2 * kSparseEdges median edges wide. Every cell a query reads is a table lookup
-  // that mostly misses the cache; wider cells hold more edges (cheap bounding tests) and need
-  // fewer lookups. Noisy 10⁶ curve, refinement: 1 -> 3.95 s, 2 -> 3.0, 4 -> 2.6-3.8, 8 -> 2.6,
-  // 16 -> 2.6-3.7, 32 -> 4.9 (3 runs each); 10⁵: 1 -> 298 ms, 8 -> 200 ms.
-  static constexpr double kSparseEdges = 8;
   double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
   bool built_ = false, sparse_ = false;
