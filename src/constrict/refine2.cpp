@@ -21,6 +21,7 @@
 #include "core/detail/edge_key.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/cell_lists.hpp"
 #include "core/detail/sparse_segments.hpp"
 
 namespace constrict::detail {
@@ -80,24 +81,33 @@ class EdgeGrid {
     } else {
       nx_ = detail::cell_count(w, hcs_, kMaxCells);
       ny_ = detail::cell_count(h, hcs_, kMaxCells);
-      cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
+      cells_.clear();
+      cells_.grow(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
     }
     built_ = true;
+  }
+  /// Registers count segments on a just built grid, seg(k, a, b, key) giving the k-th: one
+  /// counting sort (CellLists::build) instead of count add() calls.
+  template <class Seg> void add_all(std::size_t count, Seg&& seg) {
+    if (sparse_) return sparse_cells_.add_all(count, seg);
+    cells_.build(cells_.size(), [&](auto&& emit) {
+      for (std::size_t k = 0; k < count; ++k) {
+        const double* a = nullptr;
+        const double* b = nullptr;
+        std::uint64_t key = 0;
+        seg(k, a, b, key);
+        for_cells(a, b, [&](std::size_t c) { emit(c, key); });
+      }
+    });
   }
   bool built() const { return built_; }
   void add(const double* a, const double* b, std::uint64_t key) {
     if (sparse_) return sparse_cells_.add(a, b, key);
-    for_cells(a, b, [&](std::vector<std::uint64_t>& c) { c.push_back(key); });
+    for_cells(a, b, [&](std::size_t c) { cells_.add(c, key); });
   }
   void remove(const double* a, const double* b, std::uint64_t key) {
     if (sparse_) return sparse_cells_.remove(a, b, key);
-    for_cells(a, b, [&](std::vector<std::uint64_t>& c) {
-      auto it = std::find(c.begin(), c.end(), key);
-      if (it != c.end()) {
-        *it = c.back();
-        c.pop_back();
-      }
-    });
+    for_cells(a, b, [&](std::size_t c) { cells_.remove(c, key); });
   }
   // Calls f(key) for the registered edges that can meet segment ab (an edge can be reported more
   // than once) until f returns true; true if it did.
@@ -107,8 +117,7 @@ class EdgeGrid {
     const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i)
-        for (std::uint64_t k : cells_[index(i, j)])
-          if (f(k)) return true;
+        if (cells_.any(index(i, j), f)) return true;
     return false;
   }
 
@@ -118,7 +127,7 @@ class EdgeGrid {
     const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
     const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
     for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) f(cells_[index(i, j)]);
+      for (int i = i0; i <= i1; ++i) f(index(i, j));
   }
   int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
   int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
@@ -129,7 +138,7 @@ class EdgeGrid {
   double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
   int nx_ = 1, ny_ = 1;
   bool built_ = false, sparse_ = false;
-  std::vector<std::vector<std::uint64_t>> cells_;
+  detail::CellLists<std::uint64_t> cells_;  // dense: by index(i, j)
   Sparse sparse_cells_;
 };
 
@@ -348,10 +357,12 @@ class Refiner {
     auto mid = len.begin() + static_cast<std::ptrdiff_t>(n_ / 2);
     std::nth_element(len.begin(), mid, len.end());
     grid_.build(xy_, *mid);
-    for (std::size_t i = 0; i < n_; ++i) {
-      const int u = tour_[i], v = tour_[(i + 1) % n_];
-      grid_.add(P(u), P(v), edge_key(u, v));
-    }
+    grid_.add_all(n_, [&](std::size_t i, const double*& a, const double*& b, std::uint64_t& key) {
+      const int u = tour_[i], v = tour_[i + 1 == n_ ? 0 : i + 1];
+      a = P(u);
+      b = P(v);
+      key = edge_key(u, v);
+    });
   }
   template <std::size_t R, std::size_t A>
   void commit_edges(const std::array<Edge, R>& rem, const std::array<Edge, A>& add) {

@@ -13,12 +13,14 @@
 #include <vector>
 
 #include <map>
+#include <set>
 #include <utility>
 
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/segments2.hpp"
+#include "core/detail/cell_lists.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/sparse_segments.hpp"
@@ -147,6 +149,18 @@ TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
       }
       return {a, best};
     };
+    // A first batch at once (add_all: the counting sort), then single changes.
+    for (int k = 0; k < 300; ++k) {
+      const auto [a, b] = random_segment();
+      if (a == b) continue;
+      segs.push_back({a, b});
+      live.push_back(1);
+    }
+    grid.add_all(segs.size(), [&](std::size_t k, const double*& a, const double*& b, int& id) {
+      a = pts[segs[k][0]].data();
+      b = pts[segs[k][1]].data();
+      id = static_cast<int>(k);
+    });
     for (int step = 0; step < 3000; ++step) {
       const auto [a, b] = random_segment();
       if (a == b) continue;
@@ -195,6 +209,58 @@ TEST(GridCells, SparseSegmentsLongQueryOnFineCells) {
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
   EXPECT_EQ(seen, (std::vector<int>{1, 2}));
+}
+
+// CellLists against a multiset per cell: a built part (counting sort) and random additions and
+// removals on top, several registrations of one id in one cell included; every query must report
+// exactly the registered ids, and a removal must take out exactly one.
+TEST(GridCells, CellListsMatchAMultiset) {
+  const unsigned seed = 5;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  const std::size_t cells = 97;
+  std::vector<std::pair<std::size_t, int>> first;
+  for (int k = 0; k < 2000; ++k) first.push_back({rng() % cells, static_cast<int>(rng() % 300)});
+  detail::CellLists<int> lists;
+  lists.build(cells / 2, [&](auto&& emit) {  // fewer cells asked for than emitted: it grows
+    for (const auto& [c, id] : first) emit(c, id);
+  });
+  ASSERT_EQ(lists.size(), 1 + std::max_element(first.begin(), first.end())->first);
+  lists.grow(cells);
+  std::vector<std::multiset<int>> ref(cells);
+  for (const auto& [c, id] : first) ref[c].insert(id);
+  const auto check = [&](int step) {
+    for (std::size_t c = 0; c < cells; ++c) {
+      std::multiset<int> got;
+      lists.any(c, [&](int id) {
+        got.insert(id);
+        return false;
+      });
+      ASSERT_EQ(got, ref[c]) << "seed " << seed << " step " << step << " cell " << c;
+    }
+  };
+  check(-1);
+  for (int step = 0; step < 20000; ++step) {
+    const std::size_t c = rng() % cells;
+    const int id = static_cast<int>(rng() % 300);
+    if (rng() % 2) {
+      lists.add(c, id);
+      ref[c].insert(id);
+    } else {
+      lists.remove(c, id);
+      if (const auto it = ref[c].find(id); it != ref[c].end()) ref[c].erase(it);
+    }
+    if (step % 997 == 0) check(step);
+  }
+  check(20000);
+  // any() stops at the first true.
+  int calls = 0;
+  for (std::size_t c = 0; c < cells; ++c)
+    if (!ref[c].empty()) {
+      EXPECT_TRUE(lists.any(c, [&](int) { return ++calls > 0; }));
+      EXPECT_EQ(calls, 1);
+      break;
+    }
 }
 
 // CellTable against std::map: cells along curves and scattered ones (growth, collisions), far

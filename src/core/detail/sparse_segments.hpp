@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/detail/cell_lists.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 
@@ -47,7 +48,7 @@ template <class Id> class SparseSegments {
   void reset(double lo_x, double lo_y, double hi_x, double hi_y, double half_cell) {
     frame_ = GridFrame{lo_x, lo_y, box_magnitude(lo_x, lo_y, hi_x, hi_y), half_cell, cell_count(half_span(lo_x, hi_x), half_cell, kMaxCells),
                        cell_count(half_span(lo_y, hi_y), half_cell, kMaxCells)};
-    cells_.clear();
+    lists_.clear();
     table_.clear();
     long_.clear();
   }
@@ -57,13 +58,36 @@ template <class Id> class SparseSegments {
     return !(std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1])) <= kLongCells * cell_size());
   }
   void add(const double* a, const double* b, Id id) {
-    if (is_long(a, b)) {
-      long_.push_back(Long{id, {std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])}});
-      return;
-    }
-    cells(a, b, true, [&](std::vector<Id>& c) {
-      c.push_back(id);
+    if (is_long(a, b)) return add_long(a, b, id);
+    cells(a, b, true, [&](std::size_t c) {
+      lists_.add(c, id);
       return false;
+    });
+  }
+  /// Registers count segments on an empty grid (after reset()), seg(k, a, b, id) giving the k-th
+  /// (the same each call): what count calls of add() would do, in one counting sort instead of a
+  /// list growth per cell.
+  template <class Seg> void add_all(std::size_t count, Seg&& seg) {
+    const auto each = [&](auto&& f) {
+      for (std::size_t k = 0; k < count; ++k) {
+        const double* a = nullptr;
+        const double* b = nullptr;
+        Id id{};
+        seg(k, a, b, id);
+        f(a, b, id);
+      }
+    };
+    if (lists_.size() != 0 || !long_.empty()) return each([&](const double* a, const double* b, Id id) { add(a, b, id); });
+    each([&](const double* a, const double* b, Id id) {
+      if (is_long(a, b)) add_long(a, b, id);
+    });
+    // Both passes insert (the second finds every cell the first added).
+    lists_.build(0, [&](auto&& emit) {
+      each([&](const double* a, const double* b, Id id) {
+        if (is_long(a, b)) return;
+        const double* s[2] = {a, b};
+        for_cells_of_hull(frame_, s, 2, [&](int i, int j) { emit(static_cast<std::size_t>(table_.insert(i, j)), id); });
+      });
     });
   }
   /// Removes one registration of id (added with the same a, b).
@@ -76,24 +100,15 @@ template <class Id> class SparseSegments {
       }
       return;
     }
-    cells(a, b, false, [&](std::vector<Id>& c) {
-      const auto it = std::find(c.begin(), c.end(), id);
-      if (it != c.end()) {
-        *it = c.back();
-        c.pop_back();
-      }
+    cells(a, b, false, [&](std::size_t c) {
+      lists_.remove(c, id);
       return false;
     });
   }
   /// Calls f(id) for the registered segments that can meet segment ab until f returns true; true
   /// if it did.
   template <class F> bool any(const double* a, const double* b, F&& f) {
-    if (cells(a, b, false, [&](std::vector<Id>& c) {
-          for (const Id id : c)
-            if (f(id)) return true;
-          return false;
-        }))
-      return true;
+    if (cells(a, b, false, [&](std::size_t c) { return lists_.any(c, f); })) return true;
     const double lo[2] = {std::min(a[0], b[0]), std::min(a[1], b[1])}, hi[2] = {std::max(a[0], b[0]), std::max(a[1], b[1])};
     for (const Long& e : long_)
       if (!(e.box[2] < lo[0] || e.box[0] > hi[0] || e.box[3] < lo[1] || e.box[1] > hi[1]) && f(e.id)) return true;
@@ -114,8 +129,8 @@ template <class Id> class SparseSegments {
     if (!create) {
       const double rows = std::fabs(static_cast<double>(frame_.cy(a[1])) - frame_.cy(b[1])) + 1;
       const double cols = std::fabs(static_cast<double>(frame_.cx(a[0])) - frame_.cx(b[0])) + 1;
-      if (3 * (rows + cols) > static_cast<double>(cells_.size())) {
-        for (auto& c : cells_)
+      if (3 * (rows + cols) > static_cast<double>(lists_.size())) {
+        for (std::size_t c = 0; c < lists_.size(); ++c)
           if (f(c)) return true;
         return false;
       }
@@ -125,13 +140,18 @@ template <class Id> class SparseSegments {
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
       if (done) return;
       const int c = create ? table_.insert(i, j) : table_.find(i, j);
-      if (create && static_cast<std::size_t>(c) == cells_.size()) cells_.emplace_back();
-      if (c >= 0) done = f(cells_[static_cast<std::size_t>(c)]);
+      if (c < 0) return;
+      const std::size_t slot = static_cast<std::size_t>(c);
+      if (create) lists_.grow(slot + 1);
+      done = f(slot);
     });
     return done;
   }
+  void add_long(const double* a, const double* b, Id id) {
+    long_.push_back(Long{id, {std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])}});
+  }
   GridFrame frame_{0, 0, 0, 1, 1, 1};
-  std::vector<std::vector<Id>> cells_;  // by slot
+  CellLists<Id> lists_;                   // by slot
   CellTable table_;                       // cell -> slot
   std::vector<Long> long_;
 };
