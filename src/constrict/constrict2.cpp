@@ -3,6 +3,7 @@
 // fallbacks after a lock (paper §4.3; spec §3.6, §3.7) and a final repair. See
 // docs/reconstruction-2d.md for the algorithm and its guarantees.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -563,37 +564,53 @@ struct Constrictor2::Impl {
     adj_ready = true;
     // Adjacency by counting sort: the counter-clockwise edge u->v of a triangle gives u its
     // neighbour v (the reverse comes from the triangle across), and a hull edge also gives v its
-    // neighbour u; so every neighbour comes exactly once. Lists sorted for is_dt_edge().
+    // neighbour u; so every neighbour comes exactly once. The passes over the triangles read the
+    // vertices at random: they run in parallel with atomic counters, and every list is sorted
+    // afterwards (neighbours by id for is_dt_edge(), triangles by index), so the result does not
+    // depend on the schedule.
+    const std::size_t nt = dt.triangles.size();
+    std::vector<std::atomic<int>> na(n + 1), nv(n + 1);
+    for (std::size_t v = 0; v <= n; ++v) {
+      na[v].store(0, std::memory_order_relaxed);
+      nv[v].store(0, std::memory_order_relaxed);
+    }
+    const auto each_triangle = [&](auto&& f) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) f(t, dt.triangles[t]);
+      });
+    };
+    const auto bump = [](std::atomic<int>& c) { return c.fetch_add(1, std::memory_order_relaxed); };
+    each_triangle([&](std::size_t t, const std::array<int, 3>& tr) {
+      for (int i = 0; i < 3; ++i) {
+        bump(na[U(tr[U((i + 1) % 3)]) + 1]);
+        if (dt.neighbors[t][U(i)] < 0) bump(na[U(tr[U((i + 2) % 3)]) + 1]);
+        bump(nv[U(tr[U(i)]) + 1]);
+      }
+    });
     adj_off.assign(n + 1, 0);
     vt_off.assign(n + 1, 0);
-    const std::size_t nt = dt.triangles.size();
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int i = 0; i < 3; ++i) {
-        const auto& tr = dt.triangles[t];
-        ++adj_off[U(tr[U((i + 1) % 3)]) + 1];
-        if (dt.neighbors[t][U(i)] < 0) ++adj_off[U(tr[U((i + 2) % 3)]) + 1];
-        ++vt_off[U(tr[U(i)]) + 1];
-      }
     for (std::size_t v = 0; v < n; ++v) {
-      adj_off[v + 1] += adj_off[v];
-      vt_off[v + 1] += vt_off[v];
+      adj_off[v + 1] = adj_off[v] + na[v + 1].load(std::memory_order_relaxed);
+      vt_off[v + 1] = vt_off[v] + nv[v + 1].load(std::memory_order_relaxed);
+      na[v].store(adj_off[v], std::memory_order_relaxed);
+      nv[v].store(vt_off[v], std::memory_order_relaxed);
     }
-    adj.assign(U(adj_off[n]), 0);
-    {
-      std::vector<int> at(adj_off.begin(), adj_off.end() - 1);
-      for (std::size_t t = 0; t < nt; ++t)
-        for (int i = 0; i < 3; ++i) {
-          const auto& tr = dt.triangles[t];
-          const int u = tr[U((i + 1) % 3)], v = tr[U((i + 2) % 3)];
-          adj[U(at[U(u)]++)] = v;
-          if (dt.neighbors[t][U(i)] < 0) adj[U(at[U(v)]++)] = u;
-        }
-      for (std::size_t v = 0; v < n; ++v) std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
-    }
-    vt.assign(U(vt_off[n]), 0);
-    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
-    for (std::size_t t = 0; t < dt.triangles.size(); ++t)
-      for (int i = 0; i < 3; ++i) vt[U(fill[U(dt.triangles[t][U(i)])]++)] = static_cast<int>(t);
+    adj.resize(U(adj_off[n]));
+    vt.resize(U(vt_off[n]));
+    each_triangle([&](std::size_t t, const std::array<int, 3>& tr) {
+      for (int i = 0; i < 3; ++i) {
+        const int u = tr[U((i + 1) % 3)], v = tr[U((i + 2) % 3)];
+        adj[U(bump(na[U(u)]))] = v;
+        if (dt.neighbors[t][U(i)] < 0) adj[U(bump(na[U(v)]))] = u;
+        vt[U(bump(nv[U(tr[U(i)])]))] = static_cast<int>(t);
+      }
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v) {
+        std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
+        std::sort(vt.begin() + vt_off[v], vt.begin() + vt_off[v + 1]);
+      }
+    });
   }
   bool is_dt_edge(int u, int v) const {
     return std::binary_search(adj.begin() + adj_off[U(u)], adj.begin() + adj_off[U(u) + 1], v);
@@ -1118,7 +1135,10 @@ struct Constrictor2::Impl {
     if (r.complete && opt.refine == Refine2::LocalSearch) {
       const auto tr = Clock::now();
       Refine2Stats rs;
-      detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid);
+      detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid, [&] {
+        build_adjacency();  // needed below for fallback_edges after any move anyway
+        return detail::Adjacency2{adj_off.data(), adj.data()};
+      });
       r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;

@@ -154,7 +154,7 @@ class Refiner {
  public:
   // xy: the coordinates in polygon order (polygon_coordinates()).
   Refiner(std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour, std::size_t budget,
-          Refine2Stats& st, const std::vector<int>* order)
+          Refine2Stats& st, const std::vector<int>* order, Adjacency2 adjacency)
       : poly_(tour), order_(order), budget_(budget), st_(st), n_(tour.size()) {
     // Local ids = positions in the input polygon: the hot loops walk along the polygon, and the
     // input order of the points is arbitrary (often shuffled), so this relabelling turns random
@@ -163,7 +163,10 @@ class Refiner {
     xy_ = std::move(xy);
     std::vector<int> local(n_);
     for (std::size_t i = 0; i < n_; ++i) local[U(id_[i])] = static_cast<int>(i);
-    build_neighbours(dt, local);
+    if (adjacency.off)
+      gather_neighbours(adjacency, local);
+    else
+      build_neighbours(dt, local);
     tour_.resize(n_);
     pos_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) tour_[i] = pos_[i] = static_cast<int>(i);
@@ -276,7 +279,29 @@ class Refiner {
     for (std::size_t v = 0; v < n_; ++v) cnt[v].store(static_cast<int>(off_[v]), std::memory_order_relaxed);
     near_.assign(off_[n_], 0);
     each_edge([&](int u, int v) { near_[U(cnt[U(u)].fetch_add(1, std::memory_order_relaxed))] = v; });
-    near_d_.assign(near_.size(), 0);
+    sort_neighbours();
+  }
+  // The same lists from the caller's adjacency (global ids): one parallel gather per vertex.
+  void gather_neighbours(Adjacency2 adj, const std::vector<int>& local) {
+    off_.resize(n_ + 1);
+    off_[0] = 0;
+    for (std::size_t v = 0; v < n_; ++v) {
+      const std::size_t g = U(id_[v]);
+      off_[v + 1] = off_[v] + U(adj.off[g + 1] - adj.off[g]);
+    }
+    near_.resize(off_[n_]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v) {
+        const std::size_t g = U(id_[v]);
+        int* out = near_.data() + off_[v];
+        for (int k = adj.off[g]; k < adj.off[g + 1]; ++k) *out++ = local[U(adj.nb[k])];
+      }
+    });
+    sort_neighbours();
+  }
+  // Sorts every list by (distance, id) and records the distances.
+  void sort_neighbours() {
+    near_d_.resize(near_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t v = r.begin(); v != r.end(); ++v) {
         const int vi = static_cast<int>(v);
@@ -972,7 +997,8 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 }  // namespace
 
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order) {
+                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order,
+                     const std::function<Adjacency2()>& adjacency) {
   stats = Refine2Stats{};
   if (polygon.size() != points.size()) return;
   if (polygon.size() < 4) {
@@ -992,6 +1018,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   // which local optimum it reaches. So the starts are geometric (start_position(), then evenly
   // spaced positions after it: the result does not depend on how the input is numbered), and on
   // small inputs several starts run and the shortest result is kept.
+  const Adjacency2 adj = adjacency ? adjacency() : Adjacency2{};
   const std::size_t n = polygon.size();
   const std::size_t lo = start_position([&](std::size_t i) { return &xy[2 * i]; }, polygon, order);
   const std::size_t starts = n <= kMultiStartMaxPoints ? kStarts : 1;
@@ -1004,7 +1031,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
     std::vector<double> pxy(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
     pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
     Refine2Stats st;
-    Refiner r(std::move(pxy), dt, poly, work_budget, st, order);
+    Refiner r(std::move(pxy), dt, poly, work_budget, st, order, adj);
     r.run();
     const double l = geometric_length(points, poly, order);
     if (k == 0 || l < best_len) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "constrict/constrict.hpp"
@@ -26,9 +27,17 @@ namespace constrict::detail {
 /// @param[in] order optional: the ids of points, dt and polygon are a relabelling and order[v] is
 ///   the stable id of v; every tie and the start of the output polygon then follow order[], so
 ///   the result is the relabelling of what the stable ids give (null: the ids are the stable ids)
+/// @param[in] adjacency optional: gives dt's vertex adjacency as CSR (the neighbours of v are
+///   nb[off[v]] .. nb[off[v + 1] - 1], each once, in any order), asked for only when the search
+///   runs; the candidate lists are then gathered from it instead of two passes over dt's triangles
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
 ///   2^20 candidate nodes). Deterministic.
+struct Adjacency2 {
+  const int* off = nullptr;
+  const int* nb = nullptr;
+};
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr);
+                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr,
+                     const std::function<Adjacency2()>& adjacency = {});
 
 }  // namespace constrict::detail
