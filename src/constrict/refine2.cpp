@@ -153,8 +153,8 @@ void rotate_to_smallest(std::vector<int>& poly, const std::vector<int>* order) {
 class Refiner {
  public:
   // xy: the coordinates in polygon order (polygon_coordinates()).
-  Refiner(std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour, std::size_t budget,
-          Refine2Stats& st, const std::vector<int>* order, Adjacency2 adjacency)
+  Refiner(const PointSet& points, std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour,
+          std::size_t budget, Refine2Stats& st, const std::vector<int>* order, Adjacency2 adjacency)
       : poly_(tour), order_(order), budget_(budget), st_(st), n_(tour.size()) {
     // Local ids = positions in the input polygon: the hot loops walk along the polygon, and the
     // input order of the points is arbitrary (often shuffled), so this relabelling turns random
@@ -164,7 +164,7 @@ class Refiner {
     std::vector<int> local(n_);
     for (std::size_t i = 0; i < n_; ++i) local[U(id_[i])] = static_cast<int>(i);
     if (adjacency.off)
-      gather_neighbours(adjacency, local);
+      gather_neighbours(adjacency, points, local);
     else
       build_neighbours(dt, local);
     tour_.resize(n_);
@@ -281,8 +281,11 @@ class Refiner {
     each_edge([&](int u, int v) { near_[U(cnt[U(u)].fetch_add(1, std::memory_order_relaxed))] = v; });
     sort_neighbours();
   }
-  // The same lists from the caller's adjacency (global ids): one parallel gather per vertex.
-  void gather_neighbours(Adjacency2 adj, const std::vector<int>& local) {
+  // The same lists from the caller's adjacency (global ids): one parallel pass per vertex. The
+  // distances are taken there, from the points by global id (Delaunay neighbours are near each
+  // other in that spatially sorted order; local neighbours may be far apart on the polygon), with
+  // the same expression as d(): the same doubles.
+  void gather_neighbours(Adjacency2 adj, const PointSet& points, const std::vector<int>& local) {
     off_.resize(n_ + 1);
     off_[0] = 0;
     for (std::size_t v = 0; v < n_; ++v) {
@@ -290,25 +293,32 @@ class Refiner {
       off_[v + 1] = off_[v] + U(adj.off[g + 1] - adj.off[g]);
     }
     near_.resize(off_[n_]);
+    near_d_.resize(off_[n_]);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t v = r.begin(); v != r.end(); ++v) {
         const std::size_t g = U(id_[v]);
-        int* out = near_.data() + off_[v];
-        for (int k = adj.off[g]; k < adj.off[g + 1]; ++k) *out++ = local[U(adj.nb[k])];
+        const double* p = points[g];
+        std::size_t k = off_[v];
+        for (int a = adj.off[g]; a < adj.off[g + 1]; ++a, ++k) {
+          const double* q = points[U(adj.nb[a])];
+          const double dx = p[0] - q[0], dy = p[1] - q[1];
+          near_[k] = local[U(adj.nb[a])];
+          near_d_[k] = std::sqrt(dx * dx + dy * dy);
+        }
       }
     });
-    sort_neighbours();
+    sort_neighbours(true);
   }
-  // Sorts every list by (distance, id) and records the distances.
-  void sort_neighbours() {
-    near_d_.resize(near_.size());
+  // Sorts every list by (distance, id), recording the distances (have_d: already there).
+  void sort_neighbours(bool have_d = false) {
+    if (!have_d) near_d_.resize(near_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t v = r.begin(); v != r.end(); ++v) {
         const int vi = static_cast<int>(v);
         // Insertion sort by (distance, id): lists are short (6 on average).
         for (std::size_t k = off_[v]; k < off_[v + 1]; ++k) {
           const int w = near_[k];
-          const double dw = d(vi, w);
+          const double dw = have_d ? near_d_[k] : d(vi, w);
           std::size_t j = k;
           while (j > off_[v] && (near_d_[j - 1] > dw || (near_d_[j - 1] == dw && near_[j - 1] > w))) {
             near_[j] = near_[j - 1];
@@ -1031,7 +1041,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
     std::vector<double> pxy(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
     pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
     Refine2Stats st;
-    Refiner r(std::move(pxy), dt, poly, work_budget, st, order, adj);
+    Refiner r(points, std::move(pxy), dt, poly, work_budget, st, order, adj);
     r.run();
     const double l = geometric_length(points, poly, order);
     if (k == 0 || l < best_len) {
