@@ -1138,7 +1138,7 @@ struct Constrictor2::Impl {
       detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid, [&] {
         build_adjacency();  // needed below for fallback_edges after any move anyway
         return detail::Adjacency2{adj_off.data(), adj.data()};
-      });
+      }, r.fallback_insertions == 0);  // after insertions (non-Delaunay edges) moves are the rule
       r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;

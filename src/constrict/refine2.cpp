@@ -1008,7 +1008,7 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order,
-                     const std::function<Adjacency2()>& adjacency) {
+                     const std::function<Adjacency2()>& adjacency, bool pretest) {
   stats = Refine2Stats{};
   if (polygon.size() != points.size()) return;
   if (polygon.size() < 4) {
@@ -1019,7 +1019,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   }
   std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
-  if (!may_improve(xy, dt, polygon, len)) {
+  if (pretest && !may_improve(xy, dt, polygon, len)) {
     normalise_polygon(points, polygon, order);
     stats.length_before = stats.length_after = len;
     return;

@@ -30,6 +30,8 @@ namespace constrict::detail {
 /// @param[in] adjacency optional: gives dt's vertex adjacency as CSR (the neighbours of v are
 ///   nb[off[v]] .. nb[off[v + 1] - 1], each once, in any order), asked for only when the search
 ///   runs; the candidate lists are then gathered from it instead of two passes over dt's triangles
+/// @param[in] pretest false: skip the O(N) test of whether any move can apply (the caller expects
+///   moves, e.g. after fallback insertions); the result is the same either way
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
 ///   2^20 candidate nodes). Deterministic.
 struct Adjacency2 {
@@ -38,6 +40,6 @@ struct Adjacency2 {
 };
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr,
-                     const std::function<Adjacency2()>& adjacency = {});
+                     const std::function<Adjacency2()>& adjacency = {}, bool pretest = true);
 
 }  // namespace constrict::detail
