@@ -3,7 +3,6 @@
 // fallbacks after a lock (paper §4.3; spec §3.6, §3.7) and a final repair. See
 // docs/reconstruction-2d.md for the algorithm and its guarantees.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -530,6 +529,7 @@ struct Constrictor2::Impl {
   }
 
   // ---------------------------------------------------------------- fallback infrastructure
+  static constexpr std::size_t kPrefetchAhead = 16;
   void build_fallback() {
     if (fb_ready) return;
     fb_ready = true;
@@ -552,7 +552,10 @@ struct Constrictor2::Impl {
         out_edge[v] = static_cast<int>(bedges.size());
         bedges.push_back(BEdge{static_cast<int>(v), nxt[v], true});
       }
+    // The edges run by their first vertex; the second one's coordinates are a random read, so
+    // they are prefetched a few edges ahead.
     grid.add_edges(bedges.size(), [&](std::size_t k, const double*& a, const double*& b, int& id) {
+      if (k + kPrefetchAhead < bedges.size()) __builtin_prefetch(P(bedges[k + kPrefetchAhead].v));
       a = P(bedges[k].u);
       b = P(bedges[k].v);
       id = static_cast<int>(k);
@@ -564,53 +567,41 @@ struct Constrictor2::Impl {
     adj_ready = true;
     // Adjacency by counting sort: the counter-clockwise edge u->v of a triangle gives u its
     // neighbour v (the reverse comes from the triangle across), and a hull edge also gives v its
-    // neighbour u; so every neighbour comes exactly once. The passes over the triangles read the
-    // vertices at random: they run in parallel with atomic counters, and every list is sorted
-    // afterwards (neighbours by id for is_dt_edge(), triangles by index), so the result does not
-    // depend on the schedule.
-    const std::size_t nt = dt.triangles.size();
-    std::vector<std::atomic<int>> na(n + 1), nv(n + 1);
-    for (std::size_t v = 0; v <= n; ++v) {
-      na[v].store(0, std::memory_order_relaxed);
-      nv[v].store(0, std::memory_order_relaxed);
-    }
-    const auto each_triangle = [&](auto&& f) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t t = r.begin(); t != r.end(); ++t) f(t, dt.triangles[t]);
-      });
-    };
-    const auto bump = [](std::atomic<int>& c) { return c.fetch_add(1, std::memory_order_relaxed); };
-    each_triangle([&](std::size_t t, const std::array<int, 3>& tr) {
-      for (int i = 0; i < 3; ++i) {
-        bump(na[U(tr[U((i + 1) % 3)]) + 1]);
-        if (dt.neighbors[t][U(i)] < 0) bump(na[U(tr[U((i + 2) % 3)]) + 1]);
-        bump(nv[U(tr[U(i)]) + 1]);
-      }
-    });
+    // neighbour u; so every neighbour comes exactly once. Lists sorted for is_dt_edge(). (Two
+    // passes with random reads; in parallel with atomic counters they were slower on 2 cores.)
     adj_off.assign(n + 1, 0);
-    vt_off.assign(n + 1, 0);
-    for (std::size_t v = 0; v < n; ++v) {
-      adj_off[v + 1] = adj_off[v] + na[v + 1].load(std::memory_order_relaxed);
-      vt_off[v + 1] = vt_off[v] + nv[v + 1].load(std::memory_order_relaxed);
-      na[v].store(adj_off[v], std::memory_order_relaxed);
-      nv[v].store(vt_off[v], std::memory_order_relaxed);
-    }
-    adj.resize(U(adj_off[n]));
-    vt.resize(U(vt_off[n]));
-    each_triangle([&](std::size_t t, const std::array<int, 3>& tr) {
+    const std::size_t nt = dt.triangles.size();
+    for (std::size_t t = 0; t < nt; ++t)
       for (int i = 0; i < 3; ++i) {
+        const auto& tr = dt.triangles[t];
+        ++adj_off[U(tr[U((i + 1) % 3)]) + 1];
+        if (dt.neighbors[t][U(i)] < 0) ++adj_off[U(tr[U((i + 2) % 3)]) + 1];
+      }
+    for (std::size_t v = 0; v < n; ++v) adj_off[v + 1] += adj_off[v];
+    adj.assign(U(adj_off[n]), 0);
+    std::vector<int> at(adj_off.begin(), adj_off.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 3; ++i) {
+        const auto& tr = dt.triangles[t];
         const int u = tr[U((i + 1) % 3)], v = tr[U((i + 2) % 3)];
-        adj[U(bump(na[U(u)]))] = v;
-        if (dt.neighbors[t][U(i)] < 0) adj[U(bump(na[U(v)]))] = u;
-        vt[U(bump(nv[U(tr[U(i)])]))] = static_cast<int>(t);
+        adj[U(at[U(u)]++)] = v;
+        if (dt.neighbors[t][U(i)] < 0) adj[U(at[U(v)]++)] = u;
       }
-    });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t v = r.begin(); v != r.end(); ++v) {
-        std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
-        std::sort(vt.begin() + vt_off[v], vt.begin() + vt_off[v + 1]);
-      }
+      for (std::size_t v = r.begin(); v != r.end(); ++v) std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
     });
+  }
+  // Vertex -> incident triangles (CSR, by triangle index), for the degree-4 augmentation only.
+  void build_vertex_triangles() {
+    if (!vt_off.empty()) return;
+    vt_off.assign(n + 1, 0);
+    for (const auto& tr : dt.triangles)
+      for (const int v : tr) ++vt_off[U(v) + 1];
+    for (std::size_t v = 0; v < n; ++v) vt_off[v + 1] += vt_off[v];
+    vt.assign(U(vt_off[n]), 0);
+    std::vector<int> fill(vt_off.begin(), vt_off.end() - 1);
+    for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+      for (const int v : dt.triangles[t]) vt[U(fill[U(v)]++)] = static_cast<int>(t);
   }
   bool is_dt_edge(int u, int v) const {
     return std::binary_search(adj.begin() + adj_off[U(u)], adj.begin() + adj_off[U(u) + 1], v);
@@ -967,6 +958,7 @@ struct Constrictor2::Impl {
   // Degree-4 augmentation (spec §3.7), restricted to vertices within two hops of the stuck points
   // (only edges at a stuck point can be used by a removal; degrees cascade in index order).
   void augment_degree4() {
+    build_vertex_triangles();
     std::vector<int> stuck;
     for (std::size_t v = 0; v < n; ++v)
       if (!onb[v]) stuck.push_back(static_cast<int>(v));
