@@ -3,10 +3,16 @@
 #include "core/detail/canonical_order.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 namespace constrict::detail {
 namespace {
@@ -35,39 +41,36 @@ std::uint64_t spread3(std::uint64_t x) {
   return x;
 }
 
-// Sorts (key, index) pairs by key: least-significant-digit radix sort, 16-bit digits (stable).
-void radix_sort(std::vector<std::pair<std::uint64_t, int>>& a) {
-  constexpr int kDigit = 16;
-  constexpr std::size_t kRadix = std::size_t(1) << kDigit;
-  std::vector<std::pair<std::uint64_t, int>> tmp(a.size());
-  std::vector<std::size_t> count(kRadix);
-  for (int shift = 0; shift < 64; shift += kDigit) {
-    std::fill(count.begin(), count.end(), 0);
-    for (const auto& e : a) ++count[(e.first >> shift) & (kRadix - 1)];
-    if (a.empty() || count[(a[0].first >> shift) & (kRadix - 1)] == a.size()) continue;  // one digit value
-    std::size_t sum = 0;
-    for (auto& c : count) {
-      const std::size_t k = c;
-      c = sum;
-      sum += k;
-    }
-    for (const auto& e : a) tmp[count[(e.first >> shift) & (kRadix - 1)]++] = e;
-    a.swap(tmp);
-  }
-}
-
 }  // namespace
 
 std::vector<int> canonical_order(const PointSet& p) {
   const std::size_t n = p.size(), d = static_cast<std::size_t>(p.dim);
   const int bits = p.dim == 3 ? kBits3 : kBits2;
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (std::size_t k = 0; k < d && n > 0; ++k) lo[k] = hi[k] = p[0][k];
-  for (std::size_t i = 1; i < n; ++i)
-    for (std::size_t k = 0; k < d; ++k) {
-      lo[k] = std::min(lo[k], p[i][k]);
-      hi[k] = std::max(hi[k], p[i][k]);
-    }
+  // The box: min and max are exact, so the split into blocks does not change them.
+  using Box = std::array<double, 6>;  // lo x y z, hi x y z
+  Box box{0, 0, 0, 0, 0, 0};
+  if (n > 0) {
+    for (std::size_t k = 0; k < d; ++k) box[k] = box[3 + k] = p[0][k];
+    box = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 16384), box,
+        [&](const tbb::blocked_range<std::size_t>& r, Box b) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i)
+            for (std::size_t k = 0; k < d; ++k) {
+              b[k] = std::min(b[k], p[i][k]);
+              b[3 + k] = std::max(b[3 + k], p[i][k]);
+            }
+          return b;
+        },
+        [&](Box a, const Box& b) {
+          for (std::size_t k = 0; k < 3; ++k) {
+            a[k] = std::min(a[k], b[k]);
+            a[3 + k] = std::max(a[3 + k], b[3 + k]);
+          }
+          return a;
+        });
+  }
+  const double* lo = box.data();
+  const double* hi = box.data() + 3;
   const double cells = std::ldexp(1.0, bits);
   // Cell of coordinate x on axis k, in [0, 2^bits): the same double operations for the same x.
   const auto cell = [&](double x, std::size_t k) -> std::uint64_t {
@@ -78,26 +81,40 @@ std::vector<int> canonical_order(const PointSet& p) {
     return t >= cells - 1 ? static_cast<std::uint64_t>(cells - 1) : static_cast<std::uint64_t>(t);
   };
   std::vector<std::pair<std::uint64_t, int>> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t m = 0;
-    for (std::size_t k = 0; k < d; ++k) m |= (p.dim == 3 ? spread3(cell(p[i][k], k)) : spread2(cell(p[i][k], k))) << k;
-    key[i] = {m, static_cast<int>(i)};
-  }
-  radix_sort(key);
-  // Equal codes (points in one cell): the exact lexicographic order of the coordinates.
-  const auto lex = [&](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      std::uint64_t m = 0;
+      for (std::size_t k = 0; k < d; ++k) m |= (p.dim == 3 ? spread3(cell(p[i][k], k)) : spread2(cell(p[i][k], k))) << k;
+      key[i] = {m, static_cast<int>(i)};
+    }
+  });
+  // The order: by code, equal codes (points in one cell) by the exact lexicographic order of the
+  // coordinates, a strict total order on distinct points. One counting pass on the top 16 bits
+  // of the code, then each bucket sorted on its own (in parallel): the result is that order
+  // whatever the sort algorithms do.
+  const auto less = [&](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
+    if (a.first != b.first) return a.first < b.first;
     const double* pa = p[static_cast<std::size_t>(a.second)];
     const double* pb = p[static_cast<std::size_t>(b.second)];
     return std::lexicographical_compare(pa, pa + d, pb, pb + d);
   };
-  for (std::size_t i = 0; i < n;) {
-    std::size_t j = i + 1;
-    while (j < n && key[j].first == key[i].first) ++j;
-    if (j - i > 1) std::sort(key.begin() + static_cast<std::ptrdiff_t>(i), key.begin() + static_cast<std::ptrdiff_t>(j), lex);
-    i = j;
+  constexpr int kTopBits = 16;
+  const int shift = (p.dim == 3 ? 3 * kBits3 : 2 * kBits2) - kTopBits;
+  std::vector<std::size_t> start((std::size_t{1} << kTopBits) + 1, 0);
+  for (const auto& e : key) ++start[(e.first >> shift) + 1];
+  for (std::size_t b = 0; b + 1 < start.size(); ++b) start[b + 1] += start[b];
+  std::vector<std::pair<std::uint64_t, int>> sorted(n);
+  {
+    std::vector<std::size_t> at(start.begin(), start.end() - 1);
+    for (const auto& e : key) sorted[at[e.first >> shift]++] = e;
   }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size() - 1, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t b = r.begin(); b != r.end(); ++b)
+      if (start[b + 1] - start[b] > 1)
+        std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[b]), sorted.begin() + static_cast<std::ptrdiff_t>(start[b + 1]), less);
+  });
   std::vector<int> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = key[i].second;
+  for (std::size_t i = 0; i < n; ++i) order[i] = sorted[i].second;
   return order;
 }
 
@@ -106,7 +123,10 @@ PointSet permuted(const PointSet& p, const std::vector<int>& order) {
   q.dim = p.dim;
   const std::size_t d = static_cast<std::size_t>(p.dim);
   q.coords.resize(p.coords.size());
-  for (std::size_t k = 0; k < order.size(); ++k) std::copy(p[static_cast<std::size_t>(order[k])], p[static_cast<std::size_t>(order[k])] + d, q[k]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k)
+      std::copy(p[static_cast<std::size_t>(order[k])], p[static_cast<std::size_t>(order[k])] + d, q[k]);
+  });
   return q;
 }
 
