@@ -23,18 +23,6 @@ namespace {
 
 constexpr std::size_t kListedDuplicates = 5;  // pairs named in the Duplicate message
 
-// Maps a double to an unsigned key with the same order as operator< on doubles: -0.0 and 0.0 get
-// the same key (they compare equal), every NaN gets the largest key (NaNs are never duplicates,
-// see equal_coords, but they must not break the strict weak order of the sort).
-std::uint64_t order_key(double x) noexcept {
-  if (std::isnan(x)) return ~std::uint64_t{0};
-  if (x == 0.0) x = 0.0;
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &x, sizeof bits);
-  constexpr std::uint64_t kSign = std::uint64_t{1} << 63;
-  return (bits & kSign) != 0 ? ~bits : (bits | kSign);
-}
-
 // Strict weak order on doubles: operator< with every NaN above everything else.
 bool less_total(double a, double b) noexcept {
   if (std::isnan(a)) return false;
@@ -49,6 +37,19 @@ bool equal_coords(const double* a, const double* b, int dim) noexcept {
 }
 
 // Radix sort entry: the high 32 bits of the key of x, and the point index.
+// A 32-bit hash of a point's coordinates, equal for equal points (operator==: -0.0 == 0.0).
+std::uint32_t coordinate_hash(const double* p, int dim) noexcept {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  for (int k = 0; k < dim; ++k) {
+    const double x = p[k] == 0.0 ? 0.0 : p[k];
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &x, sizeof bits);
+    h = (h ^ bits) * 0xff51afd7ed558ccdULL;
+    h ^= h >> 32;
+  }
+  return static_cast<std::uint32_t>(h >> 32);
+}
+
 struct HighIndex {
   std::uint32_t high;
   std::uint32_t index;
@@ -142,11 +143,14 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
   const int dim = points.dim;
   if (n < 2) return dups;
 
-  // The indices are sorted lexicographically by coordinates, ties broken by index, so the result
-  // does not depend on the sort algorithm; identical points are then adjacent, the first
-  // occurrence first. For speed this is done in two steps: a radix sort of compact
-  // (high 32 bits of x, index) pairs, then a comparison sort of each run of equal high bits
-  // (mostly single points). The final order is exactly the (x, y, z, index) order.
+  // Identical points are brought together by sorting, and each group sorted lexicographically by
+  // coordinates, ties broken by index, so that the first occurrence comes first; the pairs are
+  // sorted at the end, so the result does not depend on the sort algorithm. For speed this is done
+  // in two steps: a radix sort of compact (32-bit hash of the coordinates, index) pairs, then a
+  // comparison sort of each run of equal hashes. Identical points have equal hashes (-0.0 is
+  // hashed as 0.0), and distinct points rarely do, so the second step reads few points (an
+  // order-preserving key such as the high bits of x groups many distinct points of a sample, and
+  // reading them at random cost more than the radix sort).
   const auto lex_less = [&points, dim](std::size_t l, std::size_t r) {
     const double* p = points[l];
     const double* q = points[r];
@@ -177,8 +181,7 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
   } else {
     std::vector<HighIndex> order(n);
     for (std::size_t i = 0; i < n; ++i)
-      order[i] = {static_cast<std::uint32_t>(order_key(points[i][0]) >> 32),
-                  static_cast<std::uint32_t>(i)};
+      order[i] = {coordinate_hash(points[i], dim), static_cast<std::uint32_t>(i)};
     radix_sort(order);
     std::vector<std::size_t> run;
     for (std::size_t r = 0; r < n;) {
