@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Exact polygon validation: indices, every point once, simplicity (Shamos–Hoey sweep), CCW.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "constrict/predicates.hpp"
 #include "constrict/detail/segments2.hpp"
@@ -306,20 +310,33 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
   std::vector<int> succ(n, -1);
   for (std::size_t k = 0; k < boundary.size(); ++k)
     succ[static_cast<std::size_t>(boundary[k])] = boundary[(k + 1) % boundary.size()];
-  std::vector<char> found(n, 0);  // found[u]: the polygon edge from u is a triangle edge
-  bool all_edges_in = true;
-  for (const auto& t : triangles) {
-    for (int v : t)
-      if (v < 0 || static_cast<std::size_t>(v) >= n) all_edges_in = false;
-    if (!all_edges_in) break;
-    for (int i = 0; i < 3; ++i) {
-      const int u = t[static_cast<std::size_t>(i)], v = t[static_cast<std::size_t>((i + 1) % 3)];
-      if (succ[static_cast<std::size_t>(u)] == v) found[static_cast<std::size_t>(u)] = 1;
-      if (succ[static_cast<std::size_t>(v)] == u) found[static_cast<std::size_t>(v)] = 1;
+  // found[u]: the polygon edge from u is a triangle edge. The pass over the triangles reads succ
+  // at random and runs in parallel; a flag is only ever set to 1 (relaxed atomic stores), so the
+  // flags do not depend on the schedule.
+  std::vector<std::atomic<unsigned char>> found(n);
+  std::atomic<bool> indices_ok{true};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t u = r.begin(); u != r.end(); ++u) found[u].store(0, std::memory_order_relaxed);
+  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const auto& t = triangles[k];
+      bool in = true;
+      for (int v : t) in = in && v >= 0 && static_cast<std::size_t>(v) < n;
+      if (!in) {
+        indices_ok.store(false, std::memory_order_relaxed);
+        return;
+      }
+      for (int i = 0; i < 3; ++i) {
+        const int u = t[static_cast<std::size_t>(i)], v = t[static_cast<std::size_t>((i + 1) % 3)];
+        if (succ[static_cast<std::size_t>(u)] == v) found[static_cast<std::size_t>(u)].store(1, std::memory_order_relaxed);
+        if (succ[static_cast<std::size_t>(v)] == u) found[static_cast<std::size_t>(v)].store(1, std::memory_order_relaxed);
+      }
     }
-  }
+  });
+  bool all_edges_in = indices_ok.load();
   const bool indices_in = all_edges_in;
-  for (std::size_t u = 0; u < n && all_edges_in; ++u) all_edges_in = found[u] != 0;
+  for (std::size_t u = 0; u < n && all_edges_in; ++u) all_edges_in = found[u].load(std::memory_order_relaxed) != 0;
   Poly P{points, boundary, boundary.size()};
   if (!all_edges_in) {
     // Some edge is not a triangulation edge: the sweep decides, over the edges near those when
@@ -330,7 +347,7 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
     bool subset = false;
     if (indices_in) {
       dt_edge.resize(P.n);
-      for (std::size_t k = 0; k < P.n; ++k) dt_edge[k] = found[static_cast<std::size_t>(boundary[k])];
+      for (std::size_t k = 0; k < P.n; ++k) dt_edge[k] = static_cast<char>(found[static_cast<std::size_t>(boundary[k])].load(std::memory_order_relaxed));
       subset = conflict_candidates(P, dt_edge, only);
     }
     if (sweep.run(e, f, subset ? &only : nullptr)) return report_crossing(P, e, f, details);
