@@ -3,11 +3,16 @@
 // is mesh_volume() (src/core/mesh.cpp).
 // Combinatorics are exact; geometric tests use the exact orient3 / orient2 predicates only.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <string>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
@@ -166,6 +171,7 @@ struct VertexLinks {
 Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 Status check_edges(const TriMesh3& mesh, MeshCheck& d);
 VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n);
+bool edges_ok_from_links(const VertexLinks& vl, MeshCheck& d);
 Status check_vertex_links(VertexLinks& vl, MeshCheck& d);
 Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOptions& options, MeshCheck& d);
 Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, const MeshCheckOptions& options,
@@ -192,8 +198,12 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   if (n > 0x7fffffffu) return fail(d, "too many points");
 
   if (Status s = check_faces(pts, mesh, d); !s) return s;
-  if (Status s = check_edges(mesh, d); !s) return s;
   VertexLinks links = vertex_links(mesh, n);
+  // The edges from the vertex stars, in parallel; only when they fail, the sort of all half-edges
+  // (check_edges) decides, and names the first failing edge as it always did.
+  if (!edges_ok_from_links(links, d)) {
+    if (Status s = check_edges(mesh, d); !s) return s;
+  }
   if (Status s = check_vertex_links(links, d); !s) return s;
   if (Status s = check_all_points(links.off, options, d); !s) return s;
   if (Status s = check_topology(mesh, links.off, options, d); !s) return s;
@@ -205,10 +215,28 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
 namespace {
 
 // 1. every id in range, three distinct ids per face; 2. no face with collinear vertices.
+// The first face f in [0, nf) with bad(f), or nf (in parallel; the same f as a sequential scan).
+template <class Bad> std::size_t first_bad_face(std::size_t nf, Bad&& bad) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, nf, 16384), nf,
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t first) {
+        for (std::size_t f = r.begin(); f != r.end() && f < first; ++f)
+          if (bad(f)) return f;
+        return first;
+      },
+      [](std::size_t a, std::size_t b) { return std::min(a, b); });
+}
+
 Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   const std::size_t n = pts.size();
   const std::size_t nf = mesh.triangles.size();
-  for (std::size_t f = 0; f < nf; ++f) {
+  const std::size_t first = first_bad_face(nf, [&](std::size_t f) {
+    const auto& t = mesh.triangles[f];
+    for (int v : t)
+      if (v < 0 || static_cast<std::size_t>(v) >= n) return true;
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+  });
+  for (std::size_t f = first; f < nf; ++f) {
     const auto& t = mesh.triangles[f];
     for (int v : t)
       if (v < 0 || static_cast<std::size_t>(v) >= n)
@@ -217,7 +245,12 @@ Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
       return fail(d, "face " + std::to_string(f) + " repeats a vertex");
   }
   d.indices_ok = true;
-  for (std::size_t f = 0; f < nf; ++f) {
+  const std::size_t first_flat = first_bad_face(nf, [&](std::size_t f) {
+    const auto& t = mesh.triangles[f];
+    return collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
+                      pts[static_cast<std::size_t>(t[2])]);
+  });
+  for (std::size_t f = first_flat; f < nf; ++f) {
     const auto& t = mesh.triangles[f];
     if (collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
                    pts[static_cast<std::size_t>(t[2])]))
@@ -287,6 +320,46 @@ VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n) {
   return vl;
 }
 
+// Closed, edge-manifold and consistently oriented, read from the vertex stars: the faces at v
+// are (v, x, y) for its link entries (x, y), with the half-edges v->x and y->v, so every edge
+// {v, w} has exactly two faces, one each way, iff w occurs exactly once as an x and once as a y
+// in v's star. Per vertex, in parallel; the edges are counted at their smaller end. True (and
+// d.edges, d.closed, d.edge_manifold, d.oriented set) when every edge passes.
+bool edges_ok_from_links(const VertexLinks& vl, MeshCheck& d) {
+  const std::size_t n = vl.off.size() - 1;
+  std::atomic<bool> ok{true};
+  const long long n_edges = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 4096), 0LL,
+      [&](const tbb::blocked_range<std::size_t>& r, long long count) {
+        std::vector<std::uint64_t> ends;  // w << 1 | (1: y, the half-edge w->v)
+        for (std::size_t v = r.begin(); v != r.end() && ok.load(std::memory_order_relaxed); ++v) {
+          ends.clear();
+          for (std::size_t k = vl.off[v]; k < vl.off[v + 1]; ++k) {
+            ends.push_back(static_cast<std::uint64_t>(vl.link[k][0]) << 1);
+            ends.push_back(static_cast<std::uint64_t>(vl.link[k][1]) << 1 | 1u);
+          }
+          std::sort(ends.begin(), ends.end());
+          for (std::size_t i = 0; i < ends.size(); i += 2) {
+            // Sorted, each w must come as exactly the pair (w, x) (w, y): a third entry of w
+            // would start the next pair, whose ends then differ.
+            const bool pair = i + 1 < ends.size() && (ends[i] >> 1) == (ends[i + 1] >> 1) && (ends[i] & 1u) == 0 &&
+                              (ends[i + 1] & 1u) == 1;
+            if (!pair) {
+              ok.store(false, std::memory_order_relaxed);
+              break;
+            }
+            if ((ends[i] >> 1) > v) ++count;
+          }
+        }
+        return count;
+      },
+      [](long long a, long long b) { return a + b; });
+  if (!ok.load()) return false;
+  d.edges = n_edges;
+  d.closed = d.edge_manifold = d.oriented = true;
+  return true;
+}
+
 // Whether the link edges link[b, e) (sorted here) form one cycle of length e - b.
 bool link_is_one_cycle(std::vector<std::array<int, 2>>& link, std::size_t b, std::size_t e) {
   std::sort(link.begin() + static_cast<std::ptrdiff_t>(b), link.begin() + static_cast<std::ptrdiff_t>(e));
@@ -310,12 +383,17 @@ bool link_is_one_cycle(std::vector<std::array<int, 2>>& link, std::size_t b, std
 // 4. vertex-manifold: the link of every vertex is one cycle (d.vertices counts the vertices).
 Status check_vertex_links(VertexLinks& vl, MeshCheck& d) {
   const std::size_t n = vl.off.size() - 1;
+  // Every link on its own, in parallel (each sorts its own range); then the first failing vertex.
+  std::vector<char> bad(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v)
+      if (vl.off[v] != vl.off[v + 1]) bad[v] = !link_is_one_cycle(vl.link, vl.off[v], vl.off[v + 1]);
+  });
   long long n_vertices = 0;
   for (std::size_t v = 0; v < n; ++v) {
-    const std::size_t b = vl.off[v], e = vl.off[v + 1];
-    if (b == e) continue;
+    if (vl.off[v] == vl.off[v + 1]) continue;
     ++n_vertices;
-    if (!link_is_one_cycle(vl.link, b, e)) {
+    if (bad[v]) {
       d.bad_vertex = static_cast<int>(v);
       return fail(d, "not vertex-manifold: the link of vertex " + std::to_string(v) + " is not one cycle");
     }

@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <random>
+#include <utility>
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -118,6 +122,87 @@ TEST(MeshValidate, RejectsNonManifoldEdge) {
   EXPECT_FALSE(validate_mesh3(p, mesh(f), &mc).is_ok());
   EXPECT_TRUE(mc.closed);
   EXPECT_FALSE(mc.edge_manifold);
+}
+
+// The edge checks against their definition, on random corruptions of a subdivided octahedron
+// (a face dropped, flipped, doubled, or a face added on an existing edge): closed = every edge has
+// two faces or more, edge-manifold = none has more than two, oriented = every two-face edge is
+// used once each way (in that order of precedence, as validate_mesh3 reports), and the edge count.
+TEST(MeshValidate, EdgeChecksMatchTheirDefinition) {
+  // Octahedron, each face split into 4, three times: 512 faces, outward.
+  std::vector<std::array<double, 3>> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<std::array<int, 3>> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < 3; ++level) {
+    std::map<std::pair<int, int>, int> mid;
+    const auto middle = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      if (auto it = mid.find(key); it != mid.end()) return it->second;
+      std::array<double, 3> m{};
+      for (int k = 0; k < 3; ++k) m[k] = 0.5 * (v[a][k] + v[b][k]);
+      const double r = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      for (double& c : m) c /= r;
+      v.push_back(m);
+      return mid[key] = static_cast<int>(v.size() - 1);
+    };
+    std::vector<std::array<int, 3>> g;
+    for (const auto& t : f) {
+      const int ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
+      g.push_back({t[0], ab, ca});
+      g.push_back({ab, t[1], bc});
+      g.push_back({ca, bc, t[2]});
+      g.push_back({ab, bc, ca});
+    }
+    f.swap(g);
+  }
+  const PointSet p = make3(v);
+  {
+    MeshCheck mc;
+    ASSERT_TRUE(validate_mesh3(p, mesh(f), &mc).is_ok()) << mc.reason;
+    EXPECT_EQ(mc.edges, static_cast<long long>(3 * f.size() / 2));
+  }
+  const unsigned seed = 3;
+  std::printf("seed %u\n", seed);
+  std::mt19937 rng(seed);
+  int failed = 0;
+  for (int round = 0; round < 300; ++round) {
+    std::vector<std::array<int, 3>> g = f;
+    for (int c = 0, changes = 1 + static_cast<int>(rng() % 3); c < changes; ++c) {
+      const std::size_t k = rng() % g.size();
+      switch (rng() % 4) {
+        case 0: g.erase(g.begin() + static_cast<std::ptrdiff_t>(k)); break;
+        case 1: std::swap(g[k][1], g[k][2]); break;
+        case 2: g.push_back(g[k]); break;
+        default: {  // a new face on edge (g[k][0], g[k][1]) with a vertex of another face
+          const int w = g[rng() % g.size()][0];
+          if (w != g[k][0] && w != g[k][1]) g.push_back({g[k][1], g[k][0], w});
+        }
+      }
+    }
+    std::map<std::pair<int, int>, std::array<int, 2>> use;  // (min, max) -> faces (min->max, max->min)
+    for (const auto& t : g)
+      for (int e = 0; e < 3; ++e) {
+        const int a = t[e], b = t[(e + 1) % 3];
+        ++use[{std::min(a, b), std::max(a, b)}][a < b ? 0 : 1];
+      }
+    bool closed = true, manifold = true, oriented = true;
+    for (const auto& [edge, c] : use) {
+      closed = closed && c[0] + c[1] >= 2;
+      manifold = manifold && c[0] + c[1] <= 2;
+      oriented = oriented && (c[0] + c[1] != 2 || (c[0] == 1 && c[1] == 1));
+    }
+    MeshCheck mc;
+    const bool ok = validate_mesh3(p, mesh(g), &mc).is_ok();
+    failed += !ok;
+    ASSERT_EQ(mc.closed, closed) << "seed " << seed << " round " << round;
+    if (!closed) continue;
+    ASSERT_EQ(mc.edge_manifold, manifold) << "seed " << seed << " round " << round;
+    if (!manifold) continue;
+    ASSERT_EQ(mc.oriented, oriented) << "seed " << seed << " round " << round;
+    if (oriented) {
+      EXPECT_EQ(mc.edges, static_cast<long long>(use.size())) << "seed " << seed << " round " << round;
+    }
+  }
+  EXPECT_GT(failed, 250);
 }
 
 // A triangulated torus (genus 1): closed, manifold, oriented, but χ = 0.
