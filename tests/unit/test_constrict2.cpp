@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Hand cases for the 2D reconstruction (spec gamma-graph.md §5.1, §5.2, §6.2) and the validator.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -188,6 +192,42 @@ TEST(Constrict2Unit, CollinearHullPoints) {
   ASSERT_TRUE(reconstruct2(p, {}, r).is_ok());
   EXPECT_TRUE(r.complete);
   EXPECT_TRUE(validate_polygon(p, r.boundary).is_ok());
+}
+
+// The result does not depend on the thread count: inputs large enough for the parallel passes
+// (canonical order, duplicate check, the refinement's gathered candidate lists, validation) to
+// split into several blocks, a uniform square and a noisy circle (both lock, fall back and
+// refine), each with one thread and with all.
+TEST(Constrict2Unit, ThreadCountIndependent) {
+  const unsigned seed = 23;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> noise(0, 1);
+  const int n = 60000;
+  for (int shape = 0; shape < 2; ++shape) {
+    std::vector<std::array<double, 2>> xy;
+    for (int k = 0; k < n; ++k) {
+      if (shape == 0) {
+        xy.push_back({u(rng), u(rng)});
+      } else {
+        const double t = 2 * M_PI * u(rng), r = 1 + 2 * M_PI / n * noise(rng);
+        xy.push_back({r * std::cos(t), r * std::sin(t)});
+      }
+    }
+    const PointSet p = test::make2(xy);
+    Polygon2Result one, many;
+    {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+      ASSERT_TRUE(reconstruct2(p, {}, one).is_ok());
+    }
+    ASSERT_TRUE(reconstruct2(p, {}, many).is_ok());
+    EXPECT_TRUE(one.valid());
+    EXPECT_NE(one.method, "gamma") << "shape " << shape << ": expected a lock (the fallback and refinement paths)";
+    EXPECT_GT(one.refine_moves, 0u) << "shape " << shape;
+    EXPECT_EQ(one.boundary, many.boundary) << "seed " << seed << " shape " << shape;
+    EXPECT_EQ(one.refine_moves, many.refine_moves) << "seed " << seed << " shape " << shape;
+  }
 }
 
 TEST(Constrict2Validator, Basics) {
