@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_group.h>
 
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
@@ -174,8 +176,9 @@ VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n);
 bool edges_ok_from_links(const VertexLinks& vl, MeshCheck& d);
 Status check_vertex_links(VertexLinks& vl, MeshCheck& d);
 Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOptions& options, MeshCheck& d);
-Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, const MeshCheckOptions& options,
-                      MeshCheck& d);
+std::vector<int> face_union_find(const TriMesh3& mesh, std::size_t n);
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, std::vector<int>& parent,
+                      const MeshCheckOptions& options, MeshCheck& d);
 Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 Status check_self_intersections(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 
@@ -198,6 +201,22 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   if (n > 0x7fffffffu) return fail(d, "too many points");
 
   if (Status s = check_faces(pts, mesh, d); !s) return s;
+  // The sequential passes overlap: the union-find of the faces (for check_topology) runs on the
+  // other core while the vertex links are built and checked.
+  std::vector<int> parent;
+  tbb::task_group side;
+  const struct Join {
+    tbb::task_group& g;
+    ~Join() { g.wait(); }
+  } join{side};
+  bool side_failed = false;  // out of memory there: rethrown here, not from Join's destructor
+  side.run([&] {
+    try {
+      parent = face_union_find(mesh, n);
+    } catch (const std::bad_alloc&) {
+      side_failed = true;
+    }
+  });
   VertexLinks links = vertex_links(mesh, n);
   // The edges from the vertex stars, in parallel; only when they fail, the sort of all half-edges
   // (check_edges) decides, and names the first failing edge as it always did.
@@ -206,7 +225,9 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   }
   if (Status s = check_vertex_links(links, d); !s) return s;
   if (Status s = check_all_points(links.off, options, d); !s) return s;
-  if (Status s = check_topology(mesh, links.off, options, d); !s) return s;
+  side.wait();
+  if (side_failed) throw std::bad_alloc();
+  if (Status s = check_topology(mesh, links.off, parent, options, d); !s) return s;
   if (Status s = check_outward(pts, mesh, d); !s) return s;
   if (options.self_intersections) return check_self_intersections(pts, mesh, d);
   return Status::ok();
@@ -417,11 +438,8 @@ Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOpti
   return Status::ok();
 }
 
-// 6. one component (union-find over vertices along face edges), χ = 2, F = 2V - 4.
-Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, const MeshCheckOptions& options,
-                      MeshCheck& d) {
-  const std::size_t n = off.size() - 1;
-  const std::size_t nf = mesh.triangles.size();
+// The union-find of the vertices along the face edges (ids in range: check_faces).
+std::vector<int> face_union_find(const TriMesh3& mesh, std::size_t n) {
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& t : mesh.triangles) {
@@ -431,6 +449,14 @@ Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off,
       if (r != r0) parent[static_cast<std::size_t>(r)] = r0;
     }
   }
+  return parent;
+}
+
+// 6. one component (parent: face_union_find), χ = 2, F = 2V - 4.
+Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, std::vector<int>& parent,
+                      const MeshCheckOptions& options, MeshCheck& d) {
+  const std::size_t n = off.size() - 1;
+  const std::size_t nf = mesh.triangles.size();
   int comps = 0;
   for (std::size_t v = 0; v < n; ++v)
     if (off[v] != off[v + 1] && find_root(parent, static_cast<int>(v)) == static_cast<int>(v)) ++comps;
@@ -459,9 +485,13 @@ Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off,
 
 // 7. outward: the sign decides, exactly (the double volume can overflow, underflow or cancel).
 Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
-  d.volume = mesh_volume(pts, mesh);
-  d.outward = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
-                                 mesh.triangles.size()) > 0;
+  // Two independent sequential sums: the volume on the other core.
+  tbb::task_group side;
+  side.run([&] { d.volume = mesh_volume(pts, mesh); });
+  const int sign = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
+                                      mesh.triangles.size());
+  side.wait();
+  d.outward = sign > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
   return Status::ok();
 }
