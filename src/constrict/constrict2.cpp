@@ -28,7 +28,7 @@
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/edge_key.hpp"
-#include "core/detail/cell_lists.hpp"
+#include "core/detail/dense_segments.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/sparse_segments.hpp"
@@ -154,8 +154,7 @@ class Grid {
       fine_cells_ = kFineBudget * per_cell;
       fine_rings_ = static_cast<int>(std::ceil(0.5 * (std::sqrt(fine_cells_) - 1)));
     }
-    edges_coarse_.clear();
-    edges_coarse_.grow(nc);
+    edges_coarse_.reset(coarse_.frame);
   }
   /// The coarse cell edge (the search radii add it as a margin).
   double cell_size() const { return coarse_.cell_size(); }
@@ -190,32 +189,20 @@ class Grid {
   }
   void add_edge(const double* a, const double* b, int id) {
     if (fine_on_) edges_fine_.add(a, b, id);
-    coarse_cells(a, b, [&](std::size_t c) { edges_coarse_.add(c, id); });
+    edges_coarse_.add(a, b, id);
   }
   /// On a just built grid: add_edge(a, b, id) for count edges, seg(k, a, b, id) giving the k-th
   /// (the same each call), in one counting sort per layer (CellLists::build).
   template <class Seg> void add_edges(std::size_t count, Seg&& seg) {
     if (fine_on_) edges_fine_.add_all(count, seg);
-    edges_coarse_.build(edges_coarse_.size(), [&](auto&& emit) {
-      for (std::size_t k = 0; k < count; ++k) {
-        const double* a = nullptr;
-        const double* b = nullptr;
-        int id = 0;
-        seg(k, a, b, id);
-        coarse_cells(a, b, [&](std::size_t c) { emit(c, id); });
-      }
-    });
+    edges_coarse_.add_all(count, seg);
   }
   /// Calls f(id) for the registered edges that can meet segment ab (maybe more than once) until f
   /// returns true; true if it did.
   template <class F> bool any_edge(const double* a, const double* b, F&& f) {
     const double* seg[2] = {a, b};
     if (fine_on_ && fine_.hull_cells(seg, 2) <= fine_cells_) return edges_fine_.any(a, b, f);
-    bool done = false;
-    detail::for_cells_of_hull(coarse_.frame, seg, 2, [&](int i, int j) {
-      if (!done) done = edges_coarse_.any(coarse_.index(i, j), f);
-    });
-    return done;
+    return edges_coarse_.any(a, b, f);
   }
 
  private:
@@ -330,13 +317,7 @@ class Grid {
   bool fine_on_ = false;
   double fine_cells_ = 0;  // fine cells a query may read (kFineBudget coarse cells' points)
   int fine_rings_ = 0;     // the rings of about that many cells
-  // The coarse cells of segment ab's bounding box.
-  template <class F> void coarse_cells(const double* a, const double* b, F&& f) const {
-    const auto& g = coarse_.frame;
-    for (int j = g.cy(std::min(a[1], b[1])); j <= g.cy(std::max(a[1], b[1])); ++j)
-      for (int i = g.cx(std::min(a[0], b[0])); i <= g.cx(std::max(a[0], b[0])); ++i) f(coarse_.index(i, j));
-  }
-  detail::CellLists<int> edges_coarse_;
+  detail::DenseSegments<int> edges_coarse_;
   Sparse edges_fine_;  // with the fine layer (short queries)
 };
 

@@ -21,7 +21,7 @@
 #include "core/detail/edge_key.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/grid_cells.hpp"
-#include "core/detail/cell_lists.hpp"
+#include "core/detail/dense_segments.hpp"
 #include "core/detail/sparse_segments.hpp"
 
 namespace constrict::detail {
@@ -52,8 +52,8 @@ struct Edge {
 // Uniform grid of the polygon edges. Cell indices are monotone in the coordinates, so a query
 // finds every edge that can meet the query segment: exact candidate sets for the exact segment
 // tests. Two layouts:
-// - dense (area-sized cells, every cell an array slot; each edge in every cell its bounding box
-//   meets), when the polygon's edges are about as long as the cells;
+// - dense (DenseSegments, core/detail/dense_segments.hpp: area-sized cells, every cell an array
+//   slot), when the polygon's edges are about as long as the cells;
 // - sparse (SparseSegments, core/detail/sparse_segments.hpp: cells of 16 median edges,
 //   sparse_half_cell),
 //   when the median polygon edge is far below the area-sized cell: on a curve sample those cells
@@ -73,72 +73,45 @@ class EdgeGrid {
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
     const double w = detail::half_span(minx_, maxx_), h = detail::half_span(miny_, maxy_);
     hcs_ = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
-    const double fine = Sparse::sparse_half_cell(median_edge, w, h, detail::box_magnitude(minx_, miny_, maxx_, maxy_), hcs_);
+    const double mag = detail::box_magnitude(minx_, miny_, maxx_, maxy_);
+    const double fine = Sparse::sparse_half_cell(median_edge, w, h, mag, hcs_);
     sparse_ = fine > 0;
     if (sparse_) {
       sparse_cells_.reset(minx_, miny_, maxx_, maxy_, fine);
-      cells_.clear();
     } else {
-      nx_ = detail::cell_count(w, hcs_, kMaxCells);
-      ny_ = detail::cell_count(h, hcs_, kMaxCells);
-      cells_.clear();
-      cells_.grow(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
+      dense_cells_.reset(detail::GridFrame{minx_, miny_, mag, hcs_, detail::cell_count(w, hcs_, kMaxCells),
+                                           detail::cell_count(h, hcs_, kMaxCells)});
     }
     built_ = true;
   }
   /// Registers count segments on a just built grid, seg(k, a, b, key) giving the k-th: one
-  /// counting sort (CellLists::build) instead of count add() calls.
+  /// counting sort instead of count add() calls.
   template <class Seg> void add_all(std::size_t count, Seg&& seg) {
     if (sparse_) return sparse_cells_.add_all(count, seg);
-    cells_.build(cells_.size(), [&](auto&& emit) {
-      for (std::size_t k = 0; k < count; ++k) {
-        const double* a = nullptr;
-        const double* b = nullptr;
-        std::uint64_t key = 0;
-        seg(k, a, b, key);
-        for_cells(a, b, [&](std::size_t c) { emit(c, key); });
-      }
-    });
+    dense_cells_.add_all(count, seg);
   }
   bool built() const { return built_; }
   void add(const double* a, const double* b, std::uint64_t key) {
     if (sparse_) return sparse_cells_.add(a, b, key);
-    for_cells(a, b, [&](std::size_t c) { cells_.add(c, key); });
+    dense_cells_.add(a, b, key);
   }
   void remove(const double* a, const double* b, std::uint64_t key) {
     if (sparse_) return sparse_cells_.remove(a, b, key);
-    for_cells(a, b, [&](std::size_t c) { cells_.remove(c, key); });
+    dense_cells_.remove(a, b, key);
   }
   // Calls f(key) for the registered edges that can meet segment ab (an edge can be reported more
   // than once) until f returns true; true if it did.
   template <class F> bool any(const double* a, const double* b, F&& f) {
     if (sparse_) return sparse_cells_.any(a, b, f);
-    const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
-    const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i)
-        if (cells_.any(index(i, j), f)) return true;
-    return false;
+    return dense_cells_.any(a, b, f);
   }
 
  private:
   using Sparse = detail::SparseSegments<std::uint64_t>;
-  template <class F> void for_cells(const double* a, const double* b, F&& f) {
-    const int i0 = cx(std::min(a[0], b[0])), i1 = cx(std::max(a[0], b[0]));
-    const int j0 = cy(std::min(a[1], b[1])), j1 = cy(std::max(a[1], b[1]));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) f(index(i, j));
-  }
-  int cx(double x) const { return detail::cell_of(x, minx_, hcs_, nx_); }
-  int cy(double y) const { return detail::cell_of(y, miny_, hcs_, ny_); }
-  std::size_t index(int i, int j) const {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
-  }
   static constexpr int kMaxCells = 2048;        // per axis, dense
   double minx_ = 0, maxx_ = 0, miny_ = 0, maxy_ = 0, hcs_ = 1;  // hcs_: half the cell edge
-  int nx_ = 1, ny_ = 1;
   bool built_ = false, sparse_ = false;
-  detail::CellLists<std::uint64_t> cells_;  // dense: by index(i, j)
+  detail::DenseSegments<std::uint64_t> dense_cells_;
   Sparse sparse_cells_;
 };
 

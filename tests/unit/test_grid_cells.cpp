@@ -22,6 +22,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "core/detail/cell_lists.hpp"
 #include "core/detail/cell_table.hpp"
+#include "core/detail/dense_segments.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/sparse_segments.hpp"
 
@@ -121,8 +122,8 @@ TEST(GridCells, ThinTriangleReadsAStrip) {
 // SparseSegments against brute force: random short and long segments (many meeting at shared
 // end points, some collinear overlaps) added and removed at random; every query must report every
 // registered segment that meets it (closed segments, exact), and nothing removed.
-TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
-  const unsigned seed = 7;
+// The same random check for both segment grids (sparse: fine cells; dense: area-sized ones).
+template <class Grid, class Reset> void find_every_meeting_segment(unsigned seed, Reset&& reset) {
   std::printf("seed %u\n", seed);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
@@ -132,9 +133,8 @@ TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
     for (int k = 0; k < 400; ++k) pts.push_back({lo + span * u(rng), lo + span * u(rng)});
     pts.push_back({lo, lo});
     pts.push_back({lo + span, lo + span});
-    detail::SparseSegments<int> grid;
-    const double half_cell = std::max(span / 500, detail::SparseSegments<int>::min_half_cell(span / 2, span / 2, 2 * std::fabs(lo) + span));
-    grid.reset(lo, lo, lo + span, lo + span, half_cell);
+    Grid grid;
+    reset(grid, lo, span);
     std::vector<std::array<int, 2>> segs;
     std::vector<char> live;
     const auto random_segment = [&]() -> std::array<int, 2> {
@@ -189,6 +189,21 @@ TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
           ADD_FAILURE() << "seed " << seed << " span " << span << " step " << step << ": segment " << k << " meets the query but was not reported";
     }
   }
+}
+
+TEST(GridCells, SparseSegmentsFindEveryMeetingSegment) {
+  find_every_meeting_segment<detail::SparseSegments<int>>(7, [](auto& grid, double lo, double span) {
+    const double half_cell = std::max(span / 500, detail::SparseSegments<int>::min_half_cell(span / 2, span / 2, 2 * std::fabs(lo) + span));
+    grid.reset(lo, lo, lo + span, lo + span, half_cell);
+  });
+}
+
+TEST(GridCells, DenseSegmentsFindEveryMeetingSegment) {
+  find_every_meeting_segment<detail::DenseSegments<int>>(8, [](auto& grid, double lo, double span) {
+    const double half_cell = span / 40;  // about the spacing of the 400 points
+    const int cells = detail::cell_count(span / 2, half_cell, 1 << 20);
+    grid.reset(detail::GridFrame{lo, lo, 2 * std::fabs(lo) + span, half_cell, cells, cells});
+  });
 }
 
 // A long query on a grid of cells near the 2^-28 floor: its strip would be 2^28 rows; the query

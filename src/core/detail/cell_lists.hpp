@@ -107,4 +107,16 @@ template <class Id> class CellLists {
   int free_ = -1;                   // chain of removed nodes, reused by add()
 };
 
+/// The bulk fills of the segment grids (sparse_segments.hpp, dense_segments.hpp) take their
+/// segments as seg(k, a, b, id) for k < count; this calls f(a, b, id) for each.
+template <class Id, class Seg, class F> void for_each_segment(std::size_t count, Seg& seg, F&& f) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const double* a = nullptr;
+    const double* b = nullptr;
+    Id id{};
+    seg(k, a, b, id);
+    f(a, b, id);
+  }
+}
+
 }  // namespace constrict::detail

@@ -68,15 +68,7 @@ template <class Id> class SparseSegments {
   /// (the same each call): what count calls of add() would do, in one counting sort instead of a
   /// list growth per cell.
   template <class Seg> void add_all(std::size_t count, Seg&& seg) {
-    const auto each = [&](auto&& f) {
-      for (std::size_t k = 0; k < count; ++k) {
-        const double* a = nullptr;
-        const double* b = nullptr;
-        Id id{};
-        seg(k, a, b, id);
-        f(a, b, id);
-      }
-    };
+    const auto each = [&](auto&& f) { for_each_segment<Id>(count, seg, f); };
     if (lists_.size() != 0 || !long_.empty()) return each([&](const double* a, const double* b, Id id) { add(a, b, id); });
     each([&](const double* a, const double* b, Id id) {
       if (is_long(a, b)) add_long(a, b, id);
