@@ -173,7 +173,22 @@ class Regions {
     return steps == link_.size();
   }
 
-  void toggle(int t, bool make_alive) {
+  // Carve: is removing body tetrahedron t from the current valid state an edge flip of the
+  // surface (exactly two surface faces, the edge joining the vertices opposite them not on the
+  // surface: the two-face rule, spec gamma-graph.md §3.3)? Then the new state is valid again —
+  // the same closed 2-manifold count F, every link still one cycle of at least 3 edges (a link
+  // of 3 through the new edge would mean that edge was on the surface already) — and the links of
+  // its 4 vertices need no evaluation. Most of a carve's removals are such flips.
+  bool valid_flip(int t) const {
+    if (!dirty_list_.empty() || nbad_ != 0 || (rule_ == Rule::Genus0 && F_ != targetF_)) return false;
+    int si[4], ns = 0;
+    for (int i = 0; i < 4; ++i)
+      if (!b_.alive(b_.nbr[uz(t)][uz(i)])) si[ns++] = i;
+    return ns == 2 && !b_.edge_on_boundary(t, si[0], si[1]);
+  }
+
+  // mark_dirty false: the caller knows the links of t's vertices stay single cycles (valid_flip).
+  void toggle(int t, bool make_alive, bool mark_dirty = true) {
     if (!touched_at_[uz(t)]) {  // the region's changes, with each tetrahedron's state before it
       touched_at_[uz(t)] = b_.alive(t) ? 2 : 1;
       touched_.push_back(t);
@@ -188,6 +203,7 @@ class Regions {
       b_.state[uz(t)] = kOutside;
     }
     ++b_.ver[uz(t)];
+    if (!mark_dirty) return;
     for (int x : b_.tets[uz(t)])
       if (!dirty_[uz(x)]) {
         dirty_[uz(x)] = 1;
@@ -246,7 +262,7 @@ class Regions {
       bool last = false;
       for (int x : b_.tets[uz(t)]) last = last || (!add_ && alive_at_[uz(x)] == 1);
       if (last) continue;
-      toggle(t, add_);
+      toggle(t, add_, add_ || !valid_flip(t));
       pending_.push_back(t);
       for (int m : b_.nbr[uz(t)])
         if (m >= 0 && cand(m)) pq.push({prio(m), -m});
