@@ -78,21 +78,29 @@ class LabelQueue {
  public:
   struct Item {
     int tet;
-    signed char lab;
-    float conf;
+    float label;  // the label it gets: lab * confidence (sign bit: inside)
   };
   explicit LabelQueue(std::size_t T0) : bucket_(kBuckets + 1), best_b_(T0, -1) {}
-  // A label passed on with cosine cosv from a tetrahedron labelled lab_from.
-  void push(int t, double cosv, int lab_from) {
-    if (!(cosv == cosv)) return;
+  // A cosine as the queue uses it, in one float: NaN (nothing passed on), else the confidence
+  // float(|cos|) with the sign bit set when the label flips (cos < 0).
+  static float encode(double cosv) {
+    if (!(cosv == cosv)) return NAN;
     const double c = std::max(-1.0, std::min(1.0, cosv));
-    const Item it{t, static_cast<signed char>(c >= 0 ? lab_from : -lab_from), static_cast<float>(std::abs(c))};
-    const int bk = static_cast<int>(it.conf * kBuckets);
+    const float conf = static_cast<float>(std::abs(c));
+    return c >= 0 ? conf : -conf;
+  }
+  // A label passed on from a tetrahedron labelled lab_from (+1 / -1), through a cosine coded by
+  // encode(). Ignored once t is done.
+  void push_coded(int t, float code, int lab_from) {
+    if (!(code == code)) return;
+    const float conf = std::abs(code);
+    const int bk = static_cast<int>(conf * kBuckets);
     // A push into a lower bucket than a pending entry of the same tetrahedron could only pop
     // after that entry has labelled it (then it is skipped as done): not pushed, same labels.
-    if (bk < best_b_[uz(it.tet)]) return;
-    best_b_[uz(it.tet)] = static_cast<std::int16_t>(bk);
-    bucket_[uz(bk)].push_back(it);
+    if (bk < best_b_[uz(t)]) return;
+    best_b_[uz(t)] = static_cast<std::int16_t>(bk);
+    const bool flip = std::signbit(code);
+    bucket_[uz(bk)].push_back({t, (flip ? -lab_from : lab_from) < 0 ? -conf : conf});
     top_ = std::max(top_, bk);
   }
   bool pop(Item& out) {
@@ -102,8 +110,12 @@ class LabelQueue {
     bucket_[uz(top_)].pop_back();
     return true;
   }
+  // A labelled tetrahedron takes no more pushes (its mark is above every bucket).
+  bool done(int t) const { return best_b_[uz(t)] == kDone; }
+  void mark_done(int t) { best_b_[uz(t)] = kDone; }
 
  private:
+  static constexpr std::int16_t kDone = kBuckets + 1;
   std::vector<std::vector<Item>> bucket_;
   std::vector<std::int16_t> best_b_;
   int top_ = -1;
@@ -118,36 +130,52 @@ class LabelQueue {
 // tetrahedron once.
 std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
   const std::size_t T0 = b.T0;
-  const std::vector<Ball> ball = circumballs(b);
-  LabelQueue q(T0);
-  for (std::size_t t = 0; t < T0; ++t)
-    for (int i = 0; i < 4; ++i) {
-      if (b.nbr[t][uz(i)] >= 0 || ball[t][3] <= 0) continue;
-      q.push(static_cast<int>(t), hull_face_cos(b, t, i, ball[t]), +1);
-    }
   auto out = std::make_shared<Labels3>();
+  LabelQueue q(T0);
+  // The cosine passed on through each face, from t to its neighbour (the same expression in the
+  // same order as the propagation would evaluate it; at a hull face the cosine with the outer
+  // half-space), computed in parallel beforehand: the sequential propagation then reads only the
+  // tetrahedron it pops, not its neighbours' balls.
+  std::vector<std::array<float, 4>> pass(T0);
+  {
+    const std::vector<Ball> ball = circumballs(b);
+    out->lrad.resize(T0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        const Ball& bt = ball[t];
+        out->lrad[t] = bt[3] > 0 ? std::log(bt[3]) : kFlatLogRadius;
+        for (int i = 0; i < 4; ++i) {
+          const int m = b.nbr[t][uz(i)];
+          float code = NAN;
+          if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
+            if (bt[3] > 0) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
+          } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0) {
+            const Ball& bm = ball[uz(m)];
+            const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            code = LabelQueue::encode((bt[3] * bt[3] + bm[3] * bm[3] - d2) / (2 * bt[3] * bm[3]));
+          }
+          pass[t][uz(i)] = code;
+        }
+      }
+    });
+  }
+  for (std::size_t t = 0; t < T0; ++t)
+    for (int i = 0; i < 4; ++i)
+      if (b.nbr[t][uz(i)] < 0) q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
   out->label.assign(T0, 0.0f);
-  std::vector<char> done(T0, 0);
   LabelQueue::Item it{};
   while (q.pop(it)) {
-    if (done[uz(it.tet)]) continue;
-    done[uz(it.tet)] = 1;
-    out->label[uz(it.tet)] = it.lab * it.conf;
-    const Ball& bt = ball[uz(it.tet)];
+    if (q.done(it.tet)) continue;
+    q.mark_done(it.tet);
+    out->label[uz(it.tet)] = it.label;
+    const int lab = std::signbit(it.label) ? -1 : 1;
+    const auto& code = pass[uz(it.tet)];
     for (int i = 0; i < 4; ++i) {
       const int m = b.nbr[uz(it.tet)][uz(i)];
-      if (m < 0 || uz(m) >= T0 || done[uz(m)]) continue;
-      const Ball& bm = ball[uz(m)];
-      if (bt[3] <= 0 || bm[3] <= 0) continue;
-      const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
-      const double d2 = dx * dx + dy * dy + dz * dz;
-      q.push(m, (bt[3] * bt[3] + bm[3] * bm[3] - d2) / (2 * bt[3] * bm[3]), it.lab);
+      if (m >= 0 && uz(m) < T0) q.push_coded(m, code[uz(i)], lab);
     }
   }
-  out->lrad.resize(T0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, 2 * kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t != r.end(); ++t) out->lrad[t] = ball[t][3] > 0 ? std::log(ball[t][3]) : kFlatLogRadius;
-  });
   return out;
 }
 
