@@ -40,18 +40,24 @@ class Growth3 {
     for (auto& v : b_.ver) ++v;
     b_.onb.assign(b_.n, 0);
     b_.n_onb = 0;
+    edges_.reset(b_);
+    const auto& sv = b_.tets[uz(seed)];
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) edges_.add(sv[uz(i)], sv[uz(j)]);
     add(seed);
     for (;;) {
       if (heap_.empty() && !outside_ready_) ready_outside();
-      TetHeap& h = heap_.empty() ? out_heap_ : heap_;
+      // Outside (labelled so: its own heap): the one-face rule only (its fourth vertex is a new point).
+      const bool outside = heap_.empty();
+      TetHeap& h = outside ? out_heap_ : heap_;
       if (h.empty()) break;
       const HeapEntry e = h.pop(b_.tets);
       queued_[uz(e.tet)] = 0;
       if (b_.alive(e.tet)) continue;
-      // Outside: the one-face rule only (its fourth vertex is a new point).
-      const bool outside = !(l_.label[uz(e.tet)] < 0);
-      if (!addable(e.tet, outside)) continue;
+      const int rule = addable(e.tet, outside);
+      if (!rule) continue;
       if (outside) ++s_.grown_outside;
+      new_edges(e.tet, rule);
       add(e.tet);
     }
   }
@@ -63,9 +69,24 @@ class Growth3 {
     int g[4], ng = 0;
     for (int i = 0; i < 4; ++i)
       if (b_.alive(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
-    if (ng == 1) return b_.onb[uz(b_.tets[uz(t)][uz(g[0])])] ? 0 : 1;
-    if (ng == 2 && !one_face_only) return b_.edge_touches_body(t, g[0], g[1]) ? 0 : 2;
+    const auto& v = b_.tets[uz(t)];
+    if (ng == 1) return b_.onb[uz(v[uz(g[0])])] ? 0 : 1;
+    if (ng == 2 && !one_face_only) return edges_.has(v[uz(g[0])], v[uz(g[1])]) ? 0 : 2;
     return 0;
+  }
+  // The edges t brings into the body, glued by the one-face rule (the three from its new apex)
+  // or the two-face rule (its free edge); its other edges are on its glued faces already.
+  void new_edges(int t, int rule) {
+    int g[4], ng = 0, f[4], nf = 0;
+    for (int i = 0; i < 4; ++i)
+      if (b_.alive(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
+      else f[nf++] = i;
+    const auto& v = b_.tets[uz(t)];
+    if (rule == 1) {
+      for (int k = 0; k < nf; ++k) edges_.add(v[uz(g[0])], v[uz(f[k])]);
+    } else {
+      edges_.add(v[uz(g[0])], v[uz(g[1])]);
+    }
   }
   double key(int t) const {
     const double l = l_.label[uz(t)];
@@ -107,9 +128,51 @@ class Growth3 {
       }
   }
 
+  // The body's edges as lists of neighbours per vertex (an edge walk per two-face test was half
+  // of the growth's time). Each vertex has room for its Delaunay degree, which its star gives by
+  // Euler's formula: f tetrahedra and h hull faces at the vertex have (f + h) / 2 + 1 neighbours
+  // on the hull (a disk link), f / 2 + 2 inside (a sphere link).
+  class BodyEdges {
+   public:
+    void reset(const Body3& b) {
+      std::vector<int> f(b.n, 0), h(b.n, 0);
+      for (std::size_t t = 0; t < b.T0; ++t)
+        for (int i = 0; i < 4; ++i) {
+          ++f[uz(b.tets[t][uz(i)])];
+          if (b.nbr[t][uz(i)] < 0)
+            for (int k = 0; k < 3; ++k) ++h[uz(b.tets[t][uz(kFaceOut[i][k])])];
+        }
+      off_.assign(b.n + 1, 0);
+      for (std::size_t v = 0; v < b.n; ++v) {
+        const int deg = f[v] == 0 ? 0 : h[v] > 0 ? (f[v] + h[v]) / 2 + 1 : f[v] / 2 + 2;
+        off_[v + 1] = off_[v] + static_cast<std::size_t>(deg);
+      }
+      size_.assign(b.n, 0);
+      nb_.assign(off_[b.n], 0);
+    }
+    bool has(int a, int c) const {
+      if (size_[uz(c)] < size_[uz(a)]) std::swap(a, c);
+      const int* p = nb_.data() + off_[uz(a)];
+      return std::find(p, p + size_[uz(a)], c) != p + size_[uz(a)];
+    }
+    void add(int a, int c) {
+      push(a, c);
+      push(c, a);
+    }
+
+   private:
+    void push(int a, int c) {
+      CONSTRICT_CHECK(off_[uz(a)] + size_[uz(a)] < off_[uz(a) + 1], "growth: a vertex has more body edges than Delaunay edges");
+      nb_[off_[uz(a)] + size_[uz(a)]++] = c;
+    }
+    std::vector<std::size_t> off_;
+    std::vector<int> size_, nb_;
+  };
+
   Body3& b_;
   const Labels3& l_;
   Growth3Stats& s_;
+  BodyEdges edges_;
   TetHeap heap_, out_heap_;  // inside tetrahedra; outside ones (only when no inside one is left)
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
