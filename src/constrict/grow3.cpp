@@ -11,6 +11,10 @@
 // smallest first relative to the spacing (thin parts the labels miss: a point is reached by the
 // shortest step, through its own part, not across the gap to a nearby part).
 #include <algorithm>
+#include <cstdint>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "constrict/detail/stages3.hpp"
 
@@ -23,7 +27,7 @@ constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
 
 class Growth3 {
  public:
-  Growth3(Body3& b, const Labels3& l, Growth3Stats& st) : b_(b), l_(l), s_(st), queued_(b.T0, 0) {}
+  Growth3(Body3& b, const Labels3& l, Growth3Stats& st) : b_(b), l_(l), s_(st) {}
 
   // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids.
   int seed() const {
@@ -38,6 +42,13 @@ class Growth3 {
   void run(int seed) {
     b_.state.assign(b_.T0, kOutside);
     for (auto& v : b_.ver) ++v;
+    cell_.resize(b_.T0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.T0, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        const bool inside = l_.label[t] < 0;
+        cell_[t] = {inside ? kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[t]) : 0.0, 0, 0, inside};
+      }
+    });
     b_.onb.assign(b_.n, 0);
     b_.n_onb = 0;
     edges_.reset(b_);
@@ -52,8 +63,9 @@ class Growth3 {
       TetHeap& h = outside ? out_heap_ : heap_;
       if (h.empty()) break;
       const HeapEntry e = h.pop(b_.tets);
-      queued_[uz(e.tet)] = 0;
-      if (b_.alive(e.tet)) continue;
+      if (!h.empty()) prefetch(h.top().tet);
+      cell_[uz(e.tet)].queued = 0;
+      if (cell_[uz(e.tet)].alive) continue;
       const int rule = addable(e.tet, outside);
       if (!rule) continue;
       if (outside) ++s_.grown_outside;
@@ -65,10 +77,18 @@ class Growth3 {
  private:
   // 1 / 2: t can join the body glued along one / two faces; 0: it cannot. one_face_only: only
   // the one-face rule counts (no edge walk for the two-face rule).
+  // The next pop is most often the heap's top now: its records are fetched while this one is
+  // examined (the walk through the heap order reads the tetrahedra at random).
+  void prefetch(int t) const {
+    __builtin_prefetch(&cell_[uz(t)]);
+    __builtin_prefetch(&b_.nbr[uz(t)]);
+    __builtin_prefetch(&b_.tets[uz(t)]);
+  }
+  bool in_body(int t) const { return t >= 0 && uz(t) < b_.T0 && cell_[uz(t)].alive; }
   int addable(int t, bool one_face_only) const {
     int g[4], ng = 0;
     for (int i = 0; i < 4; ++i)
-      if (b_.alive(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
+      if (in_body(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
     const auto& v = b_.tets[uz(t)];
     if (ng == 1) return b_.onb[uz(v[uz(g[0])])] ? 0 : 1;
     if (ng == 2 && !one_face_only) return edges_.has(v[uz(g[0])], v[uz(g[1])]) ? 0 : 2;
@@ -79,7 +99,7 @@ class Growth3 {
   void new_edges(int t, int rule) {
     int g[4], ng = 0, f[4], nf = 0;
     for (int i = 0; i < 4; ++i)
-      if (b_.alive(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
+      if (in_body(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
       else f[nf++] = i;
     const auto& v = b_.tets[uz(t)];
     if (rule == 1) {
@@ -89,8 +109,7 @@ class Growth3 {
     }
   }
   double key(int t) const {
-    const double l = l_.label[uz(t)];
-    if (l < 0) return kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[uz(t)]);
+    if (cell_[uz(t)].inside) return cell_[uz(t)].inside_key;
     // Outside: the smallest first, by the size ratio of the bridge measure (longest edge over the
     // largest nearest-neighbour distance of its vertices). Measured against "least confident
     // first" on the shared models and their random halves and quarters (docs/reconstruction-3d.md
@@ -107,21 +126,22 @@ class Growth3 {
     }
     spacing_ = nearest_spacing3(b_);
     for (int m : waiting_)
-      if (!b_.alive(m)) out_heap_.push({key(m), m, 0}, b_.tets);
-      else queued_[uz(m)] = 0;
+      if (!cell_[uz(m)].alive) out_heap_.push({key(m), m, 0}, b_.tets);
+      else cell_[uz(m)].queued = 0;
     waiting_.clear();
   }
   void add(int t) {
     b_.state[uz(t)] = kAlive;
+    cell_[uz(t)].alive = 1;
     ++b_.ver[uz(t)];
     ++s_.grown;
     b_.mark_on_surface(t);
     // A tetrahedron whose glued faces change is examined again; one heap entry per tetrahedron
     // suffices (static key), so the pop order is that of a re-push per change.
     for (int m : b_.nbr[uz(t)])
-      if (m >= 0 && uz(m) < b_.T0 && !b_.alive(m) && !queued_[uz(m)]) {
-        queued_[uz(m)] = 1;
-        if (l_.label[uz(m)] < 0) heap_.push({key(m), m, 0}, b_.tets);
+      if (m >= 0 && uz(m) < b_.T0 && !cell_[uz(m)].alive && !cell_[uz(m)].queued) {
+        cell_[uz(m)].queued = 1;
+        if (cell_[uz(m)].inside) heap_.push({cell_[uz(m)].inside_key, m, 0}, b_.tets);
         else if (!spacing_.empty()) out_heap_.push({key(m), m, 0}, b_.tets);
         else if (!outside_ready_) waiting_.push_back(m);
         // (else: every point was in the body when the inside heap ran dry; none can join.)
@@ -177,7 +197,14 @@ class Growth3 {
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
   std::vector<double> spacing_;
-  std::vector<char> queued_;  // in the heap (its key is static: one entry is enough)
+  // What the growth reads of each Delaunay tetrahedron, in one record (one cache line holds four;
+  // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
+  // (its key is static: one entry is enough), labelled inside, and then its key.
+  struct Cell {
+    double inside_key;
+    std::uint8_t alive, queued, inside;
+  };
+  std::vector<Cell> cell_;
 };
 
 // Growth lock: a point that no Delaunay tetrahedron can bring into the body (its star is cut off
