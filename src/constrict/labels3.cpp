@@ -110,6 +110,9 @@ class LabelQueue {
     bucket_[uz(top_)].pop_back();
     return true;
   }
+  // The tetrahedron of the next pop if no push comes first, or -1 (a guess for prefetching).
+  int next_guess() const { return top_ >= 0 && !bucket_[uz(top_)].empty() ? bucket_[uz(top_)].back().tet : -1; }
+  const std::int16_t* mark_of(int t) const { return &best_b_[uz(t)]; }
   // A labelled tetrahedron takes no more pushes (its mark is above every bucket).
   bool done(int t) const { return best_b_[uz(t)] == kDone; }
   void mark_done(int t) { best_b_[uz(t)] = kDone; }
@@ -166,6 +169,14 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
   out->label.assign(T0, 0.0f);
   LabelQueue::Item it{};
   while (q.pop(it)) {
+    // The pops read the tetrahedra in label order, at random: the likely next one is fetched
+    // while this one is handled.
+    if (const int nx = q.next_guess(); nx >= 0) {
+      __builtin_prefetch(q.mark_of(nx));
+      __builtin_prefetch(&pass[uz(nx)]);
+      __builtin_prefetch(&b.nbr[uz(nx)]);
+      __builtin_prefetch(&out->label[uz(nx)], 1);
+    }
     if (q.done(it.tet)) continue;
     q.mark_done(it.tet);
     out->label[uz(it.tet)] = it.label;
