@@ -465,6 +465,14 @@ struct Constrictor2::Impl {
     return Status::ok();
   }
 
+  // The heap's top after a pop is most often the next pop: its state, adjacency and vertices
+  // are fetched while this removal is made (the pops read the triangles in key order, at random).
+  void prefetch_triangle(std::uint32_t t) const {
+    __builtin_prefetch(&ver[t]);
+    __builtin_prefetch(&alive[t]);
+    __builtin_prefetch(&dt.neighbors[t]);
+    __builtin_prefetch(&dt.triangles[t]);
+  }
   // One removal (or the lock); the caller keeps the time (one clock read per removal would be
   // a tenth of the constriction).
   bool step_untimed() {
@@ -473,6 +481,7 @@ struct Constrictor2::Impl {
     while (!heap.empty()) {
       const TriEntry e = heap.top();
       heap.pop();
+      if (!heap.empty()) prefetch_triangle(heap.top().t);
       const int t = static_cast<int>(e.t);
       if ((e.version_edge >> 2) != (ver[U(t)] & 0x3fffffffu) || removable_edge(t) < 0) continue;  // stale (lazy deletion)
       const auto& tr = dt.triangles[U(t)];
