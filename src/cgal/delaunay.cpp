@@ -152,9 +152,9 @@ void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, con
     }
   }
   const std::size_t T = hs.size();
-  // (A caller may have sized the arrays beforehand, off the critical path; shrinking keeps them.)
-  detail::resize_big(simplices, T);
-  detail::resize_big(neighbors, T);
+  // (A caller may have sized the arrays beforehand, off the critical path; shrinking keeps them.
+  // Otherwise their zero-filling, page faults included, runs on both cores.)
+  tbb::parallel_invoke([&] { detail::resize_big(simplices, T); }, [&] { detail::resize_big(neighbors, T); });
   if (local) {
     lm.simplices.allocate(T);
     lm.opposite.allocate(T);
