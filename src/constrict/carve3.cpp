@@ -44,6 +44,9 @@ class Regions {
         decide_(decide), local_repair_(add_ && local_repair) {}
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
+  // Precondition (both callers: after a complete constriction or growth): every vertex of the
+  // start state is manifold — only the vertices a toggle touches are evaluated, and the edge
+  // flips (valid_flip) not even those.
   bool run() {
     index_vertex_tets();
     F_ = 0;

@@ -234,6 +234,60 @@ TEST(Stages3, CarveAndFlipsKeepEveryPointOnAValidSurface) {
   EXPECT_LT(mesh_area(p, b.surface()), a0);
 }
 
+// Integer points on the sphere x² + y² + z² = r2 (exactly cospherical: every Delaunay
+// tetrahedron is one of many of the same circumsphere), and the lattice points on the surface of
+// the cube [0, k]³ (coplanar and cospherical groups): degenerate inputs for the stages' counts.
+PointSet lattice_sphere(int r2) {
+  PointSet p;
+  p.dim = 3;
+  const int r = static_cast<int>(std::sqrt(r2)) + 1;
+  for (int x = -r; x <= r; ++x)
+    for (int y = -r; y <= r; ++y)
+      for (int z = -r; z <= r; ++z)
+        if (x * x + y * y + z * z == r2) p.coords.insert(p.coords.end(), {double(x), double(y), double(z)});
+  return p;
+}
+PointSet lattice_cube_surface(int k) {
+  PointSet p;
+  p.dim = 3;
+  for (int x = 0; x <= k; ++x)
+    for (int y = 0; y <= k; ++y)
+      for (int z = 0; z <= k; ++z)
+        if (x == 0 || y == 0 || z == 0 || x == k || y == k || z == k)
+          p.coords.insert(p.coords.end(), {double(x), double(y), double(z)});
+  return p;
+}
+
+// The growth sizes its per-vertex edge lists by the Delaunay degree from Euler's formula on the
+// vertex star (it throws when a list overflows), and the carve takes its edge flips without
+// evaluating the links: both on degenerate inputs, with the body checked after each stage.
+TEST(Stages3, GrowthAndCarveOnCosphericalLattices) {
+  const std::vector<std::pair<std::string, PointSet>> inputs = {
+      {"sphere r2=169", lattice_sphere(169)}, {"sphere r2=325", lattice_sphere(325)},
+      {"cube surface 6", lattice_cube_surface(6)}, {"cube surface 9", lattice_cube_surface(9)}};
+  for (const auto& [name, p] : inputs) {
+    SCOPED_TRACE(name);
+    ASSERT_GT(p.size(), 30u);
+    {  // the growth from the inside
+      Body3 b = start_body(p);
+      const auto labels = detail::compute_labels3(b);
+      detail::Growth3Stats gs;
+      detail::Tets nbr0;
+      bool grown = false;
+      ASSERT_NO_THROW(grown = detail::grow_body3(b, *labels, Constrict3Options{}, nullptr, gs, nbr0));
+      expect_valid_body(b, grown, "grown");
+    }
+    {  // every point is on the hull: the carve from the convex hull
+      Body3 b = start_body(p);
+      if (b.n_onb < b.n) continue;  // (the cube's face points are inside its hull's faces' planes)
+      const auto labels = detail::compute_labels3(b);
+      detail::Carve3Stats cs;
+      ASSERT_NO_THROW(detail::carve_outside3(b, *labels, 0.5, cs));
+      expect_valid_body(b, true, "carved");
+    }
+  }
+}
+
 TEST(Stages3, VariantSelectionKeepsTheSmallestCompleteSurface) {
   const PointSet p = cloud(150, 7);
   Constrict3Options both;
