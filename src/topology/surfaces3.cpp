@@ -22,6 +22,10 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
+
 #include "constrict/delaunay.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
@@ -81,9 +85,17 @@ std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
     for (int j = k - 1; j > i; --j) b[uz(j)] = b[uz(j - 1)];
     b[uz(i)] = q;
   };
-  for_tet_edges(dt, [&](int p, int q) {
-    offer(p, q);
-    offer(q, p);
+  // In parallel over ranges of points: each range reads every tetrahedron and offers only to its
+  // own points, so each point sees the same offers in the same order as one sequential pass (and
+  // the order of the k nearest is a strict total order anyway).
+  const std::size_t n = pts.size();
+  const std::size_t ranges = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
+    const int lo = static_cast<int>(n * r / ranges), hi = static_cast<int>(n * (r + 1) / ranges);
+    for_tet_edges(dt, [&](int p, int q) {
+      if (p >= lo && p < hi) offer(p, q);
+      if (q >= lo && q < hi) offer(q, p);
+    });
   });
   std::vector<int> out(pts.size(), -1);
   for (std::size_t v = 0; v < pts.size(); ++v)
@@ -667,8 +679,11 @@ Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const st
   mo.any_topology = true;
   mo.self_intersections = self_intersections;
   MeshCheck mc;
-  if (Status s = validate_mesh3(points, mesh, &mc, mo); !s) return s;
-  return validate_body3(points, mesh, body);
+  // The two checks side by side (each parallel inside); the surface's verdict first, as before.
+  Status surface_status = Status::ok(), body_status = Status::ok();
+  tbb::parallel_invoke([&] { surface_status = validate_mesh3(points, mesh, &mc, mo); },
+                       [&] { body_status = validate_body3(points, mesh, body); });
+  return !surface_status ? surface_status : body_status;
 }
 
 }  // namespace constrict
