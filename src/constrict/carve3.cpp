@@ -374,9 +374,13 @@ class Regions {
       if (b_.alive(t) == add_) still.push_back(t);
     const bool keep = nbad_ == 0 && (F_ == targetF_ || rule_ == Rule::Handles);
     if (keep) still.clear();
-    s_.undone += still.size();
-    // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.)
-    for (auto it = still.rbegin(); it != still.rend(); ++it) toggle(*it, !add_);
+    // (flush re-evaluates every vertex a toggle touched: the only ones whose links change.) A
+    // tetrahedron the local repair took back and added again is in the list twice: undone once.
+    for (auto it = still.rbegin(); it != still.rend(); ++it)
+      if (b_.alive(*it) == add_) {
+        toggle(*it, !add_);
+        ++s_.undone;
+      }
     if (!keep)
       for (auto it = dimples_.rbegin(); it != dimples_.rend(); ++it)
         if (b_.alive(*it) != add_) toggle(*it, add_);
