@@ -523,8 +523,36 @@ void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
 
 // Several parts: each part's surface, then the body from the tetrahedralization of all points.
 // False (nothing usable) when a part cannot have a surface of its own or the parts do not fit.
+// Are the parts' bounding boxes pairwise disjoint (exact comparisons of coordinates)? Then their
+// bodies, each inside its own convex hull, cannot meet.
+bool boxes_apart(const PointSet& pts, const Parts& parts) {
+  std::vector<std::array<double, 6>> box;
+  for (const auto& ids : parts.points) {
+    std::array<double, 6> b{{HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+    for (int v : ids)
+      for (int c = 0; c < 3; ++c) {
+        b[uz(c)] = std::min(b[uz(c)], pts[uz(v)][c]);
+        b[uz(c + 3)] = std::max(b[uz(c + 3)], pts[uz(v)][c]);
+      }
+    box.push_back(b);
+  }
+  for (std::size_t a = 0; a < box.size(); ++a)
+    for (std::size_t b = a + 1; b < box.size(); ++b) {
+      bool apart = false;
+      for (int c = 0; c < 3 && !apart; ++c)
+        apart = box[a][uz(c + 3)] < box[b][uz(c)] || box[b][uz(c + 3)] < box[a][uz(c)];
+      if (!apart) return false;
+    }
+  return true;
+}
+
+// The parts one engine run each; their body from the tetrahedralization of all points when every
+// part's surface is made of its Delaunay faces, else (noisy or random samples: a face of one part's
+// tetrahedralization need not be one of all points) the union of the parts' own bodies when
+// their bounding boxes are apart (*separate = true: no part inside another).
 bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts, const Constrict3Options& o,
-                   Surfaces3Result& r, Status& err) {
+                   Surfaces3Result& r, Status& err, bool* separate) {
+  *separate = false;
   std::vector<Mesh3Result> res(parts.points.size());
   for (std::size_t k = 0; k < parts.points.size(); ++k) {
     if (parts.points[k].size() < 4) {
@@ -551,8 +579,17 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   const auto t0 = Clock::now();
   std::vector<std::array<int, 4>> body;
   if (!assemble_body(dt, faces, body)) {
-    r.decision = SurfacesDecision::NotDelaunay;
-    return false;
+    if (!boxes_apart(pts, parts)) {
+      r.decision = SurfacesDecision::NotDelaunay;
+      return false;
+    }
+    body.clear();
+    for (std::size_t k = 0; k < res.size(); ++k)
+      for (const auto& t : res[k].tets) {
+        const auto& ids = parts.points[k];
+        body.push_back({ids[uz(t[0])], ids[uz(t[1])], ids[uz(t[2])], ids[uz(t[3])]});
+      }
+    *separate = true;
   }
   r.decision = SurfacesDecision::Parts;
   Mesh3Result& m = r.mesh;
@@ -652,15 +689,16 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   for (const auto& p : parts.points) r.part_sizes.push_back(p.size());
   r.min_gap_spacings = parts.min_gap;
   r.ms_infer = ms_since(t0);
-  bool done = false;
+  bool done = false, separate = false;
   if (parts.points.size() > 1) {
     Status err = Status::ok();
-    done = several_parts(work, dt, parts, eo, r, err);
+    done = several_parts(work, dt, parts, eo, r, err, &separate);
     if (!err) return err;
   }
   if (done) {
     r.surfaces = split_surfaces(work, r.mesh.mesh);
-    nest_surfaces(dt, r.mesh.mesh, r.surfaces);
+    if (separate) nest_in_body(work, r.mesh.mesh, r.surfaces);  // (all outer: no part inside another)
+    else nest_surfaces(dt, r.mesh.mesh, r.surfaces);
   } else {
     std::vector<int> part_of;
     if (parts.points.size() > 1) part_of = parts.part_of;
