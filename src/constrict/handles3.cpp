@@ -70,6 +70,18 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // A cavity sealed inside one part is not an inner shell (that one lies a gap away: a part of
     // its own): a void left between the two sheets of a closed cut (noisy samples).
     if (dF < 0) return false;
+    // A handle belongs to one part: a loop closed (or a tunnel opened) through tetrahedra that
+    // join two parts of the gap rule spans the gap between them (a hollow ball sampled at random:
+    // loops across its cavity gave genus 10).
+    if (part_of)
+      for (int t : changed) {
+        const auto& v = b.tets[uz(t)];
+        const int p0 = (*part_of)[uz(v[0])];
+        if ((*part_of)[uz(v[1])] != p0 || (*part_of)[uz(v[2])] != p0 || (*part_of)[uz(v[3])] != p0) {
+          if (debug) std::fprintf(stderr, "handle %s: %zu tets join two parts: undone\n", added ? "close" : "open", changed.size());
+          return false;
+        }
+      }
     if (spacing->empty()) *spacing = nearest_spacing3(b);
     std::vector<int> sorted = changed;
     std::sort(sorted.begin(), sorted.end());
