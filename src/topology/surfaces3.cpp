@@ -316,6 +316,9 @@ bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& f
       const int other = m < 0 ? 0 : region[uz(m)];
       if (other == region[t]) return false;  // a surface with the same region on both sides
       adj[uz(region[t])].push_back(other);
+      // (A face on the convex hull is met from its one tetrahedron only: the exterior's side too.
+      // Without it a part whose surface is its whole convex hull left the exterior with no way in.)
+      if (m < 0) adj[0].push_back(region[t]);
     }
   std::vector<int> depth(uz(regions), -1);
   depth[0] = 0;
