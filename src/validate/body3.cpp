@@ -16,11 +16,11 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/first_index.hpp"
 #include "core/detail/tet_faces.hpp"
 
 namespace constrict {
@@ -48,20 +48,6 @@ std::array<int, 3> sorted3(std::array<int, 3> t) {
   return t;
 }
 
-// The first index in [0, n) for which bad(i) holds, or n; in parallel (the answer is the same
-// for any thread count: the smallest such index).
-template <class Bad>
-std::size_t first_bad(std::size_t n, std::size_t grain, const Bad& bad) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, grain), n,
-      [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
-        for (std::size_t i = r.begin(); i != r.end() && i < found; ++i)
-          if (bad(i)) return i;
-        return found;
-      },
-      [](std::size_t a, std::size_t b) { return std::min(a, b); });
-}
-
 }  // namespace
 
 Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body) {
@@ -76,7 +62,7 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
     return orient3(points[uz(v[0])], points[uz(v[1])], points[uz(v[2])], points[uz(v[3])]) <= 0;
   };
   // (The first tetrahedron with either fault, and then its first fault: the sequential messages.)
-  if (const std::size_t t = first_bad(body.size(), kGrain, [&](std::size_t i) { return bad_index(i) || negative(i); });
+  if (const std::size_t t = detail::first_index(body.size(), [&](std::size_t i) { return bad_index(i) || negative(i); });
       t < body.size())
     return {StatusCode::InvalidArgument,
             bad_index(t) ? "body tetrahedron with a bad index" : "body tetrahedron not positively oriented"};
@@ -189,7 +175,7 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
     }
     return {};
   };
-  if (const std::size_t g = first_bad(n, kGrain, [&](std::size_t v) { return !group_fault(v).empty(); }); g < n)
+  if (const std::size_t g = detail::first_index(n, [&](std::size_t v) { return !group_fault(v).empty(); }); g < n)
     return {StatusCode::InvalidArgument, group_fault(g)};
   return Status::ok();
 }

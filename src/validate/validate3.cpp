@@ -19,6 +19,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/first_index.hpp"
 
 namespace constrict {
 namespace {
@@ -235,23 +236,12 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
 
 namespace {
 
-// 1. every id in range, three distinct ids per face; 2. no face with collinear vertices.
-// The first face f in [0, nf) with bad(f), or nf (in parallel; the same f as a sequential scan).
-template <class Bad> std::size_t first_bad_face(std::size_t nf, Bad&& bad) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, nf, 16384), nf,
-      [&](const tbb::blocked_range<std::size_t>& r, std::size_t first) {
-        for (std::size_t f = r.begin(); f != r.end() && f < first; ++f)
-          if (bad(f)) return f;
-        return first;
-      },
-      [](std::size_t a, std::size_t b) { return std::min(a, b); });
-}
-
+// 1. every id in range, three distinct ids per face; 2. no face with collinear vertices (each the
+// first failing face, in parallel: detail::first_index).
 Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   const std::size_t n = pts.size();
   const std::size_t nf = mesh.triangles.size();
-  const std::size_t first = first_bad_face(nf, [&](std::size_t f) {
+  const std::size_t first = detail::first_index(nf, [&](std::size_t f) {
     const auto& t = mesh.triangles[f];
     for (int v : t)
       if (v < 0 || static_cast<std::size_t>(v) >= n) return true;
@@ -266,7 +256,7 @@ Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
       return fail(d, "face " + std::to_string(f) + " repeats a vertex");
   }
   d.indices_ok = true;
-  const std::size_t first_flat = first_bad_face(nf, [&](std::size_t f) {
+  const std::size_t first_flat = detail::first_index(nf, [&](std::size_t f) {
     const auto& t = mesh.triangles[f];
     return collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
                       pts[static_cast<std::size_t>(t[2])]);
