@@ -66,17 +66,16 @@ class Growth3 {
       if (!h.empty()) prefetch(h.top().tet);
       cell_[uz(e.tet)].queued = 0;
       if (cell_[uz(e.tet)].alive) continue;
-      const int rule = addable(e.tet, outside);
+      int glued[2];
+      const int rule = addable(e.tet, outside, glued);
       if (!rule) continue;
       if (outside) ++s_.grown_outside;
-      new_edges(e.tet, rule);
+      new_edges(e.tet, rule, glued);
       add(e.tet);
     }
   }
 
  private:
-  // 1 / 2: t can join the body glued along one / two faces; 0: it cannot. one_face_only: only
-  // the one-face rule counts (no edge walk for the two-face rule).
   // The next pop is most often the heap's top now: its records are fetched while this one is
   // examined (the walk through the heap order reads the tetrahedra at random).
   void prefetch(int t) const {
@@ -85,27 +84,30 @@ class Growth3 {
     __builtin_prefetch(&b_.tets[uz(t)]);
   }
   bool in_body(int t) const { return t >= 0 && uz(t) < b_.T0 && cell_[uz(t)].alive; }
-  int addable(int t, bool one_face_only) const {
-    int g[4], ng = 0;
+  // 1 / 2: t can join the body glued along one / two faces (their indices in glued); 0: it cannot.
+  // one_face_only: only the one-face rule counts.
+  int addable(int t, bool one_face_only, int glued[2]) const {
+    int ng = 0;
     for (int i = 0; i < 4; ++i)
-      if (in_body(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
+      if (in_body(b_.nbr[uz(t)][uz(i)])) {
+        if (ng < 2) glued[ng] = i;
+        ++ng;
+      }
     const auto& v = b_.tets[uz(t)];
-    if (ng == 1) return b_.onb[uz(v[uz(g[0])])] ? 0 : 1;
-    if (ng == 2 && !one_face_only) return edges_.has(v[uz(g[0])], v[uz(g[1])]) ? 0 : 2;
+    if (ng == 1) return b_.onb[uz(v[uz(glued[0])])] ? 0 : 1;
+    if (ng == 2 && !one_face_only) return edges_.has(v[uz(glued[0])], v[uz(glued[1])]) ? 0 : 2;
     return 0;
   }
-  // The edges t brings into the body, glued by the one-face rule (the three from its new apex)
-  // or the two-face rule (its free edge); its other edges are on its glued faces already.
-  void new_edges(int t, int rule) {
-    int g[4], ng = 0, f[4], nf = 0;
-    for (int i = 0; i < 4; ++i)
-      if (in_body(b_.nbr[uz(t)][uz(i)])) g[ng++] = i;
-      else f[nf++] = i;
+  // The edges t brings into the body, glued by the one-face rule (the three from its new apex,
+  // the vertex opposite the glued face) or the two-face rule (its free edge, joining the vertices
+  // opposite the glued faces); its other edges are on its glued faces already.
+  void new_edges(int t, int rule, const int glued[2]) {
     const auto& v = b_.tets[uz(t)];
     if (rule == 1) {
-      for (int k = 0; k < nf; ++k) edges_.add(v[uz(g[0])], v[uz(f[k])]);
+      for (int i = 0; i < 4; ++i)
+        if (i != glued[0]) edges_.add(v[uz(glued[0])], v[uz(i)]);
     } else {
-      edges_.add(v[uz(g[0])], v[uz(g[1])]);
+      edges_.add(v[uz(glued[0])], v[uz(glued[1])]);
     }
   }
   double key(int t) const {

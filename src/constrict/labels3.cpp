@@ -99,8 +99,8 @@ class LabelQueue {
     // after that entry has labelled it (then it is skipped as done): not pushed, same labels.
     if (bk < best_b_[uz(t)]) return;
     best_b_[uz(t)] = static_cast<std::int16_t>(bk);
-    const bool flip = std::signbit(code);
-    bucket_[uz(bk)].push_back({t, (flip ? -lab_from : lab_from) < 0 ? -conf : conf});
+    const int lab = std::signbit(code) ? -lab_from : lab_from;
+    bucket_[uz(bk)].push_back({t, lab < 0 ? -conf : conf});
     top_ = std::max(top_, bk);
   }
   bool pop(Item& out) {

@@ -524,8 +524,6 @@ void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
   sum.ms_setup += r.ms_setup;
 }
 
-// Several parts: each part's surface, then the body from the tetrahedralization of all points.
-// False (nothing usable) when a part cannot have a surface of its own or the parts do not fit.
 // Are the parts' bounding boxes pairwise disjoint (exact comparisons of coordinates)? Then their
 // bodies, each inside its own convex hull, cannot meet.
 bool boxes_apart(const PointSet& pts, const Parts& parts) {
@@ -549,10 +547,11 @@ bool boxes_apart(const PointSet& pts, const Parts& parts) {
   return true;
 }
 
-// The parts one engine run each; their body from the tetrahedralization of all points when every
-// part's surface is made of its Delaunay faces, else (noisy or random samples: a face of one part's
-// tetrahedralization need not be one of all points) the union of the parts' own bodies when
-// their bounding boxes are apart (*separate = true: no part inside another).
+// Several parts: one engine run each; their body from the tetrahedralization of all points when
+// every part's surface is made of its Delaunay faces, else (noisy or random samples: a face of one
+// part's tetrahedralization need not be one of all points) the union of the parts' own bodies when
+// their bounding boxes are apart (*separate = true: no part inside another). False (nothing
+// usable) when a part cannot have a surface of its own or the parts do not fit.
 bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts, const Constrict3Options& o,
                    Surfaces3Result& r, Status& err, bool* separate) {
   *separate = false;
