@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -14,7 +15,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
+#include <tbb/parallel_invoke.h>
 
 #include "constrict/constrict.hpp"
 #include "constrict/criterion.hpp"
@@ -330,7 +331,6 @@ class Grid {
 // through gid, and every result leaves in input ids: the output is the same as with input ids.
 struct Constrictor2::Impl {
   const PointSet* pts = nullptr;  // the ranked points (== &rpts)
-  const PointSet* input = nullptr;
   PointSet rpts;
   std::vector<int> gid;           // ranked id -> input id
   Constrict2Options opt;
@@ -411,7 +411,6 @@ struct Constrictor2::Impl {
   }
 
   Status init(const PointSet& points) {
-    input = &points;
     pts = &rpts;
     if (points.dim != 2) return {StatusCode::InvalidArgument, "reconstruct2: points must be 2D"};
     // Duplicates are found by the triangulation (fewer vertices than points); check_points then
@@ -428,26 +427,19 @@ struct Constrictor2::Impl {
     PointSet scaled;
     if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent)
       if (exact_power_of_two_scale(points, scaled, scale_exp).is_ok()) build_from = &scaled;
-    {
-      // The state arrays are zero-filled on the other core during the (sequential) insertion, at
-      // their upper bound (at most 2n - 5 triangles), and shrunk after.
-      tbb::task_group side;
-      side.run([&] {
-        alive.assign(2 * n, 1);
-        ver.assign(2 * n, 0);
-        onb.assign(n, 0);
-        nxt.assign(n, -1);
-        prv.assign(n, -1);
-      });
-      st = detail::build_delaunay2_ranked(*build_from, dt, rpts, gid);
-      side.wait();
-    }
+    st = detail::build_delaunay2_ranked(*build_from, dt, rpts, gid);
     if (st.code() == StatusCode::Duplicate) return check_points(points);
     if (!st) return st;
     ms_delaunay = ms_since(t0);
     const std::size_t nt = dt.triangles.size();
-    alive.resize(nt);
-    ver.resize(nt);
+    // The state arrays are made once CGAL's triangulation is gone (beside it, they were the
+    // run's peak memory), on both cores.
+    tbb::parallel_invoke([&] { alive.assign(nt, 1); }, [&] { ver.assign(nt, 0); },
+                         [&] {
+                           onb.assign(n, 0);
+                           nxt.assign(n, -1);
+                           prv.assign(n, -1);
+                         });
     // Convex hull: DT edges without a neighbour; collinear hull points are hull vertices.
     for (std::size_t t = 0; t < nt; ++t)
       for (int i = 0; i < 3; ++i)
@@ -554,6 +546,7 @@ struct Constrictor2::Impl {
   }
   void build_adjacency() {
     if (adj_ready) return;
+    CONSTRICT_CHECK(dt.neighbors.size() == dt.triangles.size(), "Constrictor2: the adjacency is asked for after the refinement");
     adj_ready = true;
     // Adjacency by counting sort: the counter-clockwise edge u->v of a triangle gives u its
     // neighbour v (the reverse comes from the triangle across), and a hull edge also gives v its
@@ -1061,8 +1054,20 @@ struct Constrictor2::Impl {
     return out;
   }
 
+  std::unique_ptr<Polygon2Result> finished;  // the result of the first finish()
   Status finish(Polygon2Result& r) {
     if (!ready) return {StatusCode::Internal, "Constrictor2::finish called without a successful init"};
+    if (finished) {
+      r = *finished;
+      return Status::ok();
+    }
+    const Status st = finish_once(r);
+    if (st) finished = std::make_unique<Polygon2Result>(r);
+    return st;
+  }
+  bool refined = false;  // the refinement's search ran: refined_non_dt holds its non-Delaunay edges
+  std::vector<std::array<int, 2>> refined_non_dt;
+  Status finish_once(Polygon2Result& r) {
     run_all();
     r = Polygon2Result{};
     r.removed_simplices = removed;
@@ -1112,22 +1117,37 @@ struct Constrictor2::Impl {
     r.ms_fallback = ms_since(t0);
     r.complete = n_onb == n;
     std::vector<int> poly = boundary_list();  // ranked ids until the end
+    release_stepping_state();
     r.ms_delaunay = ms_delaunay;
     r.ms_constrict = ms_constrict;
     if (r.complete && opt.refine == Refine2::LocalSearch) {
       const auto tr = Clock::now();
       Refine2Stats rs;
+      // The refinement copies the adjacency into its own lists, and says which of its result's
+      // edges are not Delaunay edges: the engine's adjacency and the triangles' neighbours (the
+      // check below reads only the triangles) are freed before the refinement's arrays grow.
       detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid, [&] {
-        build_adjacency();  // needed below for fallback_edges after any move anyway
-        return detail::Adjacency2{adj_off.data(), adj.data()};
-      }, r.fallback_insertions == 0);  // after insertions (non-Delaunay edges) moves are the rule
+        build_adjacency();
+        decltype(dt.neighbors)().swap(dt.neighbors);
+        return detail::Adjacency2{adj_off.data(), adj.data(), [this] {
+          std::vector<int>().swap(adj_off);
+          std::vector<int>().swap(adj);
+          adj_ready = false;
+        }};
+      }, r.fallback_insertions == 0,  // after insertions (non-Delaunay edges) moves are the rule
+      &refined_non_dt, &refined);
       r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;
       r.stages.push_back({"refine", 0});
       r.ms_refine = ms_since(tr);
     }
-    if (r.method != "gamma" || r.refine_moves > 0) build_adjacency();  // for fallback_edges
+    if (refined) {
+      for (const auto& e : refined_non_dt) r.fallback_edges.push_back({{std::min(G(e[0]), G(e[1])), std::max(G(e[0]), G(e[1]))}});
+      std::vector<std::array<int, 2>>().swap(refined_non_dt);
+    } else if (r.method != "gamma" || r.refine_moves > 0) {
+      build_adjacency();  // for fallback_edges
+    }
     const std::size_t m = poly.size();
     for (std::size_t i = 0; i < m; ++i) {
       const int a = poly[i], b = poly[(i + 1) % m];
@@ -1135,7 +1155,7 @@ struct Constrictor2::Impl {
       const double* pb = P(b);
       r.area += 0.5 * (pa[0] * pb[1] - pa[1] * pb[0]);
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
-      if (adj_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
+      if (!refined && adj_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
     }
     r.area = std::ldexp(r.area, 2 * scale_exp);
     r.perimeter = std::ldexp(r.perimeter, scale_exp);
@@ -1145,21 +1165,52 @@ struct Constrictor2::Impl {
     for (std::size_t i = 0; i < m; ++i) r.boundary[i] = G(poly[i]);
     if (opt.validate) {
       const auto tv = Clock::now();
-      // A scaled run is checked on the input's own coordinates (in input ids) right away.
-      Status vs;
-      if (scale_exp == 0) vs = validate_polygon_in_triangulation(*pts, poly, dt.triangles, &r.check);
-      if (scale_exp != 0 || !vs) {
-        // The diagnostics name points and positions: redo the check in input ids.
+      // On the ranked points: a scaled run's coordinates are the input's times an exact power of
+      // two, which changes no orientation, so the verdict is the input's.
+      Status vs = validate_polygon_in_triangulation(*pts, poly, dt.triangles, &r.check);
+      if (!vs) {
+        // The diagnostics name points and positions: redo the check in input ids and coordinates.
         std::vector<std::array<int, 3>> tris(dt.triangles.size());
         for (std::size_t t = 0; t < tris.size(); ++t)
           for (int k = 0; k < 3; ++k) tris[t][U(k)] = G(dt.triangles[t][U(k)]);
-        vs = validate_polygon_in_triangulation(*input, r.boundary, tris, &r.check);
+        vs = validate_polygon_in_triangulation(input_points(), r.boundary, tris, &r.check);
       }
       r.validated = true;
       r.ms_validate = ms_since(tv);
       CONSTRICT_CHECK(vs.is_ok() || !r.complete, "reconstruct2 produced an invalid polygon: " + vs.message());
     }
     return Status::ok();
+  }
+
+  // What the constriction and the fallback kept per triangle and per boundary edge is dead once
+  // the polygon is complete: freed before the refinement allocates its own arrays, so that the
+  // two do not add up (the peak of a 10^6 run). The boundary (nxt, prv, onb) stays for
+  // boundary() and inside_points(); a second finish() returns the first result.
+  void release_stepping_state() {
+    heap = TriHeap{TriEntryLess{&ties}};
+    std::vector<std::array<int, 3>>().swap(ties.sorted);
+    std::vector<char>().swap(alive);
+    std::vector<unsigned>().swap(ver);
+    grid = Grid{};
+    std::vector<BEdge>().swap(bedges);
+    std::vector<int>().swap(out_edge);
+    std::vector<unsigned>().swap(mark);
+    std::vector<int>().swap(vt_off);
+    std::vector<int>().swap(vt);
+    decltype(delta_cache)().swap(delta_cache);
+    decltype(aug)().swap(aug);
+    decltype(side_cache)().swap(side_cache);
+    decltype(witness_cache)().swap(witness_cache);
+  }
+
+  // The engine's input again (input ids, unscaled), from the ranked points: init's caller need
+  // not keep its copy alive.
+  PointSet input_points() const {
+    PointSet in;
+    in.coords.resize(2 * n);
+    for (std::size_t v = 0; v < n; ++v)
+      for (int k = 0; k < 2; ++k) in.coords[2 * U(gid[v]) + U(k)] = std::ldexp(P(static_cast<int>(v))[k], scale_exp);
+    return in;
   }
 
   std::vector<int> inside_input_ids() const {
@@ -1222,7 +1273,10 @@ Status Constrictor2::init(const PointSet& points, const Constrict2Options& optio
   canon_->id_map.order = &canon_->order;
   impl_->visitor = visitor ? &canon_->id_map : nullptr;
   const Status st = impl_->init(canon_->points);
-  if (st) return st;
+  if (st) {
+    PointSet().coords.swap(canon_->points.coords);  // the engine has its own (ranked) copy
+    return st;
+  }
   // The error in the input's own indices (duplicates, ...).
   if (Status in = check_points(points); !in) return in;
   return st;

@@ -211,6 +211,14 @@ class Refiner {
     st_.length_after = length();
   }
 
+  // The edges of the polygon that are not Delaunay edges, in input ids.
+  void non_delaunay_edges(std::vector<std::array<int, 2>>& out) const {
+    out.clear();
+    for (std::size_t i = 0; i < n_; ++i) {
+      const int u = tour_[i], v = tour_[(i + 1) % n_];
+      if (!is_dt_edge(u, v)) out.push_back({{id_[U(u)], id_[U(v)]}});
+    }
+  }
  private:
   const double* P(int i) const { return &xy_[2 * U(i)]; }
   double d(int a, int b) const {
@@ -981,8 +989,10 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order,
-                     const std::function<Adjacency2()>& adjacency, bool pretest) {
+                     const std::function<Adjacency2()>& adjacency, bool pretest,
+                     std::vector<std::array<int, 2>>* non_delaunay, bool* searched) {
   stats = Refine2Stats{};
+  if (searched) *searched = false;
   if (polygon.size() != points.size()) return;
   if (polygon.size() < 4) {
     // A triangle has no other polygon: only the normal form (counter-clockwise, smallest first);
@@ -1009,24 +1019,37 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   double best_len = 0;
   for (std::size_t k = 0; k < starts; ++k) {
     const std::size_t first = (lo + k * n / starts) % n;
-    std::vector<int> poly(polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
-    poly.insert(poly.end(), polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first));
-    std::vector<double> pxy(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
-    pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
+    std::vector<int> poly;
+    std::vector<double> pxy;
+    if (starts == 1) {  // (large inputs: rotated in place, no second copy)
+      std::rotate(polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
+      std::rotate(xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
+      poly.swap(polygon);
+      pxy.swap(xy);
+    } else {
+      poly.assign(polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
+      poly.insert(poly.end(), polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first));
+      pxy.assign(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
+      pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
+    }
     Refine2Stats st;
     Refiner r(points, std::move(pxy), dt, poly, work_budget, st, order, adj);
+    if (starts == 1 && adj.release) adj.release();  // (the lists are the Refiner's now)
     r.run();
     const double l = geometric_length(points, poly, order);
     if (k == 0 || l < best_len) {
       best.swap(poly);
       best_len = l;
       stats = st;
+      if (non_delaunay) r.non_delaunay_edges(*non_delaunay);
     }
     // No move from the first start: the polygon is a local optimum of every move, whatever the
     // start (the order only chooses among applicable moves).
     if (k == 0 && st.moves_2opt + st.moves_oropt + st.moves_deep == 0) break;
   }
   polygon.swap(best);
+  if (starts > 1 && adj.release) adj.release();
+  if (searched) *searched = true;
 }
 
 }  // namespace constrict::detail

@@ -162,6 +162,9 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
     if (!st) return st;
     coords.insert(coords.end(), f.value, f.value + dim);
   }
+  // The reserve guessed 16 bytes of text per number; short numbers leave room over, which the
+  // points would carry through the whole run.
+  if (coords.capacity() - coords.size() > coords.size() / 16) coords.shrink_to_fit();
   out.dim = dim == 0 ? 2 : dim;
   return Status::ok();
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/delaunay.hpp"
 #include "constrict/validate.hpp"
 #include "test_fixtures.hpp"
 
@@ -162,6 +163,57 @@ TEST(Constrict2Unit, StepperAndStopAfter) {
   EXPECT_FALSE(r.complete);
   EXPECT_EQ(r.method, "stopped");
   EXPECT_EQ(r.removed_simplices, 1u);
+}
+
+// A noisy closed curve locks, is rescued by the fallback and refined: the run that frees the
+// constriction's state and the adjacency before the refinement. Its fallback_edges must be
+// exactly the polygon's edges that are not Delaunay edges (checked against a triangulation of
+// its own), and a second finish() gives the same result.
+TEST(Constrict2Unit, RefinedFallbackEdgesAreTheNonDelaunayEdges) {
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    std::uniform_real_distribution<double> along(0.0, 2 * M_PI);
+    const int n = 3000;
+    std::vector<std::array<double, 2>> xy;
+    for (int i = 0; i < n; ++i) {
+      const double t = along(rng), r = 1000 * (1 + 0.3 * std::cos(5 * t));
+      const double h = 2 * M_PI * 1000 / n;  // about the spacing
+      xy.push_back({r * std::cos(t) + h * noise(rng), r * std::sin(t) + h * noise(rng)});
+    }
+    const PointSet p = make2(xy);
+    Constrictor2 c;
+    ASSERT_TRUE(c.init(p, {}).is_ok());
+    Polygon2Result r, again;
+    ASSERT_TRUE(c.finish(r).is_ok());
+    ASSERT_TRUE(r.complete);
+    EXPECT_NE(r.method, "gamma");  // the case this test is for
+    EXPECT_GT(r.refine_moves, 0u);
+    Delaunay2 dt;
+    ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
+    std::vector<std::array<int, 2>> dt_edges;
+    for (const auto& t : dt.triangles)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        dt_edges.push_back({{std::min(a, b), std::max(a, b)}});
+      }
+    std::sort(dt_edges.begin(), dt_edges.end());
+    std::vector<std::array<int, 2>> expected;
+    const std::size_t m = r.boundary.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const int a = r.boundary[i], b = r.boundary[(i + 1) % m];
+      const std::array<int, 2> e{{std::min(a, b), std::max(a, b)}};
+      if (!std::binary_search(dt_edges.begin(), dt_edges.end(), e)) expected.push_back(e);
+    }
+    std::sort(expected.begin(), expected.end());
+    EXPECT_FALSE(expected.empty());
+    EXPECT_EQ(r.fallback_edges, expected);
+    ASSERT_TRUE(c.finish(again).is_ok());
+    EXPECT_EQ(again.boundary, r.boundary);
+    EXPECT_EQ(again.fallback_edges, r.fallback_edges);
+    EXPECT_EQ(c.boundary().size(), static_cast<std::size_t>(n));  // the stepping view still answers
+  }
 }
 
 TEST(Constrict2Unit, BadInput) {

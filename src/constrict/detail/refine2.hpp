@@ -29,17 +29,23 @@ namespace constrict::detail {
 ///   the result is the relabelling of what the stable ids give (null: the ids are the stable ids)
 /// @param[in] adjacency optional: gives dt's vertex adjacency as CSR (the neighbours of v are
 ///   nb[off[v]] .. nb[off[v + 1] - 1], each once, in any order), asked for only when the search
-///   runs; the candidate lists are then gathered from it instead of two passes over dt's triangles
+///   runs; the candidate lists are then gathered from it instead of two passes over dt's triangles,
+///   and dt.neighbors is not read after it returned (the caller may release them there)
 /// @param[in] pretest false: skip the O(N) test of whether any move can apply (the caller expects
 ///   moves, e.g. after fallback insertions); the result is the same either way
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
 ///   2^20 candidate nodes). Deterministic.
+/// @param[out] non_delaunay optional: when the search ran (the pretest found a possible move),
+///   set to the edges of the result that are not Delaunay edges (pairs of polygon ids, in no
+///   particular order) and *searched to true; otherwise *searched is false and it is untouched
 struct Adjacency2 {
   const int* off = nullptr;
   const int* nb = nullptr;
+  std::function<void()> release;  ///< optional: called once the lists are no longer read
 };
 void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr,
-                     const std::function<Adjacency2()>& adjacency = {}, bool pretest = true);
+                     const std::function<Adjacency2()>& adjacency = {}, bool pretest = true,
+                     std::vector<std::array<int, 2>>* non_delaunay = nullptr, bool* searched = nullptr);
 
 }  // namespace constrict::detail

@@ -2,9 +2,9 @@
 // A dense uniform grid of segments: every cell an array slot, for segments about as long as the
 // cells (the area-sized layer of the 2D fallback's boundary grid and of the refinement's edge
 // grid; sparse_segments.hpp is the counterpart for cells far below the area's). A segment is
-// registered in the cells of its bounding box; a query reads the cells where a point of the
-// query segment can lie (for_cells_of_hull, grid_cells.hpp), so it reports every registered
-// segment that can meet it (exact candidate sets for exact tests), possibly more than once.
+// registered in the cells where a point of it can lie, and a query reads those of the query
+// segment (both for_cells_of_hull, grid_cells.hpp), so it reports every registered segment that
+// can meet it (exact candidate sets for exact tests), possibly more than once.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -53,11 +53,12 @@ template <class Id> class DenseSegments {
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(frame_.nx) + static_cast<std::size_t>(i);
   }
+  // The cells where a point of segment ab can lie: its strip, as a query reads it (a long
+  // diagonal's bounding box would be quadratically many cells: the fallback's edges across an
+  // empty interior registered millions on a noisy 10^6 curve).
   template <class F> void box_cells(const double* a, const double* b, F&& f) const {
-    const int i0 = frame_.cx(std::min(a[0], b[0])), i1 = frame_.cx(std::max(a[0], b[0]));
-    const int j0 = frame_.cy(std::min(a[1], b[1])), j1 = frame_.cy(std::max(a[1], b[1]));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) f(index(i, j));
+    const double* seg[2] = {a, b};
+    for_cells_of_hull(frame_, seg, 2, [&](int i, int j) { f(index(i, j)); });
   }
   GridFrame frame_{0, 0, 0, 1, 1, 1};
   CellLists<Id> lists_;
