@@ -54,6 +54,13 @@ int in_circle_coplanar3(const double* a, const double* b, const double* c, const
 /// @param[in] xyz coordinates, 3 per point; @param[in] tris 3 point indices per triangle
 int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept;
 
+/// How fat a closed polygon is against its edges: the sign of 2|A| - c·Σ|e_i|^2, A its signed
+/// area and e_i its m edges (ring[0] ring[1], ..., ring[m-1] ring[0]). Dimensionless and exact
+/// (semi-static filter, then CGAL::Mpzf arithmetic). 2|A|/Σ|e|^2 is about m/(2π) for a round ring
+/// of even edges and about w/(2h) for a sliver of width w around a path of steps h (docs/topology.md).
+/// @param[in] xy coordinates, 2 per point; @param[in] ring m >= 3 point indices; @param[in] c >= 0
+int compare_ring_fatness2(const double* xy, const int* ring, std::size_t m, double c) noexcept;
+
 /// Compares the distances from p: sign(|p-q|^2 - |p-r|^2): -1 if q is nearer to p than r, 0 if
 /// equally near, +1 if farther. Exact (CGAL's filtered compare_distance_to_point).
 int compare_distance2(const double* p, const double* q, const double* r) noexcept;

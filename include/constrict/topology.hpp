@@ -50,6 +50,12 @@ struct Ring2 {
 /// §"Threshold"): the 43 ground-truth single-curve sets split at <= 1.27 local spacings, the 20
 /// topology sets' rings are >= 2.57 apart (sd_vase's inner loop 9.8).
 constexpr double kDefaultTopologyGap = 2.0;
+/// A part whose polygon has 2|A|/Σ|e|² at most kMinRingFatness (compare_ring_fatness2: a sliver
+/// along an arc), or an edge longer than kMaxRingEdge times its median edge (an arc closed by a
+/// chord across its opening), is a piece of a longer curve, not a ring: it joins the part across
+/// its smallest gap (docs/topology.md, "Open arcs").
+constexpr double kMinRingFatness = 1.0;
+constexpr double kMaxRingEdge = 50.0;
 /// The CLI's single mode infers the topology (for its note) up to this many points.
 constexpr std::size_t kNoteMaxPoints = 20000;
 
@@ -98,6 +104,9 @@ struct RingsInference {
   std::size_t parts = 0;              ///< parts found (1 for OneCurve)
   std::size_t parts_polygon = 0;      ///< parts not one clean NN-crust cycle: reconstruct2() ran on them
   std::size_t bad_degree_points = 0;  ///< points whose NN-crust degree is not 2 (noise, corners)
+  /// Parts whose polygon was too thin to be a ring (kMinRingFatness: a sliver along an arc, or an
+  /// arc closed by a chord), each joined to the part across its smallest gap.
+  std::size_t thin_parts_joined = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the
   /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data

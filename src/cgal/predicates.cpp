@@ -151,6 +151,42 @@ int compare_gap(const double* p, const double* q, const double* const* a, const 
 }
 }  // namespace
 
+int compare_ring_fatness2(const double* xy, const int* ring, std::size_t m, double c) noexcept {
+  if (m < 3) return c > 0 ? -1 : 0;  // (no area; Σ|e|^2 >= 0)
+  const auto pt = [&](std::size_t i) { return xy + 2 * static_cast<std::size_t>(ring[i % m]); };
+  const double* o = pt(0);
+  // Filter. Translated coordinates carry a relative error <= eps, a cross product <= 3 eps of
+  // its permanent on top, an edge's squared length <= 3 eps, the sums <= m eps of the sums of
+  // magnitudes: generous bounds (m + 16)·2^-52 times those sums, without overflow and underflow.
+  double area = 0, area_perm = 0, edges = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* a = pt(i);
+    const double* b = pt(i + 1);
+    const double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
+    area += ux * vy - uy * vx;
+    area_perm += std::abs(ux * vy) + std::abs(uy * vx);
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    edges += dx * dx + dy * dy;
+  }
+  const double eps = (static_cast<double>(m) + 16.0) * std::ldexp(1.0, -52);
+  const double value = std::abs(area) - c * edges;
+  const double bound = eps * (area_perm + 2 * c * edges);
+  if (std::isfinite(value) && std::isfinite(bound) && (area_perm > 1e-280 || edges > 1e-280) && std::abs(value) > bound)
+    return value > 0 ? 1 : -1;
+  CGAL::Mpzf a2(0), e2(0);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* a = pt(i);
+    const double* b = pt(i + 1);
+    const CGAL::Mpzf ux = CGAL::Mpzf(a[0]) - CGAL::Mpzf(o[0]), uy = CGAL::Mpzf(a[1]) - CGAL::Mpzf(o[1]);
+    const CGAL::Mpzf vx = CGAL::Mpzf(b[0]) - CGAL::Mpzf(o[0]), vy = CGAL::Mpzf(b[1]) - CGAL::Mpzf(o[1]);
+    a2 = a2 + (ux * vy - uy * vx);
+    const CGAL::Mpzf dx = CGAL::Mpzf(b[0]) - CGAL::Mpzf(a[0]), dy = CGAL::Mpzf(b[1]) - CGAL::Mpzf(a[1]);
+    e2 = e2 + (dx * dx + dy * dy);
+  }
+  if (CGAL::sign(a2) < 0) a2 = -a2;
+  return static_cast<int>(CGAL::sign(a2 - CGAL::Mpzf(c) * e2));
+}
+
 int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
                  double t) noexcept {
   return compare_gap<2>(p, q, a, b, k, t);

@@ -6,11 +6,15 @@
 // (gap_spacings, split_gap_spacings). Ties are broken by the lexicographic order of the points,
 // never by their indices, so the parts do not depend on the file order.
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <numeric>
 #include <utility>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
@@ -310,6 +314,95 @@ std::size_t RingsInference::shells() const noexcept {
 }
 std::size_t RingsInference::holes() const noexcept { return rings.size() - shells(); }
 
+namespace {
+
+// 2|A| / Σ|e|² of a ring (double, for the report and the measurements; the decision is exact).
+double ring_fatness(const PointSet& pts, const std::vector<int>& ring) {
+  const std::size_t m = ring.size();
+  const double* o = pts[static_cast<std::size_t>(ring[0])];
+  double area = 0, edges = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double* a = pts[static_cast<std::size_t>(ring[i])];
+    const double* b = pts[static_cast<std::size_t>(ring[(i + 1) % m])];
+    area += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    edges += (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+  }
+  return edges > 0 ? std::abs(area) / edges : 0;
+}
+
+// Does the ring have an edge longer than `factor` times its median edge? Exact (compare_gap2 on
+// the squared lengths, the median by exact comparisons).
+bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor) {
+  const std::size_t m = ring.size();
+  const auto at = [&](std::size_t i) { return pts[static_cast<std::size_t>(ring[i % m])]; };
+  const auto longer = [&](std::size_t i, std::size_t j) {  // |edge i| > |edge j| (edge i: ring[i] ring[i+1])
+    const double* a[1] = {at(j)};
+    const double* b[1] = {at(j + 1)};
+    return compare_gap2(at(i), at(i + 1), a, b, 1, 1.0) > 0;
+  };
+  std::vector<std::size_t> edges(m);
+  std::iota(edges.begin(), edges.end(), std::size_t{0});
+  const auto mid = edges.begin() + static_cast<std::ptrdiff_t>(m / 2);
+  std::nth_element(edges.begin(), mid, edges.end(), [&](std::size_t i, std::size_t j) { return longer(j, i); });
+  const double* a[1] = {at(*mid)};
+  const double* b[1] = {at(*mid + 1)};
+  for (std::size_t i = 0; i < m; ++i)
+    if (compare_gap2(at(i), at(i + 1), a, b, 1, factor) > 0) return true;
+  return false;
+}
+
+// The gap of Delaunay edge pq in local spacings, with the crust lengths summed in ascending order
+// (the same double for the same points in any file order).
+double canonical_gap(const PointSet& pts, const NnCrust& crust, int p, int q, std::vector<double>& scratch) {
+  const auto len2 = [&](int a, int b) {
+    const double* x = pts[static_cast<std::size_t>(a)];
+    const double* y = pts[static_cast<std::size_t>(b)];
+    return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]);
+  };
+  scratch.clear();
+  for (int end : {p, q})
+    for (const int* r = crust.begin(end); r != crust.end(end); ++r) scratch.push_back(len2(end, *r));
+  std::sort(scratch.begin(), scratch.end());
+  double sum = 0;
+  for (double x : scratch) sum += x;
+  return std::sqrt(len2(p, q) / (sum / static_cast<double>(scratch.size())));
+}
+
+// For each part k, the part across its smallest gap (canonical_gap; equal gaps: the
+// lexicographically smaller pair of points), -1 for none.
+std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust,
+                               const std::vector<int>& ring_of, std::size_t parts) {
+  struct Best { double gap; int p, q; };
+  std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
+  std::vector<double> scratch;
+  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  const auto better = [&](double g, int p, int q, const Best& b) {
+    if (b.p < 0 || g < b.gap) return true;
+    if (g > b.gap) return false;
+    if (lex_less(at(p), at(b.p))) return true;
+    return !lex_less(at(b.p), at(p)) && lex_less(at(q), at(b.q));
+  };
+  for (std::size_t p = 0; p < ring_of.size(); ++p)
+    for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
+      const int ip = static_cast<int>(p), q = adj.nbr[k];
+      const int rp = ring_of[p], rq = ring_of[static_cast<std::size_t>(q)];
+      if (rp == rq) continue;
+      const double g = canonical_gap(pts, crust, ip, q, scratch);
+      Best& b = best[static_cast<std::size_t>(rp)];
+      if (better(g, ip, q, b)) b = Best{g, ip, q};
+    }
+  std::vector<int> out(parts, -1);
+  for (std::size_t k = 0; k < parts; ++k)
+    if (best[k].q >= 0) out[k] = ring_of[static_cast<std::size_t>(best[k].q)];
+  return out;
+}
+
+bool debug_rings() {
+  static const bool on = std::getenv("CONSTRICT_DEBUG_RINGS") != nullptr;
+  return on;
+}
+}  // namespace
+
 Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out) {
   out = RingsInference{};
   const double gap = options.topology_gap;
@@ -321,18 +414,87 @@ Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Opt
   const Adjacency adj(dt);
   const NnCrust crust(points, adj);
   for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
-  const std::vector<int> part_of = find_parts(points, adj, crust, gap, out);
+  std::vector<int> part_of = find_parts(points, adj, crust, gap, out);
   std::vector<std::vector<int>> parts = group_parts(points, part_of);
   out.parts = parts.size();
   if (parts.size() == 1) return Status::ok();  // OneCurve
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    for (int v : parts[k]) ring_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
-    if (crust_cycle(crust, parts[k], part_of, rings[k])) continue;
-    ++out.parts_polygon;
-    if (!part_polygon(points, parts[k], options.polygon, rings[k])) {
-      out.decision = RingsDecision::SmallPart;
+  std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
+  std::vector<int> cycle;
+  for (;;) {
+    // The rings of the parts: a clean crust cycle as it is, otherwise reconstruct2()'s polygon.
+    out.parts_polygon = 0;
+    std::vector<char> thin(parts.size(), 0);
+    bool any_thin = false;
+    std::vector<char> polygon_part(parts.size(), 0), ok(parts.size(), 1);
+    std::vector<std::size_t> todo;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      for (int v : parts[k]) ring_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+      if (crust_cycle(crust, parts[k], part_of, cycle)) {
+        rings[k].swap(cycle);
+        continue;
+      }
+      polygon_part[k] = 1;
+      ++out.parts_polygon;
+      if (!known[k]) todo.push_back(k);
+    }
+    // The parts' polygons are independent: on both cores (each the same whatever the threads).
+    tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t i) {
+      const std::size_t k = todo[i];
+      ok[k] = part_polygon(points, parts[k], options.polygon, rings[k]) ? 1 : 0;
+    });
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      if (!polygon_part[k]) continue;
+      if (!ok[k]) {
+        out.decision = RingsDecision::SmallPart;
+        return Status::ok();
+      }
+      // A polygon that is a sliver along its points, or an arc closed by a chord across its
+      // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
+      // that a large random sample has somewhere (docs/topology.md, "Open arcs").
+      thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(), kMinRingFatness) <= 0 ||
+                has_chord(points, rings[k], kMaxRingEdge);
+      any_thin = any_thin || thin[k];
+      if (debug_rings()) {
+        std::vector<double> el;
+        const auto& rg = rings[k];
+        for (std::size_t i = 0; i < rg.size(); ++i) {
+          const double* a = points[static_cast<std::size_t>(rg[i])];
+          const double* b = points[static_cast<std::size_t>(rg[(i + 1) % rg.size()])];
+          el.push_back(std::hypot(a[0] - b[0], a[1] - b[1]));
+        }
+        std::sort(el.begin(), el.end());
+        std::fprintf(stderr, "rings: part %zu of %zu, %zu points, fatness %.3f, longest %.1f median edges, 2nd %.1f%s\n", k, parts.size(), parts[k].size(),
+                     ring_fatness(points, rings[k]), el.back() / el[el.size() / 2], el[el.size() - 2] / el[el.size() / 2], thin[k] ? " (thin)" : "");
+      }
+    }
+    if (!any_thin) break;
+    // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
+    // rings of parts that did not change are kept).
+    const std::vector<int> nearest = nearest_parts(points, adj, crust, ring_of, parts.size());
+    UnionFind joined(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
+    std::vector<std::size_t> members(parts.size(), 0);
+    for (std::size_t k = 0; k < parts.size(); ++k) ++members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))];
+    for (std::size_t v = 0; v < points.size(); ++v) part_of[v] = joined.find(ring_of[v]);
+    std::vector<std::vector<int>> next = group_parts(points, part_of);
+    std::vector<std::vector<int>> next_rings(next.size());
+    std::vector<char> next_known(next.size(), 0);
+    for (std::size_t j = 0; j < next.size(); ++j) {
+      const std::size_t old = static_cast<std::size_t>(ring_of[static_cast<std::size_t>(next[j].front())]);
+      if (members[static_cast<std::size_t>(joined.find(static_cast<int>(old)))] == 1) {
+        next_rings[j] = std::move(rings[old]);
+        next_known[j] = 1;
+      }
+    }
+    parts = std::move(next);
+    rings = std::move(next_rings);
+    known = std::move(next_known);
+    if (parts.size() == 1) {
+      out.decision = RingsDecision::OneCurve;
+      out.parts_polygon = 0;
       return Status::ok();
     }
   }

@@ -233,5 +233,76 @@ TEST(Topology2Property, GapPredicateExact) {
   EXPECT_EQ(compare_distance2(pa, qa, qb), 0);
 }
 
+// The ring fatness predicate: exact at ties, any scale; 2|A|/Σ|e|² of a unit square is 1/2.
+TEST(Topology2Property, RingFatnessPredicateExact) {
+  const std::vector<double> xy = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.5};
+  const int square[4] = {0, 1, 2, 3}, cw[4] = {3, 2, 1, 0};
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), square, 4, 0.5), 0);
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), cw, 4, 0.5), 0);  // |A|: either orientation
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), square, 4, std::nextafter(0.5, 1.0)), -1);
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), square, 4, std::nextafter(0.5, 0.0)), 1);
+  std::vector<double> tiny = xy, huge = xy;
+  for (double& v : tiny) v = std::ldexp(v, -600);
+  for (double& v : huge) v = std::ldexp(v, 600);
+  EXPECT_EQ(compare_ring_fatness2(tiny.data(), square, 4, 0.5), 0);
+  EXPECT_EQ(compare_ring_fatness2(huge.data(), square, 4, std::nextafter(0.5, 1.0)), -1);
+  // A sliver: the square folded to a dart of area 1/2 (2|A| = 1) and Σ|e|² = 1 + 1 + 0.5 + 0.5 = 3.
+  const int dart[4] = {0, 1, 2, 4};
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), dart, 4, 1.0 / 3.0), 1);
+  EXPECT_EQ(compare_ring_fatness2(xy.data(), dart, 4, 0.34), -1);
+  // Brute force on random small integer rings (exact in double): the sign of 2|A| - c Σ|e|².
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(-20, 20);
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const int m = 3 + trial % 6;
+    std::vector<double> pts(2 * static_cast<std::size_t>(m));
+    for (double& v : pts) v = coord(rng);
+    std::vector<int> ring(static_cast<std::size_t>(m));
+    std::iota(ring.begin(), ring.end(), 0);
+    long long a2 = 0, e2 = 0;
+    for (int i = 0; i < m; ++i) {
+      const long long ax = static_cast<long long>(pts[2 * static_cast<std::size_t>(i)]), ay = static_cast<long long>(pts[2 * static_cast<std::size_t>(i) + 1]);
+      const int j = (i + 1) % m;
+      const long long bx = static_cast<long long>(pts[2 * static_cast<std::size_t>(j)]), by = static_cast<long long>(pts[2 * static_cast<std::size_t>(j) + 1]);
+      a2 += ax * by - ay * bx;
+      e2 += (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+    }
+    a2 = a2 < 0 ? -a2 : a2;
+    for (const int c4 : {0, 1, 2, 3, 4, 6}) {  // c = c4 / 4: 4·2|A| - c4·Σ|e|² in integers
+      const long long v = 4 * a2 - c4 * e2;
+      EXPECT_EQ(compare_ring_fatness2(pts.data(), ring.data(), ring.size(), c4 / 4.0), (v > 0) - (v < 0));
+    }
+  }
+}
+
+// A large noisy sample of one closed curve: its largest gaps grow like ln N spacings, so the gap
+// rule alone split some of these into arcs (thin slivers, or arcs closed by a chord). The arcs are
+// joined back: one ring, the single polygon (docs/topology.md, "Open arcs").
+TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
+  std::size_t joined = 0;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> along(0, 2 * M_PI);
+    std::normal_distribution<double> noise(0, 1);
+    const std::size_t n = 100000;
+    const double h = 7.0 / static_cast<double>(n);  // about the spacing (the curve is ~7 long)
+    PointSet p;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
+      p.coords.push_back(r * std::cos(t) + h * noise(rng));
+      p.coords.push_back(r * std::sin(t) + h * noise(rng));
+    }
+    const Rings2Result a = run(p, Topology2::Auto);
+    ASSERT_TRUE(a.valid()) << a.check.reason;
+    EXPECT_EQ(a.rings.size(), 1u);
+    EXPECT_EQ(a.inferred.decision == RingsDecision::OneCurve || a.inferred.decision == RingsDecision::Crossing, true)
+        << to_string(a.inferred.decision);
+    joined += a.inferred.thin_parts_joined;
+  }
+  EXPECT_GT(joined, 0u);  // the case this test is for: some sample split and was joined back
+}
+
 }  // namespace
 }  // namespace constrict
