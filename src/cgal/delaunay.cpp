@@ -72,22 +72,23 @@ void par_for(std::size_t n, const F& f) {
 // neighbour indices (the handles' info), and optionally the local mesh (vertex ranks, opposite
 // vertex, mirror index, ownership of each face). Shared by 2D and 3D.
 template <int K, class Handle, class LocalMesh>
-void export_simplices(const std::vector<Handle>& hs, const detail::BigArray<int>* id,
+void export_simplices(const std::vector<Handle>& hs, std::size_t base, const detail::BigArray<int>* id,
                       std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
                       LocalMesh& lm, bool local) {
   par_for(hs.size(), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const std::size_t t = base + c;  // the simplex's index (hs holds simplices base, base + 1, ...)
       // The neighbours are scattered in memory: prefetch them, then their far vertex.
-      if (t + 2 * kAhead < r.end())
-        for (int i = 0; i < K; ++i) __builtin_prefetch(&*hs[t + 2 * kAhead]->neighbor(i));
-      if (t + kAhead < r.end()) {
-        const Handle fa = hs[t + kAhead];
-        for (int i = 0; i < K; ++i) {
-          const Handle g = fa->neighbor(i);
+      if (c + 2 * kAhead < r.end())
+        for (int k = 0; k < K; ++k) __builtin_prefetch(&*hs[c + 2 * kAhead]->neighbor(k));
+      if (c + kAhead < r.end()) {
+        const Handle fa = hs[c + kAhead];
+        for (int k = 0; k < K; ++k) {
+          const Handle g = fa->neighbor(k);
           __builtin_prefetch(&*g->vertex(g->index(fa)));
         }
       }
-      const Handle f = hs[t];
+      const Handle f = hs[c];
       std::array<int, K> sim{}, nb{}, loc{}, opp{};
       unsigned mir = 0;
       for (int i = 0; i < K; ++i) {
@@ -131,15 +132,18 @@ std::string duplicate_message(std::size_t n, std::size_t nv) {
 // permutation is exactly the sequential one, whatever the number of threads.
 constexpr std::ptrdiff_t kParallelSort = std::ptrdiff_t{1} << 15;
 
+// The handles of the finite simplices are gathered and exported in chunks of kExportChunk (a list
+// of all of them was 8 bytes per simplex at the peak, beside CGAL's triangulation).
+constexpr std::size_t kExportChunk = std::size_t{1} << 16;
+
 // Numbers the finite simplices in CGAL's container order (info() = index, -1 for the infinite
 // ones, which are also collected in *infinite when given), then exports them (2D and 3D).
 // id == nullptr: the simplices are written in local ids (build_delaunay2_ranked).
 template <int K, class Handle, class It, class VertexHandle, class LocalMesh>
-void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, const detail::BigArray<int>* id,
+void export_finite(It first, It last, VertexHandle inf, const detail::BigArray<int>* id,
                    std::vector<std::array<int, K>>& simplices, std::vector<std::array<int, K>>& neighbors,
                    LocalMesh& lm, bool local, std::vector<Handle>* infinite) {
-  std::vector<Handle> hs;
-  hs.reserve(reserve);
+  std::size_t T = 0;
   for (It s = first; s != last; ++s) {
     bool is_infinite = false;
     for (int k = 0; k < K; ++k) is_infinite = is_infinite || s->vertex(k) == inf;
@@ -147,11 +151,9 @@ void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, con
       s->info() = -1;
       if (infinite) infinite->push_back(s);
     } else {
-      s->info() = static_cast<int>(hs.size());
-      hs.push_back(s);
+      s->info() = static_cast<int>(T++);
     }
   }
-  const std::size_t T = hs.size();
   // (A caller may have sized the arrays beforehand, off the critical path; shrinking keeps them.
   // Otherwise their zero-filling, page faults included, runs on both cores.)
   tbb::parallel_invoke([&] { detail::resize_big(simplices, T); }, [&] { detail::resize_big(neighbors, T); });
@@ -161,7 +163,19 @@ void export_finite(It first, It last, VertexHandle inf, std::size_t reserve, con
     lm.mirror.allocate(T);
     lm.owned.allocate(T);
   }
-  export_simplices<K>(hs, id, simplices, neighbors, lm, local);
+  std::vector<Handle> hs;
+  hs.reserve(std::min(T, kExportChunk));
+  std::size_t base = 0;
+  for (It s = first; s != last; ++s) {
+    if (s->info() < 0) continue;
+    hs.push_back(s);
+    if (hs.size() == kExportChunk) {
+      export_simplices<K>(hs, base, id, simplices, neighbors, lm, local);
+      base += hs.size();
+      hs.clear();
+    }
+  }
+  export_simplices<K>(hs, base, id, simplices, neighbors, lm, local);
 }
 
 template <class Traits, int x, bool upx, bool upy, class It>
@@ -320,7 +334,7 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
 
   // Finite faces in CGAL's finite_faces order (= all faces, infinite ones skipped).
   out.n_vertices = n;
-  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, &id,
+  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), &id,
                                      out.triangles, out.neighbors, lm, local != nullptr, nullptr);
   return Status::ok();
 }
@@ -352,7 +366,7 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
   if (dt.dimension() < 2) return {StatusCode::Collinear, "Delaunay: all points are collinear"};
   detail::LocalMesh<2> unused;
   out.n_vertices = n;
-  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), 2 * n, nullptr,
+  export_finite<3, DT2::Face_handle>(dt.all_faces_begin(), dt.all_faces_end(), dt.infinite_vertex(), nullptr,
                                      out.triangles, out.neighbors, unused, false, nullptr);
   return Status::ok();
 }
@@ -385,7 +399,7 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   std::vector<DT3::Cell_handle> inf_cells;
   if (local) inf_cells.reserve(dt.number_of_cells() - dt.number_of_finite_cells());
   out.n_vertices = n;
-  export_finite<4, DT3::Cell_handle>(dt.all_cells_begin(), dt.all_cells_end(), inf, dt.number_of_finite_cells(), &id,
+  export_finite<4, DT3::Cell_handle>(dt.all_cells_begin(), dt.all_cells_end(), inf, &id,
                                      out.tets, out.neighbors, lm, local != nullptr, local ? &inf_cells : nullptr);
   if (local) {
     // Hull facets and their adjacency, from the infinite cells (one per hull facet; two hull
