@@ -121,6 +121,10 @@ class Constrict2Visitor {
   virtual void on_event(const Constrict2Event& event) = 0;
 };
 
+namespace detail {
+struct Constrictor2Access;  // the engine's triangulation for the library's own stages (constrict2.cpp)
+}  // namespace detail
+
 /// Step-able constrictor. Usage: init(); while (step()) {...}; finish(result).
 /// reconstruct2() does exactly this.
 class Constrictor2 {
@@ -153,6 +157,7 @@ class Constrictor2 {
   std::unique_ptr<Impl> impl_;
   struct Canonical;  // the canonical point order the engine runs in (constrict2.cpp)
   std::unique_ptr<Canonical> canon_;
+  friend struct detail::Constrictor2Access;
 };
 
 /// Reconstructs a simple polygon through all points (2D).

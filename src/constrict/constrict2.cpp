@@ -24,6 +24,7 @@
 #include "constrict/predicates.hpp"
 #include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/refine2.hpp"
+#include "constrict/detail/share2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
@@ -1309,6 +1310,25 @@ Status Constrictor2::finish(Polygon2Result& result) {
     result.check = chk;
   }
   return st;
+}
+
+struct detail::Constrictor2Access {
+  static void share(const Constrictor2& c, const detail::Triangulation2Hook& hook) {
+    const Constrictor2::Impl& e = *c.impl_;
+    std::vector<int> to_input(e.n);
+    for (std::size_t v = 0; v < e.n; ++v) to_input[v] = c.canon_ ? c.canon_->to_input(e.gid[v]) : e.gid[v];
+    hook(e.rpts, e.dt, to_input);
+  }
+};
+
+Status detail::reconstruct2_sharing(const PointSet& points, const Constrict2Options& options, Polygon2Result& result,
+                                    Constrict2Visitor* visitor, const Triangulation2Hook& hook) {
+  result = Polygon2Result{};
+  Constrictor2 c;
+  Status st = c.init(points, options, visitor);
+  if (!st) return st;
+  if (hook) Constrictor2Access::share(c, hook);
+  return c.finish(result);
 }
 
 Status reconstruct2(const PointSet& points, const Constrict2Options& options,

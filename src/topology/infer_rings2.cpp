@@ -19,6 +19,7 @@
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
 #include "core/detail/union_find.hpp"
+#include "topology/detail/infer_rings2.hpp"
 #include "topology/detail/ring_nesting.hpp"
 
 namespace constrict {
@@ -26,13 +27,15 @@ namespace {
 
 bool lex_less(const double* p, const double* q) { return p[0] < q[0] || (p[0] == q[0] && p[1] < q[1]); }
 
+}  // namespace
+
 // The Delaunay neighbours of every vertex (CSR). Each edge is taken once, from the triangle with
 // the smaller id (or the hull triangle): O(N), no sorting. The order within a list does not matter:
 // every choice made from a list is by exact comparisons with lexicographic ties.
-struct Adjacency {
+struct detail::RingsAdjacency {
   std::vector<std::size_t> start;
   std::vector<int> nbr;
-  explicit Adjacency(const Delaunay2& dt) : start(dt.n_vertices + 2, 0) {
+  explicit RingsAdjacency(const Delaunay2& dt) : start(dt.n_vertices + 2, 0) {
     const auto for_edges = [&](const auto& f) {
       for (std::size_t t = 0; t < dt.triangles.size(); ++t)
         for (std::size_t i = 0; i < 3; ++i) {
@@ -54,6 +57,9 @@ struct Adjacency {
     start.pop_back();
   }
 };
+
+namespace {
+using Adjacency = detail::RingsAdjacency;
 
 // The NN-crust (Dey–Kumar 1999, §3): p chooses its nearest Delaunay neighbour q, and its nearest
 // Delaunay neighbour r in the open half-plane away from q (angle qpr > 90°: p strictly inside the
@@ -146,13 +152,16 @@ class Gaps {
       }
     return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
   }
-  // |pq| / rms(crust edges at p and q), double arithmetic (for the report).
+  // |pq| / rms(crust edges at p and q), double arithmetic (for the report), the squared lengths
+  // summed in ascending order: the same double for the same points in any file order.
   double ratio(int p, int q) const {
-    double sum = 0;
-    std::size_t k = 0;
+    scratch_.clear();
     for (int end : {p, q})
-      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r, ++k) sum += len2(end, *r);
-    return std::sqrt(len2(p, q) / (sum / static_cast<double>(k)));
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) scratch_.push_back(len2(end, *r));
+    std::sort(scratch_.begin(), scratch_.end());
+    double sum = 0;
+    for (const double x : scratch_) sum += x;
+    return std::sqrt(len2(p, q) / (sum / static_cast<double>(scratch_.size())));
   }
 
  private:
@@ -164,6 +173,7 @@ class Gaps {
   const PointSet& pts_;
   const NnCrust& crust_;
   std::vector<const double*> a_, b_;
+  mutable std::vector<double> scratch_;
 };
 
 // The parts: components of the mutual crust edges and of the Delaunay edges shorter than
@@ -351,30 +361,13 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
   return false;
 }
 
-// The gap of Delaunay edge pq in local spacings, with the crust lengths summed in ascending order
-// (the same double for the same points in any file order).
-double canonical_gap(const PointSet& pts, const NnCrust& crust, int p, int q, std::vector<double>& scratch) {
-  const auto len2 = [&](int a, int b) {
-    const double* x = pts[static_cast<std::size_t>(a)];
-    const double* y = pts[static_cast<std::size_t>(b)];
-    return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]);
-  };
-  scratch.clear();
-  for (int end : {p, q})
-    for (const int* r = crust.begin(end); r != crust.end(end); ++r) scratch.push_back(len2(end, *r));
-  std::sort(scratch.begin(), scratch.end());
-  double sum = 0;
-  for (double x : scratch) sum += x;
-  return std::sqrt(len2(p, q) / (sum / static_cast<double>(scratch.size())));
-}
-
-// For each part k, the part across its smallest gap (canonical_gap; equal gaps: the
+// For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
 // lexicographically smaller pair of points), -1 for none.
 std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust,
                                const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
-  std::vector<double> scratch;
+  const Gaps gaps(pts, crust);
   const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
   const auto better = [&](double g, int p, int q, const Best& b) {
     if (b.p < 0 || g < b.gap) return true;
@@ -387,7 +380,7 @@ std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const 
       const int ip = static_cast<int>(p), q = adj.nbr[k];
       const int rp = ring_of[p], rq = ring_of[static_cast<std::size_t>(q)];
       if (rp == rq) continue;
-      const double g = canonical_gap(pts, crust, ip, q, scratch);
+      const double g = gaps.ratio(ip, q);
       Best& b = best[static_cast<std::size_t>(rp)];
       if (better(g, ip, q, b)) b = Best{g, ip, q};
     }
@@ -403,15 +396,25 @@ bool debug_rings() {
 }
 }  // namespace
 
+std::shared_ptr<const detail::RingsAdjacency> detail::rings_adjacency(const Delaunay2& dt) {
+  return std::make_shared<const RingsAdjacency>(dt);
+}
+
 Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out) {
+  out = RingsInference{};
+  if (points.dim != 2 || dt.n_vertices != points.size() || dt.triangles.size() != dt.neighbors.size())
+    return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
+  return detail::infer_rings2(points, detail::RingsAdjacency(dt), options, out);
+}
+
+Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, const Rings2Options& options, RingsInference& out) {
   out = RingsInference{};
   const double gap = options.topology_gap;
   out.gap_threshold = gap;
   if (!(gap >= 0) || !std::isfinite(gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
-  if (points.dim != 2 || dt.n_vertices != points.size() || dt.triangles.size() != dt.neighbors.size())
+  if (points.dim != 2 || adj.start.size() != points.size() + 1)
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
-  const Adjacency adj(dt);
   const NnCrust crust(points, adj);
   for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
   std::vector<int> part_of = find_parts(points, adj, crust, gap, out);

@@ -2,28 +2,40 @@
 // reconstruct_rings2(): the ladder of topology.hpp -- infer the rings; several with clear gaps
 // (Auto) -> the rings; otherwise -> the single polygon of reconstruct2() as one shell. Then the
 // exact validation of whatever ring set came out.
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <string>
 
 #include <tbb/task_group.h>
 
+#include "constrict/detail/share2.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
+#include "topology/detail/infer_rings2.hpp"
 
 namespace constrict {
 namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-Status infer(const PointSet& points, const Rings2Options& o, Rings2Result& r) {
+// infer_rings2() on the engine's points (engine ids), its rings then in input ids: the same rings
+// as on the input (every decision is exact and breaks ties by the points' lexicographic order, and
+// the engine's points are the input's times an exact power of two), each from its smallest input
+// index again; a check that failed is redone on the input, so that it names input indices.
+Status infer_shared(const PointSet& input, const PointSet& points, const detail::RingsAdjacency& adj,
+                    const std::vector<int>& to_input, const Rings2Options& o, Rings2Result& r) {
   const auto t = Clock::now();
-  Delaunay2 dt;
-  if (Status s = build_delaunay2(points, dt); !s) return s;
-  if (Status s = infer_rings2(points, dt, o, r.inferred); !s) return s;
+  if (Status s = detail::infer_rings2(points, adj, o, r.inferred); !s) return s;
+  for (Ring2& ring : r.inferred.rings) {
+    for (int& v : ring.indices) v = to_input[static_cast<std::size_t>(v)];
+    std::rotate(ring.indices.begin(), std::min_element(ring.indices.begin(), ring.indices.end()), ring.indices.end());
+  }
+  if (!r.inferred.rings.empty() && !r.inferred.check.reason.empty()) (void)validate_rings2(input, r.inferred.rings, &r.inferred.check);
   r.inferred_run = true;
-  r.ms_infer = ms_since(t);
+  r.ms_infer += ms_since(t);
   return Status::ok();
 }
 
@@ -60,13 +72,29 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   // The inference and the single polygon are independent: the inference runs on the other core
   // while this thread builds the polygon (deterministic: neither reads the other). When Auto finds
   // several rings the polygon is dropped.
+  // The inference runs on the engine's own triangulation (one triangulation, not two): its
+  // adjacency is taken when the triangulation is built, and the inference then runs on the other
+  // core beside the constriction (deterministic: neither reads what the other writes).
   Status inferred = Status::ok(), single = Status::ok();
   const bool run_infer = o.topology == Topology2::Auto || o.infer_in_single;
-  {
+  if (run_infer) {
     tbb::task_group side;
-    if (run_infer) side.run([&] { inferred = infer(points, o, r); });
-    single = reconstruct2(points, o.polygon, r.polygon, visitor);
+    PointSet engine_points;
+    std::vector<int> to_input;
+    std::shared_ptr<const detail::RingsAdjacency> adj;
+    single = detail::reconstruct2_sharing(points, o.polygon, r.polygon, visitor,
+                                          [&](const PointSet& p, const Delaunay2& dt, const std::vector<int>& ids) {
+                                            const auto t = Clock::now();
+                                            adj = detail::rings_adjacency(dt);
+                                            engine_points = p;
+                                            to_input = ids;
+                                            r.ms_infer = ms_since(t);
+                                            side.run([&] { inferred = infer_shared(points, engine_points, *adj, to_input, o, r); });
+                                          });
     side.wait();
+    if (!adj && !single) return single;  // (the triangulation failed: the engine's error)
+  } else {
+    single = reconstruct2(points, o.polygon, r.polygon, visitor);
   }
   if (!inferred) return inferred;
   if (o.topology == Topology2::Auto && r.inferred.several()) {

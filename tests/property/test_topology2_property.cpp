@@ -139,6 +139,10 @@ TEST(Topology2Property, InvariantUnderPermutationRotationAndScale) {
         EXPECT_EQ(b.inferred.decision, base.inferred.decision);
         EXPECT_EQ(c.inferred.decision, base.inferred.decision);
         EXPECT_EQ(structure(a.rings, back), want);
+        // The report's doubles too: every sum runs in an order of the points' coordinates.
+        EXPECT_EQ(a.inferred.split_gap_spacings, base.inferred.split_gap_spacings);
+        ASSERT_EQ(a.rings.size(), base.rings.size());
+        for (std::size_t k = 0; k < a.rings.size(); ++k) EXPECT_EQ(a.rings[k].gap_spacings, base.rings[k].gap_spacings);
         if (base.rings.size() > 1) {  // the single polygon itself is reconstruct2()'s business
           EXPECT_EQ(structure(b.rings), want);
           EXPECT_EQ(structure(c.rings), want);
