@@ -4,7 +4,8 @@
 // an Ok result that is complete is a simple CCW polygon through every point, checked here again
 // on the input's own coordinates (Shamos-Hoey sweep and the O(N^2) pair test); with any fallback
 // but None (and the repair on) it is complete. refine_polygon2() of the result, reversed, stays
-// valid; validate_polygon() refuses non-finite input without crashing.
+// valid; validate_polygon() refuses non-finite input without crashing. With the default fallbacks,
+// reconstruct_rings2() in auto mode gives a ring set the brute-force checker accepts.
 #include <numeric>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <tbb/global_control.h>
 
 #include "constrict/constrict.hpp"
+#include "constrict/topology.hpp"
 #include "constrict/validate.hpp"
 #include "fuzz_engine.hpp"
 
@@ -59,6 +61,23 @@ void check_incomplete(const PointSet& p, const Polygon2Result& r) {
           "boundary and stuck points do not cover the input");
 }
 
+// reconstruct_rings2() in auto mode (the inference on the engine's triangulation, the open-arc
+// rule): Ok, and a ring set valid by the brute-force checker; one ring is reconstruct2()'s polygon.
+void check_rings(const PointSet& p, const Constrict2Options& options) {
+  Rings2Options o;
+  o.topology = Topology2::Auto;
+  o.polygon = options;
+  Rings2Result rr;
+  Status st;
+  constrict_fuzz::no_throw("reconstruct_rings2", [&] { st = reconstruct_rings2(p, o, rr); });
+  require(st.is_ok(), "reconstruct_rings2 refuses valid input", st.message());
+  require(rr.valid(), "auto rings not valid()", rr.check.reason);
+  RingsCheck c;
+  const Status v = validate_rings2_brute_force(p, rr.rings, &c);
+  require(v.is_ok(), "brute-force ring check refuses the rings", c.reason);
+  if (rr.rings.size() == 1) require(rr.from_polygon, "one ring that is not reconstruct2()'s polygon");
+}
+
 // refine_polygon2 on the reversed (clockwise) polygon: Ok, CCW, still through every point.
 void check_refine(const PointSet& p, const Polygon2Result& r, std::size_t work) {
   std::vector<int> poly(r.boundary.rbegin(), r.boundary.rend());
@@ -101,6 +120,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check_incomplete(p, r);
       }
     });
+    if (options.fallback == Fallback::Auto) check_rings(p, options);
   }
   if (d.has_non_finite && p.size() >= 3) {
     std::vector<int> all(p.size());
