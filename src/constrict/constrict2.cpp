@@ -1066,8 +1066,6 @@ struct Constrictor2::Impl {
     if (st) finished = std::make_unique<Polygon2Result>(r);
     return st;
   }
-  bool refined = false;  // the refinement's search ran: refined_non_dt holds its non-Delaunay edges
-  std::vector<std::array<int, 2>> refined_non_dt;
   Status finish_once(Polygon2Result& r) {
     run_all();
     r = Polygon2Result{};
@@ -1119,6 +1117,8 @@ struct Constrictor2::Impl {
     r.complete = n_onb == n;
     std::vector<int> poly = boundary_list();  // ranked ids until the end
     release_stepping_state();
+    bool refined = false;                        // the refinement's search ran
+    std::vector<std::array<int, 2>> non_dt;      // the polygon's non-Delaunay edges (ranked ids)
     r.ms_delaunay = ms_delaunay;
     r.ms_constrict = ms_constrict;
     if (r.complete && opt.refine == Refine2::LocalSearch) {
@@ -1127,7 +1127,7 @@ struct Constrictor2::Impl {
       // The refinement copies the adjacency into its own lists, and says which of its result's
       // edges are not Delaunay edges: the engine's adjacency and the triangles' neighbours (the
       // check below reads only the triangles) are freed before the refinement's arrays grow.
-      detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid, [&] {
+      refined = detail::refine_polygon2(*pts, dt, poly, opt.refine_work_per_point * n, rs, &gid, [&] {
         build_adjacency();
         decltype(dt.neighbors)().swap(dt.neighbors);
         return detail::Adjacency2{adj_off.data(), adj.data(), [this] {
@@ -1136,27 +1136,27 @@ struct Constrictor2::Impl {
           adj_ready = false;
         }};
       }, r.fallback_insertions == 0,  // after insertions (non-Delaunay edges) moves are the rule
-      &refined_non_dt, &refined);
+      &non_dt);
       r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
       r.refine_budget_hit = rs.budget_hit;
       r.perimeter_before_refine = rs.length_before;
       r.stages.push_back({"refine", 0});
       r.ms_refine = ms_since(tr);
     }
-    if (refined) {
-      for (const auto& e : refined_non_dt) r.fallback_edges.push_back({{std::min(G(e[0]), G(e[1])), std::max(G(e[0]), G(e[1]))}});
-      std::vector<std::array<int, 2>>().swap(refined_non_dt);
-    } else if (r.method != "gamma" || r.refine_moves > 0) {
-      build_adjacency();  // for fallback_edges
-    }
+    // The polygon's non-Delaunay edges: the refinement's list when its search ran, else (only
+    // after fallback insertions can there be any) from the adjacency.
     const std::size_t m = poly.size();
+    if (!refined && r.method != "gamma") {
+      build_adjacency();
+      for (std::size_t i = 0; i < m; ++i)
+        if (!is_dt_edge(poly[i], poly[(i + 1) % m])) non_dt.push_back({{poly[i], poly[(i + 1) % m]}});
+    }
+    for (const auto& e : non_dt) r.fallback_edges.push_back({{std::min(G(e[0]), G(e[1])), std::max(G(e[0]), G(e[1]))}});
     for (std::size_t i = 0; i < m; ++i) {
-      const int a = poly[i], b = poly[(i + 1) % m];
-      const double* pa = P(a);
-      const double* pb = P(b);
+      const double* pa = P(poly[i]);
+      const double* pb = P(poly[(i + 1) % m]);
       r.area += 0.5 * (pa[0] * pb[1] - pa[1] * pb[0]);
       r.perimeter += std::hypot(pb[0] - pa[0], pb[1] - pa[1]);
-      if (!refined && adj_ready && !is_dt_edge(a, b)) r.fallback_edges.push_back({{std::min(G(a), G(b)), std::max(G(a), G(b))}});
     }
     r.area = std::ldexp(r.area, 2 * scale_exp);
     r.perimeter = std::ldexp(r.perimeter, scale_exp);

@@ -987,25 +987,24 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 
 }  // namespace
 
-void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
+bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order,
                      const std::function<Adjacency2()>& adjacency, bool pretest,
-                     std::vector<std::array<int, 2>>* non_delaunay, bool* searched) {
+                     std::vector<std::array<int, 2>>* non_delaunay) {
   stats = Refine2Stats{};
-  if (searched) *searched = false;
-  if (polygon.size() != points.size()) return;
+  if (polygon.size() != points.size()) return false;
   if (polygon.size() < 4) {
     // A triangle has no other polygon: only the normal form (counter-clockwise, smallest first);
     // it used to come back unchanged, clockwise too.
     normalise_polygon(points, polygon, order);
-    return;
+    return false;
   }
   std::vector<double> xy = polygon_coordinates(points, polygon);
   double len = 0;
   if (pretest && !may_improve(xy, dt, polygon, len)) {
     normalise_polygon(points, polygon, order);
     stats.length_before = stats.length_after = len;
-    return;
+    return false;
   }
   // The search visits the vertices in polygon order from the first one, and that order decides
   // which local optimum it reaches. So the starts are geometric (start_position(), then evenly
@@ -1049,7 +1048,7 @@ void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   }
   polygon.swap(best);
   if (starts > 1 && adj.release) adj.release();
-  if (searched) *searched = true;
+  return true;
 }
 
 }  // namespace constrict::detail

@@ -6,10 +6,10 @@
 // (gap_spacings, split_gap_spacings). Ties are broken by the lexicographic order of the points,
 // never by their indices, so the parts do not depend on the file order.
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -326,18 +326,26 @@ std::size_t RingsInference::holes() const noexcept { return rings.size() - shell
 
 namespace {
 
-// 2|A| / Σ|e|² of a ring (double, for the report and the measurements; the decision is exact).
-double ring_fatness(const PointSet& pts, const std::vector<int>& ring) {
+// CONSTRICT_DEBUG_RINGS (docs/cli.md): a part's ring by the measures of the open-arc rule, in
+// double (the decision is exact): 2|A| / Σ|e|², and the two longest edges in median edges.
+void debug_part(const PointSet& pts, const std::vector<int>& ring, std::size_t k, std::size_t parts, bool thin) {
+  static const bool on = std::getenv("CONSTRICT_DEBUG_RINGS") != nullptr;
+  if (!on) return;
   const std::size_t m = ring.size();
   const double* o = pts[static_cast<std::size_t>(ring[0])];
   double area = 0, edges = 0;
+  std::vector<double> el;
   for (std::size_t i = 0; i < m; ++i) {
     const double* a = pts[static_cast<std::size_t>(ring[i])];
     const double* b = pts[static_cast<std::size_t>(ring[(i + 1) % m])];
     area += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
     edges += (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+    el.push_back(std::hypot(a[0] - b[0], a[1] - b[1]));
   }
-  return edges > 0 ? std::abs(area) / edges : 0;
+  std::sort(el.begin(), el.end());
+  std::fprintf(stderr, "rings: part %zu of %zu, %zu points, fatness %.3f, longest %.1f median edges, 2nd %.1f%s\n", k,
+               parts, m, edges > 0 ? std::abs(area) / edges : 0.0, el[m - 1] / el[m / 2], el[m - 2] / el[m / 2],
+               thin ? " (thin)" : "");
 }
 
 // Does the ring have an edge longer than `factor` times its median edge? Exact (compare_gap2 on
@@ -390,10 +398,6 @@ std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const 
   return out;
 }
 
-bool debug_rings() {
-  static const bool on = std::getenv("CONSTRICT_DEBUG_RINGS") != nullptr;
-  return on;
-}
 }  // namespace
 
 std::shared_ptr<const detail::RingsAdjacency> detail::rings_adjacency(const Delaunay2& dt) {
@@ -455,22 +459,13 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       }
       // A polygon that is a sliver along its points, or an arc closed by a chord across its
       // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
-      // that a large random sample has somewhere (docs/topology.md, "Open arcs").
+      // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
+      // from the last round passed already: a thin one joined another part.)
+      if (known[k]) continue;
       thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(), kMinRingFatness) <= 0 ||
                 has_chord(points, rings[k], kMaxRingEdge);
       any_thin = any_thin || thin[k];
-      if (debug_rings()) {
-        std::vector<double> el;
-        const auto& rg = rings[k];
-        for (std::size_t i = 0; i < rg.size(); ++i) {
-          const double* a = points[static_cast<std::size_t>(rg[i])];
-          const double* b = points[static_cast<std::size_t>(rg[(i + 1) % rg.size()])];
-          el.push_back(std::hypot(a[0] - b[0], a[1] - b[1]));
-        }
-        std::sort(el.begin(), el.end());
-        std::fprintf(stderr, "rings: part %zu of %zu, %zu points, fatness %.3f, longest %.1f median edges, 2nd %.1f%s\n", k, parts.size(), parts[k].size(),
-                     ring_fatness(points, rings[k]), el.back() / el[el.size() / 2], el[el.size() - 2] / el[el.size() / 2], thin[k] ? " (thin)" : "");
-      }
+      debug_part(points, rings[k], k, parts.size(), thin[k]);
     }
     if (!any_thin) break;
     // Each thin part joins the part across its smallest gap; the parts are then regrouped (the

@@ -4,14 +4,14 @@
 // exact validation of whatever ring set came out.
 #include <algorithm>
 #include <chrono>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include <tbb/task_group.h>
 
-#include "constrict/detail/share2.hpp"
 #include "constrict/delaunay.hpp"
+#include "constrict/detail/share2.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
 #include "topology/detail/infer_rings2.hpp"
@@ -69,12 +69,10 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
   if (Status s = check_points(points); !s) return s;
-  // The inference and the single polygon are independent: the inference runs on the other core
-  // while this thread builds the polygon (deterministic: neither reads the other). When Auto finds
-  // several rings the polygon is dropped.
   // The inference runs on the engine's own triangulation (one triangulation, not two): its
   // adjacency is taken when the triangulation is built, and the inference then runs on the other
-  // core beside the constriction (deterministic: neither reads what the other writes).
+  // core beside the constriction (deterministic: neither reads what the other writes). When Auto
+  // finds several rings the polygon is dropped.
   Status inferred = Status::ok(), single = Status::ok();
   const bool run_infer = o.topology == Topology2::Auto || o.infer_in_single;
   if (run_infer) {

@@ -35,17 +35,18 @@ namespace constrict::detail {
 ///   moves, e.g. after fallback insertions); the result is the same either way
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
 ///   2^20 candidate nodes). Deterministic.
-/// @param[out] non_delaunay optional: when the search ran (the pretest found a possible move),
-///   set to the edges of the result that are not Delaunay edges (pairs of polygon ids, in no
-///   particular order) and *searched to true; otherwise *searched is false and it is untouched
+/// @param[out] non_delaunay optional: when the search ran, set to the edges of the result that are
+///   not Delaunay edges (pairs of polygon ids, in no particular order); otherwise untouched
+/// @return whether the search ran (false: the polygon was only normalised, e.g. the pretest found
+///   no possible move)
 struct Adjacency2 {
   const int* off = nullptr;
   const int* nb = nullptr;
   std::function<void()> release;  ///< optional: called once the lists are no longer read
 };
-void refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
+bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
                      std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr,
                      const std::function<Adjacency2()>& adjacency = {}, bool pretest = true,
-                     std::vector<std::array<int, 2>>* non_delaunay = nullptr, bool* searched = nullptr);
+                     std::vector<std::array<int, 2>>* non_delaunay = nullptr);
 
 }  // namespace constrict::detail

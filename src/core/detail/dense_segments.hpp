@@ -23,28 +23,27 @@ template <class Id> class DenseSegments {
     lists_.grow(static_cast<std::size_t>(frame.nx) * static_cast<std::size_t>(frame.ny));
   }
   void add(const double* a, const double* b, Id id) {
-    box_cells(a, b, [&](std::size_t c) { lists_.add(c, id); });
+    strip_cells(a, b, [&](std::size_t c) { lists_.add(c, id); });
   }
   /// Removes one registration of id (added with the same a, b).
   void remove(const double* a, const double* b, Id id) {
-    box_cells(a, b, [&](std::size_t c) { lists_.remove(c, id); });
+    strip_cells(a, b, [&](std::size_t c) { lists_.remove(c, id); });
   }
   /// Registers count segments on an empty grid (after reset()), seg(k, a, b, id) giving the k-th
   /// (the same each call): what count calls of add() would do, in one counting sort.
   template <class Seg> void add_all(std::size_t count, Seg&& seg) {
     lists_.build(lists_.size(), [&](auto&& emit) {
       for_each_segment<Id>(count, seg, [&](const double* a, const double* b, Id id) {
-        box_cells(a, b, [&](std::size_t c) { emit(c, id); });
+        strip_cells(a, b, [&](std::size_t c) { emit(c, id); });
       });
     });
   }
   /// Calls f(id) for the registered segments that can meet segment ab until f returns true; true
   /// if it did.
   template <class F> bool any(const double* a, const double* b, F&& f) const {
-    const double* seg[2] = {a, b};
     bool done = false;
-    for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
-      if (!done) done = lists_.any(index(i, j), f);
+    strip_cells(a, b, [&](std::size_t c) {
+      if (!done) done = lists_.any(c, f);
     });
     return done;
   }
@@ -53,10 +52,10 @@ template <class Id> class DenseSegments {
   std::size_t index(int i, int j) const {
     return static_cast<std::size_t>(j) * static_cast<std::size_t>(frame_.nx) + static_cast<std::size_t>(i);
   }
-  // The cells where a point of segment ab can lie: its strip, as a query reads it (a long
-  // diagonal's bounding box would be quadratically many cells: the fallback's edges across an
-  // empty interior registered millions on a noisy 10^6 curve).
-  template <class F> void box_cells(const double* a, const double* b, F&& f) const {
+  // The cells where a point of segment ab can lie: its strip, for registrations and queries alike
+  // (a long diagonal's bounding box would be quadratically many cells: the fallback's edges across
+  // an empty interior registered millions on a noisy 10^6 curve).
+  template <class F> void strip_cells(const double* a, const double* b, F&& f) const {
     const double* seg[2] = {a, b};
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) { f(index(i, j)); });
   }
