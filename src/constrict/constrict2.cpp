@@ -176,7 +176,8 @@ class Grid {
     return coarse_.rings(x, y, std::max(coarse_.frame.nx, coarse_.frame.ny), limit, visit, done);
   }
   /// Calls f(p) for every point that can lie in the closed convex hull of the m vertices v
-  /// (m = 2, 3), and maybe more, until done() (asked after each cell).
+  /// (2 <= m <= kMaxHullVertices, a convex polygon's vertices in order for m > 3), and maybe
+  /// more, until done() (asked after each cell).
   template <class F, class Done> void points_in_hull(const double* const* v, int m, F&& f, Done&& done) const {
     const Layer& l = fine_on_ && fine_.hull_cells(v, m) <= fine_cells_ ? fine_ : coarse_;
     bool stop = false;
@@ -275,9 +276,12 @@ class Grid {
       }
       const double cols = static_cast<double>(i1) - i0 + 1, rows = static_cast<double>(j1) - j0 + 1;
       double inside = 0;
-      if (m == 3) {
+      if (m >= 3) {  // the area (shoelace, from v[0]) in cells
         const double cs = cell_size();
-        inside = 0.5 * std::fabs((v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[1][1] - v[0][1]) * (v[2][0] - v[0][0])) / cs / cs;
+        double twice = 0;
+        for (int k = 1; k + 1 < m; ++k)
+          twice += (v[k][0] - v[0][0]) * (v[k + 1][1] - v[0][1]) - (v[k][1] - v[0][1]) * (v[k + 1][0] - v[0][0]);
+        inside = 0.5 * std::fabs(twice) / cs / cs;
       }
       return std::min(cols * rows, 3 * (cols + rows) + inside);
     }
@@ -704,11 +708,11 @@ struct Constrictor2::Impl {
   // Side values of pair (i, j) for a threshold t < 0 (delta_at_least): on each side the exact
   // minimum when it is below t, else a value >= t; or, once both sides have a value below t, those
   // (partial: upper bounds of the minima, which decide Δ < t). Every point with apex value below
-  // t lies in the trapezoid lens(|ij|, t) on its side of the segment, thin at the segment's ends.
-  // So the search reads the cells of trapezoids on the segment: thin ones on both sides first,
+  // t lies in the lens(|ij|, t) on its side of the segment, thin at the segment's ends. So the
+  // search reads the cells of the lens's cover (ApexLens2::cover): thin ones on both sides first,
   // then on each side the one of that side's value so far (or of t). A long pair's diametral disk
   // can hold long stretches of a sampled band, on both sides and far from the segment but near
-  // its ends; the trapezoids read only a few points there (the noisy curve's fallback,
+  // its ends; the covers read only a few points there (the noisy curve's fallback,
   // docs/benchmarks.md).
   // Cached per pair: an entry answers every threshold up to the one it was searched for (a partial
   // one, every threshold above both its values).
@@ -731,23 +735,24 @@ struct Constrictor2::Impl {
     ga = 1; gb = 1; blocked = false;
     auto visit = side_visitor(i, j, ga, gb, blocked);
     // The points under one side's arc for threshold tv (ApexLens2), up to height cap: the cells
-    // of its trapezoid (cut at that height), and in them the test of each point's offsets.
+    // of its cover (cut at that height), and in them the test of each point's offsets.
     bool partial = false;  // both sides below t: Δ < t decided, the search ends
     auto done = [&] { return blocked || partial; };
     auto scan = [&](double side, double tv, double cap) {
       const detail::ApexLens2 lens(a, b, tv);
       const double h = std::min(lens.height(), cap);
-      double c[2], d[2];
-      lens.trapezoid(side, h, c, d);
-      const double* t1[3] = {a, b, c};
-      const double* t2[3] = {a, c, d};
+      static_assert(detail::ApexLens2::kMaxCover <= detail::kMaxHullVertices, "the lens cover is one grid query");
+      double q[detail::ApexLens2::kMaxCover][2];
+      int m = 0;
+      lens.cover(side, h, q, m);
+      const double* v[detail::ApexLens2::kMaxCover] = {};
+      for (int k = 0; k < m; ++k) v[k] = q[k];
       auto inside = [&](int p) {
         if (done() || !lens.may_hold(P(p), side, h)) return;
         visit(p);
         partial = ga < t && gb < t;
       };
-      grid.points_in_hull(t1, 3, inside, done);
-      grid.points_in_hull(t2, 3, inside, done);
+      grid.points_in_hull(v, m, inside, done);
       return h;
     };
     // Layers of growing height, nearest the segment first (the widest angles, so the smallest

@@ -39,9 +39,16 @@ constexpr int kMaxDepth = 6;
 constexpr std::array<std::size_t, kMaxDepth - 1> kBreadth{{5, 5, 5, 3, 3}};
 // Edges exchanged by one deep move (a double bridge exchanges 4).
 constexpr int kMaxExchanged = kMaxDepth > 4 ? kMaxDepth : 4;
-// Search-node bound of the deep phase (candidate edges tried, bridge pairs tested): per point plus
-// a floor, so that small inputs are not starved (s2d_spiral_e0.9: 189 points, about 25 000 nodes).
+// Search-node bounds of the deep phase, per point plus a floor, so that small inputs are not
+// starved (s2d_spiral_e0.9: 189 points, about 25 000 nodes; no shared set uses 300 000):
+// - the Lin–Kernighan steps (candidate edges tried);
+// - the double bridges (splits collected, pairs tested). A call collects the region's splits and
+//   scans their pairs, O(S²) for S splits, and a move leads to another call. On large inputs that
+//   is the whole cost and gains nearly nothing: on the noisy 10⁶ curve, 16 600 splits, 3 moves
+//   for 450 ms, the perimeter 2·10⁻⁶ shorter (docs/benchmarks.md). So it has its own, smaller
+//   bound.
 constexpr std::size_t kDeepNodesPerPoint = 256;
+constexpr std::size_t kBridgeNodesPerPoint = 16;
 constexpr std::size_t kDeepNodesFloor = std::size_t{1} << 20;
 
 struct Edge {
@@ -196,6 +203,7 @@ class Refiner {
     // phase-1 moves and then a bounded Lin–Kernighan step; when no vertex has one, a double
     // bridge. Stops at a local optimum of all three or at a work bound.
     node_budget_ = kDeepNodesPerPoint * n_ + kDeepNodesFloor;
+    bridge_budget_ = kBridgeNodesPerPoint * n_ + kDeepNodesFloor;
     for (int v : tour_)
       if (region_[U(v)]) {
         queued[U(v)] = 1;
@@ -543,6 +551,11 @@ class Refiner {
     st_.budget_hit = true;
     return false;
   }
+  bool bridge_node() {
+    if (++bridge_nodes_ <= bridge_budget_) return true;
+    st_.budget_hit = true;
+    return false;
+  }
   bool is_tour_edge(int u, int v) const { return succ(u) == v || pred(u) == v; }
 
   // Lin–Kernighan step from t1 (sequential k-opt, 2 <= k <= kMaxDepth): remove (t1, t2) with t2 a
@@ -654,7 +667,7 @@ class Refiner {
     std::vector<Split> splits;
     for (const int t1 : tour_) {
       if (!region_[U(t1)]) continue;
-      if (!node()) return false;
+      if (!bridge_node()) return false;
       for_each_split(t1, [&](int t3, double gain) {
         // The same exchange seen from t3 is (t3, t4, t1, t2): keep the one with t1 first.
         const std::size_t p1 = U(pos_[U(t1)]), p3 = U(pos_[U(t3)]);
@@ -675,7 +688,7 @@ class Refiner {
       const std::size_t i = A.i, j = A.j;  // i < j
       for (std::size_t y = x + 1; y < splits.size(); ++y) {
         const Split& B = splits[y];
-        if (!node()) return false;
+        if (!bridge_node()) return false;
         const std::size_t k = B.i, l = B.j;
         if (k == i || k == j || l == i || l == j) continue;
         if ((i < k && k < j) == (i < l && l < j)) continue;  // not interleaved
@@ -806,7 +819,7 @@ class Refiner {
   std::vector<char> region_;      // vertices of the deep phase (queued at least once)
   std::array<int, 2 * kMaxDepth> lk_{};  // the Lin–Kernighan chain t1 t2 ... t2k
   std::vector<int> buf_;          // segment copy of exchange()
-  std::size_t nodes_ = 0, node_budget_ = 0;
+  std::size_t nodes_ = 0, node_budget_ = 0, bridge_nodes_ = 0, bridge_budget_ = 0;
 };
 
 }  // namespace

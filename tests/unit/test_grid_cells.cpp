@@ -49,7 +49,8 @@ Case make_grid(double lo_x, double lo_y, double span, int cells) {
 // returns the number of cells visited.
 std::size_t check_shape(const Case& c, const std::vector<std::array<double, 2>>& v, std::mt19937_64& rng, unsigned seed) {
   const int m = static_cast<int>(v.size());
-  const double* ptr[3] = {v[0].data(), v[1].data(), m == 3 ? v[2].data() : nullptr};
+  const double* ptr[detail::kMaxHullVertices] = {};
+  for (int k = 0; k < m; ++k) ptr[k] = v[static_cast<std::size_t>(k)].data();
   std::vector<char> seen(static_cast<std::size_t>(c.frame.nx) * static_cast<std::size_t>(c.frame.ny), 0);
   std::size_t visited = 0;
   const auto at = [&](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(c.frame.nx) + static_cast<std::size_t>(i); };
@@ -60,17 +61,33 @@ std::size_t check_shape(const Case& c, const std::vector<std::array<double, 2>>&
   });
   std::uniform_real_distribution<double> u(0, 1);
   for (int s = 0; s < 400; ++s) {
-    double w[3] = {u(rng), u(rng), m == 3 ? u(rng) : 0};
-    if (s % 4 == 0) w[rng() % static_cast<unsigned>(m)] = 0;  // on an edge
-    if (s % 17 == 0) { w[0] = 1; w[1] = 0; w[2] = 0; }         // a vertex
-    const double sum = w[0] + w[1] + w[2];
+    // A convex combination: of all vertices, of two consecutive ones (an edge) or one vertex.
+    double w[detail::kMaxHullVertices] = {};
+    const std::size_t k0 = rng() % static_cast<unsigned>(m);
+    if (s % 17 == 0) {
+      w[k0] = 1;
+    } else if (s % 4 == 0) {
+      w[k0] = u(rng);
+      w[(k0 + 1) % static_cast<std::size_t>(m)] = u(rng);
+    } else {
+      for (int k = 0; k < m; ++k) w[k] = u(rng) * u(rng);
+    }
+    double sum = 0;
+    for (int k = 0; k < m; ++k) sum += w[k];
+    if (!(sum > 0)) continue;
     double p[2] = {0, 0};
     for (int k = 0; k < m; ++k)
       for (int d = 0; d < 2; ++d) p[d] += w[k] / sum * v[static_cast<std::size_t>(k)][static_cast<std::size_t>(d)];
-    if (m == 3 && (orient2(ptr[0], ptr[1], p) * orient2(ptr[0], ptr[1], ptr[2]) < 0 ||
-                   orient2(ptr[1], ptr[2], p) * orient2(ptr[1], ptr[2], ptr[0]) < 0 ||
-                   orient2(ptr[2], ptr[0], p) * orient2(ptr[2], ptr[0], ptr[1]) < 0))
-      continue;  // rounded outside the closed triangle
+    bool outside = false;  // rounded outside the closed polygon
+    for (int k = 0; m >= 3 && k < m; ++k) {
+      const double* e0 = ptr[k];
+      const double* e1 = ptr[(k + 1) % m];
+      const double* other = ptr[(k + 2) % m];
+      outside = outside || orient2(e0, e1, p) * orient2(e0, e1, other) < 0;
+    }
+    if (outside) continue;
+    // (The grids hold points of their box only; shapes may reach beyond it.)
+    if (p[0] < c.frame.lo_x || p[0] > c.hi_x || p[1] < c.frame.lo_y || p[1] > c.hi_y) continue;
     if (m == 2 && orient2(ptr[0], ptr[1], p) != 0) continue;  // not exactly on the segment
     const int i = c.frame.cx(p[0]), j = c.frame.cy(p[1]);
     EXPECT_TRUE(seen[at(i, j)]) << "seed " << seed << ": point (" << p[0] << ", " << p[1] << ") in cell (" << i << ", " << j
@@ -102,6 +119,16 @@ TEST(GridCells, HullStripHoldsEveryPointsCell) {
         if (t % 7 == 3) v[1][0] = v[0][0];  // a vertical edge
         strip += check_shape(c, v, rng, seed);
         v.pop_back();
+        check_shape(c, v, rng, seed);
+        // A convex polygon of 4 .. kMaxHullVertices vertices: a regular one, squashed and turned.
+        const int m = 4 + t % (detail::kMaxHullVertices - 3);
+        const auto centre = in_box();
+        const double r = u(rng) * (c.hi_x - c.frame.lo_x), squash = t % 2 ? 1e-3 : u(rng), turn = 6.283185307179586 * u(rng);
+        v.clear();
+        for (int k = 0; k < m; ++k) {
+          const double phi = 6.283185307179586 * k / m, x = r * std::cos(phi), y = squash * r * std::sin(phi);
+          v.push_back({centre[0] + x * std::cos(turn) - y * std::sin(turn), centre[1] + x * std::sin(turn) + y * std::cos(turn)});
+        }
         check_shape(c, v, rng, seed);
       }
     }
@@ -316,18 +343,32 @@ TEST(GridCells, CellTableMatchesAMap) {
   for (const auto& [cell, slot] : ref) ASSERT_EQ(table.find(cell.first, cell.second), slot);
 }
 
+// Is p in the closed convex polygon q[0 .. m) (either orientation), up to tol of cross product?
+bool in_convex(const double (*q)[2], int m, const double* p, double tol) {
+  int pos = 0, neg = 0;
+  for (int e = 0; e < m; ++e) {
+    const double* s0 = q[e];
+    const double* s1 = q[(e + 1) % m];
+    const double cross = (s1[0] - s0[0]) * (p[1] - s0[1]) - (s1[1] - s0[1]) * (p[0] - s0[0]);
+    pos += cross > tol;
+    neg += cross < -tol;
+  }
+  return pos == 0 || neg == 0;
+}
+
 // ApexLens2 against the definition: for random segments (lengths over many magnitudes, at
-// offsets far from the origin) and points, every point whose apex value lies below t must lie in
-// the trapezoid of its side (exact orientation tests against its corners, up to the one-cell
-// widening of the grid queries: far below here) and pass may_hold; points just inside the arc are
-// the hard cases, so a third of them are placed near it. It must also be tight enough to matter:
-// most points well outside the arc are rejected.
+// offsets far from the origin) and points, every point whose apex value lies below t must pass
+// may_hold and lie in the cover polygon of its side (orientation tests against its edges, up to
+// the one-cell widening of the grid queries: far below here), also when the cover is cut at a
+// lower height h and the point lies below it; points just inside the arc are the hard cases, so a
+// third of them are placed near it. It must also be tight enough to matter: most points well
+// outside the arc are rejected, and the cover holds few points that may_hold rejects.
 TEST(GridCells, ApexLensHoldsEveryPointBelowTheThreshold) {
   const unsigned seed = 12;
   std::printf("seed %u\n", seed);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
-  std::size_t below = 0, rejected_far = 0, far = 0;
+  std::size_t below = 0, rejected_far = 0, far = 0, in_cover = 0, in_cover_held = 0;
   for (int round = 0; round < 4000; ++round) {
     const double scale = std::ldexp(1.0, static_cast<int>(rng() % 40) - 20), offset = (rng() % 2) ? 1e3 * scale : 0;
     const double a[2] = {offset + scale * u(rng), offset + scale * u(rng)};
@@ -356,25 +397,36 @@ TEST(GridCells, ApexLensHoldsEveryPointBelowTheThreshold) {
       if (g < t) {
         ++below;
         ASSERT_TRUE(lens.may_hold(p, side, lens.height())) << "seed " << seed << " round " << round << " point " << k;
-        double c[2], d[2];
-        lens.trapezoid(side, lens.height(), c, d);
-        // Inside the closed trapezoid (a, b, c, d), counter-clockwise on the left side.
-        const double* q[4] = {a, b, c, d};
-        for (int e = 0; e < 4; ++e) {
-          const double* s0 = q[e];
-          const double* s1 = q[(e + 1) % 4];
-          const double cross = (s1[0] - s0[0]) * (p[1] - s0[1]) - (s1[1] - s0[1]) * (p[0] - s0[0]);
-          ASSERT_GE(side * cross, -1e-9 * len * len) << "seed " << seed << " round " << round << " point " << k << " edge " << e;
-        }
+        double q[detail::ApexLens2::kMaxCover][2];
+        int m = 0;
+        lens.cover(side, lens.height(), q, m);
+        ASSERT_GE(m, 3);
+        ASSERT_TRUE(in_convex(q, m, p, 1e-9 * len * len)) << "seed " << seed << " round " << round << " point " << k;
+        // Cut lower, where the point still lies below the cut.
+        const double w = std::fabs((p[0] - a[0]) * -uy + (p[1] - a[1]) * ux);
+        const double h = w + u(rng) * (lens.height() - w);
+        lens.cover(side, h, q, m);
+        ASSERT_TRUE(lens.may_hold(p, side, h));
+        ASSERT_TRUE(in_convex(q, m, p, 1e-9 * len * len)) << "seed " << seed << " round " << round << " point " << k << " cut";
       } else if (g > t + 0.05 && k % 3 != 0) {
         ++far;
         rejected_far += !lens.may_hold(p, side, lens.height());
       }
+      // Tightness: of the points in the cover, few are rejected by may_hold.
+      double q[detail::ApexLens2::kMaxCover][2];
+      int m = 0;
+      lens.cover(side, lens.height(), q, m);
+      if (in_convex(q, m, p, 0)) {
+        ++in_cover;
+        in_cover_held += lens.may_hold(p, side, lens.height());
+      }
     }
   }
-  std::printf("[ GridCells ] %zu points below the threshold held; %zu of %zu well above it rejected\n", below, rejected_far, far);
+  std::printf("[ GridCells ] %zu points below the threshold held; %zu of %zu well above it rejected; %zu of %zu in the cover held\n",
+              below, rejected_far, far, in_cover_held, in_cover);
   EXPECT_GT(below, 10000u);
   EXPECT_GT(rejected_far, far * 9 / 10);
+  EXPECT_GT(in_cover_held, in_cover * 9 / 10);
 }
 
 }  // namespace

@@ -4,12 +4,15 @@
 // value (spec §2.1) is below t < 0 iff θ > π - α with α = asin(1 + t). On each side of ab those
 // points lie under a circular arc through a and b that meets the segment at the angle α and rises
 // to (|ab| / 2) tan(α / 2) over its midpoint (a lens, thin at the segment's ends); the arc is
-// convex, so it lies in the trapezoid between the segment, the tangents at its ends and the
-// tangent at its top. A search reads the grid cells of the trapezoid (cut at a height, for the
+// convex, so it lies in the polygon of its tangents (cover(): kCoverTangents of them, from one
+// end to the other). A search reads the grid cells of that polygon (cut at a height, for the
 // layers of a search that starts near the segment) and tests each point's offsets along and
-// across ab against the arc. Every bound is widened far above the rounding (of the apex values:
-// 1e-9; of these formulas: 1 %; of the offsets: eps), so that no point with a value below t is
-// ever skipped; the exact values then decide.
+// across ab against the arc. The polygon hugs the lens near the segment's ends, where a long
+// segment's ends meet the sampled band it spans; the trapezoid of three tangents used before
+// read 25 points for each point in the lens there (the noisy curve's fallback,
+// docs/benchmarks.md). Every bound is widened far above the rounding (of the apex values: 1e-9;
+// of these formulas: 1 %; of the offsets: eps), so that no point with a value below t is ever
+// skipped; the exact values then decide.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -30,22 +33,68 @@ class ApexLens2 {
     if (s <= 0) return;  // no value lies below -1: an empty lens (height 0)
     const double alpha = std::asin(s);
     height_ = 1.01 * 0.5 * len_ * std::tan(0.5 * alpha);
-    if (s < 1) {
-      cot_ = 0.99 / std::tan(alpha);
-      centre_ = 0.99 * 0.5 * len_ / std::tan(alpha);
-    }
+    if (s < 1) centre_ = 0.99 * 0.5 * len_ / std::tan(alpha);
   }
   double length() const { return len_; }
   /// The lens's height over the segment (widened).
   double height() const { return height_; }
-  /// The trapezoid on side `side` (+1: left of a -> b, where orient2 > 0; -1: right), cut at
-  /// height h <= height(): its corners a, b, c, d (counter-clockwise for the left side).
-  void trapezoid(double side, double h, double* c, double* d) const {
-    const double off = h * cot_, nx = -uy_ * side * h, ny = ux_ * side * h;
-    c[0] = b_[0] + nx - off * ux_;
-    c[1] = b_[1] + ny - off * uy_;
-    d[0] = a_[0] + nx + off * ux_;
-    d[1] = a_[1] + ny + off * uy_;
+  /// Tangents of the arc that bound cover().
+  static constexpr int kCoverTangents = 9;
+  /// Most vertices of cover(): the tangents' kCoverTangents - 1 crossings, their two points of
+  /// contact on the base line, and one more from the cut at height h.
+  static constexpr int kMaxCover = kCoverTangents + 2;
+  /// A convex polygon, its vertices q[0 .. m) in order, that holds every point p on side `side`
+  /// (+1: left of a -> b; -1: right) for which may_hold(p, side, h) is true: the circle of
+  /// may_hold, widened, cut by the lines eps below the segment and eps above height h, and
+  /// bounded by kCoverTangents of its tangents between the points where it meets the lower line.
+  /// (An empty lens, t < -1: the rectangle of the segment widened by eps, where may_hold still
+  /// holds.)
+  void cover(double side, double h, double (*q)[2], int& m) const {
+    const double e = 2 * eps_;
+    const double nx = -uy_ * side, ny = ux_ * side;
+    m = 0;
+    const auto put = [&](double x, double w) {
+      q[m][0] = a_[0] + x * ux_ + w * nx;
+      q[m][1] = a_[1] + x * uy_ + w * ny;
+      ++m;
+    };
+    if (height_ <= 0) {
+      put(-e, -e); put(len_ + e, -e); put(len_ + e, e); put(-e, e);
+      return;
+    }
+    // In coordinates x along a -> b from a and w away from the segment on this side: the circle
+    // has its centre at (len / 2, -centre_) and radius sqrt(chord2_ + centre_²) (may_hold).
+    const double r = std::sqrt(chord2_ + centre_ * centre_) * (1 + 1e-9) + e;
+    const double c = std::min(1.0, (centre_ - e) / r);
+    const double phi0 = std::acos(c), step = 2 * phi0 / (kCoverTangents - 1);
+    // Contact points of the first and last tangents (on the line w = -e), and the crossings of
+    // consecutive tangents, at the middle angle and distance r / cos(step / 2) from the centre.
+    double x[kMaxCover + 1], w[kMaxCover + 1];
+    int n = 0;
+    const double mid = 0.5 * len_, far = r / std::cos(0.5 * step);
+    x[n] = mid - r * std::sin(phi0); w[n++] = -e;
+    for (int i = 1; i < kCoverTangents; ++i) {
+      const double phi = -phi0 + (i - 0.5) * step;
+      x[n] = mid + far * std::sin(phi);
+      w[n++] = -centre_ + far * std::cos(phi);
+    }
+    x[n] = mid + r * std::sin(phi0); w[n++] = -e;
+    // Cut at w = h + e (one half-plane of a convex polygon: at most one vertex more).
+    const double top = h + e;
+    double cx[kMaxCover + 1], cw[kMaxCover + 1];
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      const bool in_i = w[i] <= top, in_j = w[j] <= top;
+      if (in_i) { cx[k] = x[i]; cw[k++] = w[i]; }
+      if (in_i != in_j) {
+        const double f = (top - w[i]) / (w[j] - w[i]);
+        cx[k] = x[i] + f * (x[j] - x[i]);
+        cw[k++] = top;
+      }
+    }
+    // Back to the plane: a + x u + w n, n the unit normal on this side.
+    for (int i = 0; i < k; ++i) put(cx[i], cw[i]);
   }
   /// Can point p, on side `side` and at most h above the segment, have an apex value below t?
   /// False only when it cannot: in coordinates x along the segment from its midpoint and w away
@@ -63,7 +112,6 @@ class ApexLens2 {
   const double* b_;
   double len_ = 0, ux_ = 0, uy_ = 0, eps_ = 0;
   double height_ = 0;  // the arc's top over the segment
-  double cot_ = 0;     // the trapezoid's sides: inward per unit of height
   double centre_ = 0;  // the circle's centre beyond the segment (1 % nearer)
   double chord2_ = 0;  // |ab|² / 4 (1e-6 larger)
 };

@@ -34,7 +34,7 @@ namespace constrict::detail {
 /// @param[in] pretest false: skip the O(N) test of whether any move can apply (the caller expects
 ///   moves, e.g. after fallback insertions); the result is the same either way
 /// @note O(N·deg) per sweep plus the reversal work (≤ work_budget) plus the deep search (≤ 256 N +
-///   2^20 candidate nodes). Deterministic.
+///   2^20 Lin–Kernighan nodes and 16 N + 2^20 double-bridge nodes). Deterministic.
 /// @param[out] non_delaunay optional: when the search ran, set to the edges of the result that are
 ///   not Delaunay edges (pairs of polygon ids, in no particular order); otherwise untouched
 /// @return whether the search ran (false: the polygon was only normalised, e.g. the pretest found

@@ -59,9 +59,14 @@ struct GridFrame {
   int cy(double y) const noexcept { return cell_of(y, lo_y, half_cell, ny); }
 };
 
+/// Most vertices of a shape for_rows_of_hull takes.
+constexpr int kMaxHullVertices = 12;
+
 /// Calls f(j, a, b) for rows j of cells with a <= b, such that the cells (i, j), a <= i <= b,
-/// contain every cell (cell_of) of every point of the closed convex hull of the m vertices v
-/// (m = 2: a segment, m = 3: a triangle). Row by row over
+/// contain every cell (cell_of) of every point of the grid's box in the closed convex hull of
+/// the m vertices v
+/// (m = 2: a segment, m = 3: a triangle, m > 3: a convex polygon, its vertices in order around
+/// it; the edges from each vertex to the next bound it). Row by row over
 /// the bounding box; in each row only the columns the shape crosses within the row and one row
 /// above and below, widened by one column on each side. The widening is far larger than the
 /// rounding of the interpolation (a few ulps of the coordinates) when a cell is wider than 2^-30
@@ -69,7 +74,7 @@ struct GridFrame {
 /// box is visited. So a box query with it finds the same points and segments as one over the
 /// bounding box (exact), reading O(perimeter) cells instead of O(area): a long thin triangle
 /// across the plane reads a strip, not a square (the 2D noisy-curve fallback,
-/// docs/benchmarks.md). Precondition: 2 <= m <= 3.
+/// docs/benchmarks.md). Precondition: 2 <= m <= kMaxHullVertices.
 template <class F> void for_rows_of_hull(const GridFrame& g, const double* const* v, int m, F&& f) {
   double x0 = v[0][0], x1 = v[0][0], y0 = v[0][1], y1 = v[0][1];
   for (int k = 1; k < m; ++k) {
@@ -80,7 +85,7 @@ template <class F> void for_rows_of_hull(const GridFrame& g, const double* const
   }
   const int i0 = g.cx(x0), i1 = g.cx(x1), j0 = g.cy(y0), j1 = g.cy(y1);
   bool narrow = i1 - i0 > 2 && std::ldexp(g.half_cell, 30) > g.magnitude;
-  double hx[3], hy[3];  // half units from the grid's corner, as cell_of() computes them
+  double hx[kMaxHullVertices], hy[kMaxHullVertices];  // half units from the grid's corner, as cell_of() computes them
   for (int k = 0; k < m; ++k) {
     hx[k] = 0.5 * v[k][0] - 0.5 * g.lo_x;
     hy[k] = 0.5 * v[k][1] - 0.5 * g.lo_y;
