@@ -50,6 +50,10 @@ constexpr int kMaxExchanged = kMaxDepth > 4 ? kMaxDepth : 4;
 constexpr std::size_t kDeepNodesPerPoint = 256;
 constexpr std::size_t kBridgeNodesPerPoint = 16;
 constexpr std::size_t kDeepNodesFloor = std::size_t{1} << 20;
+// Vertices of the deep phase whose searches run side by side (Refiner::speculate): kSpeculate
+// after a move, twice as many after a batch without one, up to kSpeculateMax.
+constexpr std::size_t kSpeculate = 8;
+constexpr std::size_t kSpeculateMax = 32;
 
 struct Edge {
   int u, v;
@@ -108,7 +112,7 @@ class EdgeGrid {
   }
   // Calls f(key) for the registered edges that can meet segment ab (an edge can be reported more
   // than once) until f returns true; true if it did.
-  template <class F> bool any(const double* a, const double* b, F&& f) {
+  template <class F> bool any(const double* a, const double* b, F&& f) const {
     if (sparse_) return sparse_cells_.any(a, b, f);
     return dense_cells_.any(a, b, f);
   }
@@ -187,14 +191,44 @@ class Refiner {
       }
     };
     // Moves from the queued vertices until none has one (deep: also a Lin–Kernighan step).
+    // One vertex: sp, when given, is its speculative search on the current polygon.
+    const auto visit = [&](int a, bool deep, const Speculation* sp) {
+      touched_.clear();
+      bool moved = false;
+      if (!sp || sp->plain)
+        moved = try_two_opt<false>(a) || try_or_opt<false>(a) || (deep && try_lin_kernighan(a));
+      else if (sp->search.hit || nodes_ + sp->search.nodes > node_budget_)
+        moved = try_lin_kernighan(a);  // the budget ends it sooner: searched again, as it runs
+      else
+        moved = finish_lin_kernighan(sp->search);
+      if (moved) requeue(a);
+      return moved;
+    };
+    std::vector<Speculation> spec;
+    std::size_t batch = kSpeculate;
     const auto drain = [&](bool deep) {
       while (!queue.empty() && !st_.budget_hit) {
+        // Deep: the next kSpeculate vertices' searches side by side on the current polygon (few
+        // find a move: 2 % on the noisy 10⁶ curve), then visited in queue order until one moves
+        // the polygon; the searches after it are dropped (their vertices stay queued). Each
+        // visit is what the sequential drain does: the same moves, for any thread count.
+        const std::size_t b = deep ? std::min(queue.size(), batch) : 0;
+        if (b > 1) {
+          speculate(queue, b, spec);
+          bool moved = false;
+          for (std::size_t i = 0; i < b && !st_.budget_hit && !moved; ++i) {
+            const int a = queue.front();
+            queue.pop_front();
+            queued[U(a)] = 0;
+            moved = visit(a, deep, &spec[i]);
+          }
+          batch = moved ? kSpeculate : std::min(2 * batch, kSpeculateMax);
+          continue;
+        }
         const int a = queue.front();
         queue.pop_front();
         queued[U(a)] = 0;
-        touched_.clear();
-        if (!try_two_opt<false>(a) && !try_or_opt<false>(a) && !(deep && try_lin_kernighan(a))) continue;
-        requeue(a);
+        visit(a, deep, nullptr);
       }
     };
     // Phase 1: 2-opt and Or-opt until no vertex has an applicable move.
@@ -229,7 +263,7 @@ class Refiner {
   }
  private:
   const double* P(int i) const { return &xy_[2 * U(i)]; }
-  double d(int a, int b) const {
+  [[gnu::always_inline]] double d(int a, int b) const {
     const double dx = P(a)[0] - P(b)[0], dy = P(a)[1] - P(b)[1];
     return std::sqrt(dx * dx + dy * dy);
   }
@@ -348,17 +382,24 @@ class Refiner {
     return valid(rem.data(), R, add.data(), A);
   }
   bool valid(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) {
-    // Fast path: every polygon edge and every new edge is a Delaunay edge, and distinct edges of a
-    // triangulation meet only at shared endpoints (no fold-back either).
+    if (!grid_.built() && !all_delaunay(rem, nr, add, na)) build_grid();
+    return valid_built(rem, nr, add, na);
+  }
+  // Fast path: every polygon edge and every new edge is a Delaunay edge, and distinct edges of a
+  // triangulation meet only at shared endpoints (no fold-back either).
+  bool all_delaunay(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) const {
     std::size_t removed_non_dt = 0;
     bool all_dt = true;
     for (std::size_t i = 0; i < nr; ++i) removed_non_dt += is_dt_edge(rem[i].u, rem[i].v) ? 0 : 1;
     for (std::size_t i = 0; i < na; ++i) all_dt = all_dt && is_dt_edge(add[i].u, add[i].v);
-    if (all_dt && non_dt_ == removed_non_dt) return true;
+    return all_dt && non_dt_ == removed_non_dt;
+  }
+  // valid() once the grid is built (or the fast path applies). Read-only.
+  bool valid_built(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) const {
+    if (all_delaunay(rem, nr, add, na)) return true;
     for (std::size_t i = 0; i < na; ++i)
       for (std::size_t j = i + 1; j < na; ++j)
         if (conflict(add[i].u, add[i].v, add[j].u, add[j].v)) return false;
-    if (!grid_.built()) build_grid();
     for (std::size_t i = 0; i < na; ++i) {
       const Edge& e = add[i];
       const bool hit = grid_.any(P(e.u), P(e.v), [&](std::uint64_t k) {
@@ -563,61 +604,129 @@ class Refiner {
   // polygon neighbour of t3, and so on; the move closes with (t2k, t1). Every partial gain must
   // stay positive (the LK gain criterion), which prunes the search; the first closing move that
   // shortens the polygon, gives one cycle and keeps it simple is applied.
+  // The search (lk_search) is read-only, so that the drain can run the searches of the next
+  // queued vertices side by side (Speculation); its state is an LkSearch.
+  struct LkSearch {
+    std::array<int, 2 * kMaxDepth> lk{};  // the chain t1 t2 ... t2k
+    std::size_t nodes = 0;                // search nodes counted
+    std::size_t budget = 0;               // nodes allowed
+    std::size_t rejected = 0;             // closing moves that were not simple
+    std::size_t k = 0;                    // the move found: its k removed edges (0: none)
+    bool hit = false;                     // the budget ended the search
+    bool node() {
+      if (++nodes <= budget) return true;
+      hit = true;
+      return false;
+    }
+  };
   bool try_lin_kernighan(int t1) {
+    if (!grid_.built()) build_grid();  // (lk_search reads it)
+    LkSearch s;
+    s.budget = node_budget_ - nodes_;
+    lk_search(t1, s);
+    return finish_lin_kernighan(s);
+  }
+  // A vertex's search ahead of its turn: plain when a 2-opt or Or-opt candidate exists (then
+  // the vertex is visited as usual), else its Lin–Kernighan search.
+  struct Speculation {
+    bool plain = false;
+    LkSearch search;
+  };
+  // The searches of the first b queued vertices on the current polygon, in parallel.
+  void speculate(const std::deque<int>& queue, std::size_t b, std::vector<Speculation>& spec) {
+    if (!grid_.built()) build_grid();
+    spec.assign(b, Speculation{});
+    const std::size_t budget = node_budget_ - nodes_;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const int a = queue[i];
+        spec[i].plain = try_two_opt<true>(a) || try_or_opt<true>(a);
+        if (spec[i].plain) continue;
+        spec[i].search.budget = budget;
+        lk_search(a, spec[i].search);
+      }
+    });
+  }
+  // Books a search's counts and applies its move, if it found one.
+  bool finish_lin_kernighan(const LkSearch& s) {
+    nodes_ += s.nodes;
+    st_.rejected += s.rejected;
+    if (s.hit) st_.budget_hit = true;
+    if (s.k == 0) return false;
+    std::array<Edge, kMaxExchanged> rem{}, add{};
+    lk_edges(s, s.k, rem, add);
+    commit_edges(rem.data(), s.k, add.data(), s.k);
+    exchange(rem.data(), add.data(), s.k, true);
+    ++st_.moves_deep;
+    return true;
+  }
+  // Finds the move from t1, both directions (s.k > 0), or none. Read-only; needs the grid built.
+  bool lk_search(int t1, LkSearch& s) const {
     for (const bool fwd : {true, false}) {
-      lk_[0] = t1;
-      lk_[1] = step(t1, fwd);
-      const double g = d(t1, lk_[1]);
-      if (lin_kernighan_level(1, g, g)) return true;
-      if (st_.budget_hit) return false;
+      s.lk[0] = t1;
+      s.lk[1] = step(t1, fwd);
+      const double g = d(t1, s.lk[1]);
+      if (lin_kernighan_level(s, 1, g, g)) return true;
+      if (s.hit) return false;
     }
     return false;
   }
-  // lk_[0 .. 2i) chosen: removed (lk_[2j], lk_[2j+1]) and added (lk_[2j+1], lk_[2j+2]), j < i.
+  // s.lk[0 .. 2i) chosen: removed (lk[2j], lk[2j+1]) and added (lk[2j+1], lk[2j+2]), j < i.
   // g: the partial gain, removed: the removed length.
-  bool lin_kernighan_level(int i, double g, double removed) {
+  bool lin_kernighan_level(LkSearch& s, int i, double g, double removed) const {
     const std::size_t I = U(i);
-    const int last = lk_[2 * I - 1];
+    auto& lk = s.lk;
+    const int last = lk[2 * I - 1];
     const std::size_t end = std::min(off_[U(last) + 1], off_[U(last)] + kBreadth[I - 1]);
     // Is (a, b) one of the first `count` removed (first = 0) or added (first = 1) edges?
     const auto in_move = [&](int a, int b, std::size_t first, std::size_t count) {
       for (std::size_t j = 0; j < count; ++j)
-        if (Edge{lk_[2 * j + first], lk_[2 * j + first + 1]}.same(a, b)) return true;
+        if (Edge{lk[2 * j + first], lk[2 * j + first + 1]}.same(a, b)) return true;
       return false;
     };
     for (std::size_t k = off_[U(last)]; k < end; ++k) {
       const int c = near_[k];
       const double g1 = g - near_d_[k];
       if (g1 <= 0) break;
-      if (!node()) return false;
+      if (!s.node()) return false;
       if (is_tour_edge(last, c) || in_move(last, c, 1, I - 1)) continue;
       for (const bool fwd : {true, false}) {
         const int c2 = step(c, fwd);
         if (in_move(c, c2, 0, I)) continue;
-        lk_[2 * I] = c;
-        lk_[2 * I + 1] = c2;
+        lk[2 * I] = c;
+        lk[2 * I + 1] = c2;
         const double dcc2 = d(c, c2);
         const double g2 = g1 + dcc2;
-        const int t1 = lk_[0];
+        const int t1 = lk[0];
         if (c2 != t1 && !is_tour_edge(c2, t1) && !in_move(c2, t1, 1, I) && improves(g2 - d(c2, t1), removed + dcc2) &&
-            close_lin_kernighan(i + 1))
+            close_lin_kernighan(s, i + 1))
           return true;
-        if (st_.budget_hit) return false;
-        if (i + 1 < kMaxDepth && lin_kernighan_level(i + 1, g2, removed + dcc2)) return true;
-        if (st_.budget_hit) return false;
+        if (i + 1 < kMaxDepth && lin_kernighan_level(s, i + 1, g2, removed + dcc2)) return true;
+        if (s.hit) return false;
       }
     }
     return false;
   }
-  // The move of the k removed edges lk_[0 .. 2k) closed by (lk_[2k-1], lk_[0]): applied when it
-  // gives one cycle and a simple polygon.
-  bool close_lin_kernighan(int k) {
-    std::array<Edge, kMaxExchanged> rem{}, add{};
-    for (std::size_t j = 0; j < U(k); ++j) {
-      rem[j] = {lk_[2 * j], lk_[2 * j + 1]};
-      add[j] = {lk_[2 * j + 1], j + 1 < U(k) ? lk_[2 * j + 2] : lk_[0]};
+  // The k removed and added edges of the chain: removed lk[0 .. 2k), closed by (lk[2k-1], lk[0]).
+  static void lk_edges(const LkSearch& s, std::size_t k, std::array<Edge, kMaxExchanged>& rem,
+                       std::array<Edge, kMaxExchanged>& add) {
+    for (std::size_t j = 0; j < k; ++j) {
+      rem[j] = {s.lk[2 * j], s.lk[2 * j + 1]};
+      add[j] = {s.lk[2 * j + 1], j + 1 < k ? s.lk[2 * j + 2] : s.lk[0]};
     }
-    return apply_deep(rem.data(), add.data(), U(k));
+  }
+  // The chain closed after k removed edges: the move when it gives one cycle and a simple polygon.
+  bool close_lin_kernighan(LkSearch& s, int k) const {
+    std::array<Edge, kMaxExchanged> rem{}, add{};
+    lk_edges(s, U(k), rem, add);
+    ExchangePlan plan;
+    if (!plan_exchange(rem.data(), add.data(), U(k), plan)) return false;
+    if (!valid_built(rem.data(), U(k), add.data(), U(k))) {
+      ++s.rejected;
+      return false;
+    }
+    s.k = U(k);
+    return true;
   }
   // A deep move: applied when it gives one cycle and keeps the polygon simple.
   bool apply_deep(const Edge* rem, const Edge* add, std::size_t k) {
@@ -709,7 +818,26 @@ class Refiner {
   // cycle (O(k^2), on the segments between the cuts)? With apply, rewrites the tour: every segment
   // but the longest is copied in its new order (the copy counts as reversal work).
   bool exchange(const Edge* rem, const Edge* add, std::size_t k, bool apply) {
-    std::array<std::size_t, kMaxExchanged> cut;  // the edge (tour_[cut], tour_[cut + 1]) is removed
+    ExchangePlan plan;
+    if (!plan_exchange(rem, add, k, plan)) return false;
+    if (apply) apply_exchange(plan);
+    return true;
+  }
+  // The segments between the cuts: segment s runs from position cut[s] + 1 to cut[s + 1]
+  // (cyclic); the new cycle is segment `keep`, then order[0 .. m) (segment, forward).
+  struct ExchangePlan {
+    std::array<std::size_t, kMaxExchanged> cut{};
+    std::size_t k = 0, keep = 0, m = 0;
+    std::array<std::pair<std::size_t, bool>, kMaxExchanged> order{};
+  };
+  std::size_t seg_first(const ExchangePlan& p, std::size_t s) const { return (p.cut[s] + 1) % n_; }
+  std::size_t seg_last(const ExchangePlan& p, std::size_t s) const { return p.cut[(s + 1) % p.k]; }
+  std::size_t seg_length(const ExchangePlan& p, std::size_t s) const {
+    return (seg_last(p, s) + n_ - seg_first(p, s)) % n_ + 1;
+  }
+  bool plan_exchange(const Edge* rem, const Edge* add, std::size_t k, ExchangePlan& p) const {
+    p.k = k;
+    auto& cut = p.cut;  // the edge (tour_[cut], tour_[cut + 1]) is removed
     for (std::size_t j = 0; j < k; ++j) {
       const int u = rem[j].u, v = rem[j].v;
       cut[j] = U(succ(u) == v ? pos_[U(u)] : pos_[U(v)]);
@@ -717,17 +845,15 @@ class Refiner {
     std::sort(cut.begin(), cut.begin() + static_cast<std::ptrdiff_t>(k));
     for (std::size_t j = 1; j < k; ++j)
       if (cut[j] == cut[j - 1]) return false;
-    // Segment s runs from position cut[s] + 1 to cut[s + 1] (cyclic). Slot 2s is its first vertex,
-    // 2s + 1 its last; link[] pairs the slots joined by an added edge.
-    const auto first = [&](std::size_t s) { return (cut[s] + 1) % n_; };
-    const auto last = [&](std::size_t s) { return cut[(s + 1) % k]; };
+    // Slot 2s is the first vertex of segment s, 2s + 1 its last; link[] pairs the slots joined by
+    // an added edge.
     std::array<int, 2 * kMaxExchanged> link;
     link.fill(-1);
     const auto free_slot = [&](int v) {
-      const std::size_t p = U(pos_[U(v)]);
+      const std::size_t q = U(pos_[U(v)]);
       for (std::size_t s = 0; s < k; ++s) {
-        if (first(s) == p && link[2 * s] == -1) return static_cast<int>(2 * s);
-        if (last(s) == p && link[2 * s + 1] == -1) return static_cast<int>(2 * s + 1);
+        if (seg_first(p, s) == q && link[2 * s] == -1) return static_cast<int>(2 * s);
+        if (seg_last(p, s) == q && link[2 * s + 1] == -1) return static_cast<int>(2 * s + 1);
       }
       return -1;
     };
@@ -740,45 +866,43 @@ class Refiner {
       link[U(a)] = b;
       link[U(b)] = a;
     }
-    const auto length = [&](std::size_t s) { return (last(s) + n_ - first(s)) % n_ + 1; };
-    std::size_t keep = 0;
+    p.keep = 0;
     for (std::size_t s = 1; s < k; ++s)
-      if (length(s) > length(keep)) keep = s;
-    std::array<std::pair<std::size_t, bool>, kMaxExchanged> order;  // (segment, forward)
-    std::size_t m = 0;
-    int slot = static_cast<int>(2 * keep + 1);
+      if (seg_length(p, s) > seg_length(p, p.keep)) p.keep = s;
+    p.m = 0;
+    int slot = static_cast<int>(2 * p.keep + 1);
     for (;;) {
       const int in = link[U(slot)];
       const std::size_t s = U(in) / 2;
-      if (s == keep) {
-        if (U(in) != 2 * keep) return false;
+      if (s == p.keep) {
+        if (U(in) != 2 * p.keep) return false;
         break;
       }
-      if (m == k - 1) return false;
+      if (p.m == k - 1) return false;
       const bool fwd = in % 2 == 0;
-      order[m++] = {s, fwd};
+      p.order[p.m++] = {s, fwd};
       slot = fwd ? static_cast<int>(2 * s + 1) : static_cast<int>(2 * s);
     }
-    if (m != k - 1) return false;
-    if (!apply) return true;
+    return p.m == k - 1;
+  }
+  void apply_exchange(const ExchangePlan& p) {
     buf_.clear();
-    for (std::size_t o = 0; o < m; ++o) {
-      const auto [s, fwd] = order[o];
-      const std::size_t len = length(s);
-      for (std::size_t t = 0, p = fwd ? first(s) : last(s); t < len; ++t) {
-        buf_.push_back(tour_[p]);
-        p = fwd ? (p + 1 == n_ ? 0 : p + 1) : (p == 0 ? n_ - 1 : p - 1);
+    for (std::size_t o = 0; o < p.m; ++o) {
+      const auto [s, fwd] = p.order[o];
+      const std::size_t len = seg_length(p, s);
+      for (std::size_t t = 0, q = fwd ? seg_first(p, s) : seg_last(p, s); t < len; ++t) {
+        buf_.push_back(tour_[q]);
+        q = fwd ? (q + 1 == n_ ? 0 : q + 1) : (q == 0 ? n_ - 1 : q - 1);
       }
     }
-    std::size_t p = (last(keep) + 1) % n_;
+    std::size_t q = (seg_last(p, p.keep) + 1) % n_;
     for (const int v : buf_) {
-      tour_[p] = v;
-      pos_[U(v)] = static_cast<int>(p);
-      p = p + 1 == n_ ? 0 : p + 1;
+      tour_[q] = v;
+      pos_[U(v)] = static_cast<int>(q);
+      q = q + 1 == n_ ? 0 : q + 1;
     }
     work_ += buf_.size();
     if (work_ > budget_) st_.budget_hit = true;
-    return true;
   }
 
   // Writes the polygon back in input ids: CCW (exact turn at the lexicographically smallest
@@ -817,7 +941,6 @@ class Refiner {
   EdgeGrid grid_;
   std::vector<int> touched_;
   std::vector<char> region_;      // vertices of the deep phase (queued at least once)
-  std::array<int, 2 * kMaxDepth> lk_{};  // the Lin–Kernighan chain t1 t2 ... t2k
   std::vector<int> buf_;          // segment copy of exchange()
   std::size_t nodes_ = 0, node_budget_ = 0, bridge_nodes_ = 0, bridge_budget_ = 0;
 };

@@ -59,9 +59,11 @@ template <class Id> class SparseSegments {
   }
   void add(const double* a, const double* b, Id id) {
     if (is_long(a, b)) return add_long(a, b, id);
-    cells(a, b, true, [&](std::size_t c) {
-      lists_.add(c, id);
-      return false;
+    const double* seg[2] = {a, b};
+    for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
+      const std::size_t slot = static_cast<std::size_t>(table_.insert(i, j));
+      lists_.grow(slot + 1);
+      lists_.add(slot, id);
     });
   }
   /// Registers count segments on an empty grid (after reset()), seg(k, a, b, id) giving the k-th
@@ -92,15 +94,15 @@ template <class Id> class SparseSegments {
       }
       return;
     }
-    cells(a, b, false, [&](std::size_t c) {
+    stored_cells(a, b, [&](std::size_t c) {
       lists_.remove(c, id);
       return false;
     });
   }
   /// Calls f(id) for the registered segments that can meet segment ab until f returns true; true
-  /// if it did.
-  template <class F> bool any(const double* a, const double* b, F&& f) {
-    if (cells(a, b, false, [&](std::size_t c) { return lists_.any(c, f); })) return true;
+  /// if it did. Read-only: concurrent queries are safe while nothing is added or removed.
+  template <class F> bool any(const double* a, const double* b, F&& f) const {
+    if (stored_cells(a, b, [&](std::size_t c) { return lists_.any(c, f); })) return true;
     const double lo[2] = {std::min(a[0], b[0]), std::min(a[1], b[1])}, hi[2] = {std::max(a[0], b[0]), std::max(a[1], b[1])};
     for (const Long& e : long_)
       if (!(e.box[2] < lo[0] || e.box[0] > hi[0] || e.box[3] < lo[1] || e.box[1] > hi[1]) && f(e.id)) return true;
@@ -114,28 +116,23 @@ template <class Id> class SparseSegments {
     Id id;
     double box[4];  // min x, min y, max x, max y
   };
-  // Calls f(cell list) for the stored cells of segment ab's strip (created when create) until f
-  // returns true; true if it did. A query whose strip would cross more cells than are stored (a
-  // long one on a fine grid: up to 2^28 rows) reads every stored cell instead.
-  template <class F> bool cells(const double* a, const double* b, bool create, F&& f) {
-    if (!create) {
-      const double rows = std::fabs(static_cast<double>(frame_.cy(a[1])) - frame_.cy(b[1])) + 1;
-      const double cols = std::fabs(static_cast<double>(frame_.cx(a[0])) - frame_.cx(b[0])) + 1;
-      if (3 * (rows + cols) > static_cast<double>(lists_.size())) {
-        for (std::size_t c = 0; c < lists_.size(); ++c)
-          if (f(c)) return true;
-        return false;
-      }
+  // Calls f(cell list) for the stored cells of segment ab's strip until f returns true; true if
+  // it did. A query whose strip would cross more cells than are stored (a long one on a fine
+  // grid: up to 2^28 rows) reads every stored cell instead.
+  template <class F> bool stored_cells(const double* a, const double* b, F&& f) const {
+    const double rows = std::fabs(static_cast<double>(frame_.cy(a[1])) - frame_.cy(b[1])) + 1;
+    const double cols = std::fabs(static_cast<double>(frame_.cx(a[0])) - frame_.cx(b[0])) + 1;
+    if (3 * (rows + cols) > static_cast<double>(lists_.size())) {
+      for (std::size_t c = 0; c < lists_.size(); ++c)
+        if (f(c)) return true;
+      return false;
     }
     const double* seg[2] = {a, b};
     bool done = false;
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
       if (done) return;
-      const int c = create ? table_.insert(i, j) : table_.find(i, j);
-      if (c < 0) return;
-      const std::size_t slot = static_cast<std::size_t>(c);
-      if (create) lists_.grow(slot + 1);
-      done = f(slot);
+      const int c = table_.find(i, j);
+      if (c >= 0) done = f(static_cast<std::size_t>(c));
     });
     return done;
   }
