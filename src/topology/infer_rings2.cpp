@@ -102,14 +102,6 @@ class NnCrust {
   }
   // Chosen by both ends.
   bool mutual(int p, int q) const { return chose(p, q) && chose(q, p); }
-  // For a crust edge chosen by one end only, and as its half-neighbour (not its nearest
-  // neighbour): the other end, else -1.
-  int unwilling_end(int p, int q) const {
-    const int chooser = chose(p, q) ? p : q, other = chooser == p ? q : p;
-    const auto& c = chosen_[static_cast<std::size_t>(chooser)];
-    return chose(other, chooser) || c[0] == other ? -1 : other;
-  }
-  const std::array<int, 2>& choices(int p) const { return chosen_[static_cast<std::size_t>(p)]; }
   std::size_t degree(int p) const { return start_[static_cast<std::size_t>(p) + 1] - start_[static_cast<std::size_t>(p)]; }
   const int* begin(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p)]; }
   const int* end(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p) + 1]; }
@@ -148,53 +140,24 @@ using detail::UnionFind;
 // The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
 class Gaps {
  public:
-  Gaps(const PointSet& pts, const NnCrust& crust, double t) : pts_(pts), crust_(crust), t_(t) {}
-  // A crust edge that is itself a gap: chosen by one end only, as its half-neighbour, and longer
-  // than 2t times the spacing of the other end's own choices (the root mean square of their
-  // lengths). A point moved off its curve by noise finds no half-neighbour on its own curve and
-  // takes one across the gap to the next curve; that edge would make the spacing at the gap as
-  // wide as the gap. (A nearest-neighbour edge is never one: an outlier keeps its spacing.)
-  bool across_gap(int p, int r) const {
-    const int o = crust_.unwilling_end(p, r);
-    if (o < 0) return false;
-    const int from = o == p ? r : p;
-    const double* a[2];
-    const double* b[2];
-    int k = 0;
-    for (const int c : crust_.choices(o))
-      if (c >= 0) {
-        a[k] = at(o);
-        b[k++] = at(c);
-      }
-    return k > 0 && compare_gap2(at(from), at(o), a, b, k, 2 * t_) > 0;
-  }
-  // The spacing edges at p and q: their crust edges but those across a gap, or all of them when
-  // that leaves none.
-  template <class F> void spacing_edges(int p, int q, F&& f) const {
-    bool any = false;
-    for (int pass = 0; pass < 2 && !any; ++pass)
-      for (int end : {p, q})
-        for (const int* r = crust_.begin(end); r != crust_.end(end); ++r)
-          if (pass == 1 || !across_gap(end, *r)) {
-            f(end, *r);
-            any = true;
-          }
-  }
-  // |pq| < t · rms(spacing edges at p and q)? Exact.
+  Gaps(const PointSet& pts, const NnCrust& crust) : pts_(pts), crust_(crust) {}
+  // |pq| < t · rms(crust edges at p and q)? Exact.
   bool shorter(int p, int q, double t) {
     a_.clear();
     b_.clear();
-    spacing_edges(p, q, [&](int end, int r) {
-      a_.push_back(at(end));
-      b_.push_back(at(r));
-    });
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) {
+        a_.push_back(at(end));
+        b_.push_back(at(*r));
+      }
     return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
   }
-  // |pq| / rms(spacing edges at p and q), double arithmetic (for the report), the squared lengths
+  // |pq| / rms(crust edges at p and q), double arithmetic (for the report), the squared lengths
   // summed in ascending order: the same double for the same points in any file order.
   double ratio(int p, int q) const {
     scratch_.clear();
-    spacing_edges(p, q, [&](int end, int r) { scratch_.push_back(len2(end, r)); });
+    for (int end : {p, q})
+      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) scratch_.push_back(len2(end, *r));
     std::sort(scratch_.begin(), scratch_.end());
     double sum = 0;
     for (const double x : scratch_) sum += x;
@@ -209,7 +172,6 @@ class Gaps {
   }
   const PointSet& pts_;
   const NnCrust& crust_;
-  double t_;  // the gap threshold (across_gap)
   std::vector<const double*> a_, b_;
   mutable std::vector<double> scratch_;
 };
@@ -221,7 +183,7 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnC
                             RingsInference& out) {
   const std::size_t n = pts.size();
   UnionFind pieces(n), parts(n);
-  Gaps gaps(pts, crust, gap);
+  Gaps gaps(pts, crust);
   std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
   const auto for_edges = [&](const auto& f) {
     for (std::size_t p = 0; p < n; ++p)
@@ -326,9 +288,8 @@ void nest(const PointSet& pts, std::vector<std::vector<int>>& rings, RingsInfere
 }
 
 // Each ring's smallest gap to another part and the overall smallest (double, for the report).
-void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap, const std::vector<int>& ring_of,
-                 RingsInference& out) {
-  const Gaps gaps(pts, crust, gap);
+void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const std::vector<int>& ring_of, RingsInference& out) {
+  const Gaps gaps(pts, crust);
   for (std::size_t p = 0; p < ring_of.size(); ++p)
     for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
       const int ip = static_cast<int>(p), q = adj.nbr[k];
@@ -410,11 +371,11 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
 
 // For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
 // lexicographically smaller pair of points), -1 for none.
-std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
+std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust,
                                const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
-  const Gaps gaps(pts, crust, gap);
+  const Gaps gaps(pts, crust);
   const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
   const auto better = [&](double g, int p, int q, const Best& b) {
     if (b.p < 0 || g < b.gap) return true;
@@ -485,6 +446,12 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       ++out.parts_polygon;
       if (!known[k]) todo.push_back(k);
     }
+    // A part of fewer than 3 points has no polygon: decided before the others' polygons are made.
+    for (const std::size_t k : todo)
+      if (parts[k].size() < 3) {
+        out.decision = RingsDecision::SmallPart;
+        return Status::ok();
+      }
     // The parts' polygons are independent: on both cores (each the same whatever the threads).
     tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t i) {
       const std::size_t k = todo[i];
@@ -509,7 +476,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (!any_thin) break;
     // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
     // rings of parts that did not change are kept).
-    const std::vector<int> nearest = nearest_parts(points, adj, crust, gap, ring_of, parts.size());
+    const std::vector<int> nearest = nearest_parts(points, adj, crust, ring_of, parts.size());
     UnionFind joined(parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k)
       if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
@@ -536,7 +503,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     }
   }
   nest(points, rings, out);
-  report_gaps(points, adj, crust, gap, ring_of, out);
+  report_gaps(points, adj, crust, ring_of, out);
   out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
   return Status::ok();
 }

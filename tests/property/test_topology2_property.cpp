@@ -283,27 +283,6 @@ TEST(Topology2Property, RingFatnessPredicateExact) {
 // A large noisy sample of one closed curve: its largest gaps grow like ln N spacings, so the gap
 // rule alone split some of these into arcs (thin slivers, or arcs closed by a chord). The arcs are
 // joined back: one ring, the single polygon (docs/topology.md, "Open arcs").
-// Scans are not jittered along the arc: points at random angles leave gaps of up to ln(n)
-// spacings along each curve, and normal noise of 0.1 spacing moves some point off its curve by
-// more than half of a short neighbour gap. Such a point finds no half-neighbour on its own curve
-// and its NN-crust edge runs across to the next curve; that edge used to enter the local spacing
-// at the gap, and the parts merged even 20 spacings apart (docs/topology.md, Open).
-TEST(Topology2Property, RandomNoisySamplesKeepTheirParts) {
-  int right = 0, total = 0;
-  for (const TopoFamily f : {TopoFamily::Annulus, TopoFamily::Parts})
-    for (const double gap : {12.0, 20.0})
-      for (unsigned seed = 1; seed <= 5; ++seed) {
-        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
-        const test::TopoSample s = test::make_topology(f, gap, seed, 1.0, 0.1);
-        const Rings2Result a = run(s.points, Topology2::Auto);
-        ASSERT_TRUE(a.valid()) << a.check.reason;
-        ++total;
-        right += a.rings.size() == s.rings.size();
-      }
-  std::printf("[ Topology2Property ] random noisy samples: %d of %d give the true number of rings\n", right, total);
-  EXPECT_GE(right, total * 9 / 10);
-}
-
 TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
   std::size_t joined = 0;
   for (unsigned seed = 1; seed <= 4; ++seed) {
