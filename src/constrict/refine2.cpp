@@ -599,6 +599,22 @@ class Refiner {
   }
   bool is_tour_edge(int u, int v) const { return succ(u) == v || pred(u) == v; }
 
+  // A k-exchange that removes the tour edges rem[0 .. k) and adds add[0 .. k), when it gives one
+  // cycle (plan_exchange, O(k^2), on the segments between the cuts): segment s runs from position
+  // cut[s] + 1 to cut[s + 1] (cyclic); the new cycle is segment `keep`, then order[0 .. m)
+  // (segment, forward). apply_exchange rewrites the tour: every segment but the longest is copied
+  // in its new order (the copy counts as reversal work).
+  struct ExchangePlan {
+    std::array<std::size_t, kMaxExchanged> cut{};
+    std::size_t k = 0, keep = 0, m = 0;
+    std::array<std::pair<std::size_t, bool>, kMaxExchanged> order{};
+  };
+  std::size_t seg_first(const ExchangePlan& p, std::size_t s) const { return (p.cut[s] + 1) % n_; }
+  std::size_t seg_last(const ExchangePlan& p, std::size_t s) const { return p.cut[(s + 1) % p.k]; }
+  std::size_t seg_length(const ExchangePlan& p, std::size_t s) const {
+    return (seg_last(p, s) + n_ - seg_first(p, s)) % n_ + 1;
+  }
+
   // Lin–Kernighan step from t1 (sequential k-opt, 2 <= k <= kMaxDepth): remove (t1, t2) with t2 a
   // polygon neighbour, add (t2, t3) with t3 a near candidate of t2, remove (t3, t4) with t4 a
   // polygon neighbour of t3, and so on; the move closes with (t2k, t1). Every partial gain must
@@ -612,6 +628,7 @@ class Refiner {
     std::size_t budget = 0;               // nodes allowed
     std::size_t rejected = 0;             // closing moves that were not simple
     std::size_t k = 0;                    // the move found: its k removed edges (0: none)
+    ExchangePlan plan;                    // and how it rewrites the tour
     bool hit = false;                     // the budget ended the search
     bool node() {
       if (++nodes <= budget) return true;
@@ -655,9 +672,7 @@ class Refiner {
     if (s.k == 0) return false;
     std::array<Edge, kMaxExchanged> rem{}, add{};
     lk_edges(s, s.k, rem, add);
-    commit_edges(rem.data(), s.k, add.data(), s.k);
-    exchange(rem.data(), add.data(), s.k, true);
-    ++st_.moves_deep;
+    commit_deep(rem.data(), add.data(), s.plan);
     return true;
   }
   // Finds the move from t1, both directions (s.k > 0), or none. Read-only; needs the grid built.
@@ -719,8 +734,7 @@ class Refiner {
   bool close_lin_kernighan(LkSearch& s, int k) const {
     std::array<Edge, kMaxExchanged> rem{}, add{};
     lk_edges(s, U(k), rem, add);
-    ExchangePlan plan;
-    if (!plan_exchange(rem.data(), add.data(), U(k), plan)) return false;
+    if (!plan_exchange(rem.data(), add.data(), U(k), s.plan)) return false;
     if (!valid_built(rem.data(), U(k), add.data(), U(k))) {
       ++s.rejected;
       return false;
@@ -730,15 +744,19 @@ class Refiner {
   }
   // A deep move: applied when it gives one cycle and keeps the polygon simple.
   bool apply_deep(const Edge* rem, const Edge* add, std::size_t k) {
-    if (!exchange(rem, add, k, false)) return false;
+    ExchangePlan plan;
+    if (!plan_exchange(rem, add, k, plan)) return false;
     if (!valid(rem, k, add, k)) {
       ++st_.rejected;
       return false;
     }
-    commit_edges(rem, k, add, k);
-    exchange(rem, add, k, true);
-    ++st_.moves_deep;
+    commit_deep(rem, add, plan);
     return true;
+  }
+  void commit_deep(const Edge* rem, const Edge* add, const ExchangePlan& plan) {
+    commit_edges(rem, plan.k, add, plan.k);
+    apply_exchange(plan);
+    ++st_.moves_deep;
   }
 
   // The shortening splitting 2-exchanges from t1: remove (t1, t2 = succ t1) and (t3, t4 = succ t3),
@@ -814,27 +832,7 @@ class Refiner {
     return false;
   }
 
-  // The k-exchange that removes the tour edges rem[0 .. k) and adds add[0 .. k): does it give one
-  // cycle (O(k^2), on the segments between the cuts)? With apply, rewrites the tour: every segment
-  // but the longest is copied in its new order (the copy counts as reversal work).
-  bool exchange(const Edge* rem, const Edge* add, std::size_t k, bool apply) {
-    ExchangePlan plan;
-    if (!plan_exchange(rem, add, k, plan)) return false;
-    if (apply) apply_exchange(plan);
-    return true;
-  }
-  // The segments between the cuts: segment s runs from position cut[s] + 1 to cut[s + 1]
-  // (cyclic); the new cycle is segment `keep`, then order[0 .. m) (segment, forward).
-  struct ExchangePlan {
-    std::array<std::size_t, kMaxExchanged> cut{};
-    std::size_t k = 0, keep = 0, m = 0;
-    std::array<std::pair<std::size_t, bool>, kMaxExchanged> order{};
-  };
-  std::size_t seg_first(const ExchangePlan& p, std::size_t s) const { return (p.cut[s] + 1) % n_; }
-  std::size_t seg_last(const ExchangePlan& p, std::size_t s) const { return p.cut[(s + 1) % p.k]; }
-  std::size_t seg_length(const ExchangePlan& p, std::size_t s) const {
-    return (seg_last(p, s) + n_ - seg_first(p, s)) % n_ + 1;
-  }
+  // Plans the exchange (ExchangePlan): false when it does not give one cycle.
   bool plan_exchange(const Edge* rem, const Edge* add, std::size_t k, ExchangePlan& p) const {
     p.k = k;
     auto& cut = p.cut;  // the edge (tour_[cut], tour_[cut + 1]) is removed
@@ -941,7 +939,7 @@ class Refiner {
   EdgeGrid grid_;
   std::vector<int> touched_;
   std::vector<char> region_;      // vertices of the deep phase (queued at least once)
-  std::vector<int> buf_;          // segment copy of exchange()
+  std::vector<int> buf_;          // segment copy of apply_exchange()
   std::size_t nodes_ = 0, node_budget_ = 0, bridge_nodes_ = 0, bridge_budget_ = 0;
 };
 

@@ -64,10 +64,8 @@ constexpr int kMaxHullVertices = 12;
 
 /// Calls f(j, a, b) for rows j of cells with a <= b, such that the cells (i, j), a <= i <= b,
 /// contain every cell (cell_of) of every point of the grid's box in the closed convex hull of
-/// the m vertices v
-/// (m = 2: a segment, m = 3: a triangle, m > 3: a convex polygon, its vertices in order around
-/// it; the edges from each vertex to the next bound it). Row by row over
-/// the bounding box; in each row only the columns the shape crosses within the row and one row
+/// the m vertices v (m = 2: a segment, m = 3: a triangle, m > 3: a convex polygon, its vertices
+/// in order around it). Row by row over the bounding box; in each row only the columns the shape crosses within the row and one row
 /// above and below, widened by one column on each side. The widening is far larger than the
 /// rounding of the interpolation (a few ulps of the coordinates) when a cell is wider than 2^-30
 /// of the largest coordinate; otherwise, and for non-finite intermediates, the whole row of the
@@ -85,7 +83,8 @@ template <class F> void for_rows_of_hull(const GridFrame& g, const double* const
   }
   const int i0 = g.cx(x0), i1 = g.cx(x1), j0 = g.cy(y0), j1 = g.cy(y1);
   bool narrow = i1 - i0 > 2 && std::ldexp(g.half_cell, 30) > g.magnitude;
-  double hx[kMaxHullVertices], hy[kMaxHullVertices];  // half units from the grid's corner, as cell_of() computes them
+  // Half units from the grid's corner, as cell_of() computes them.
+  double hx[kMaxHullVertices], hy[kMaxHullVertices];
   for (int k = 0; k < m; ++k) {
     hx[k] = 0.5 * v[k][0] - 0.5 * g.lo_x;
     hy[k] = 0.5 * v[k][1] - 0.5 * g.lo_y;
