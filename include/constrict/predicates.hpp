@@ -61,6 +61,30 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
 /// @param[in] xy coordinates, 2 per point; @param[in] ring m >= 3 point indices; @param[in] c >= 0
 int compare_ring_fatness2(const double* xy, const int* ring, std::size_t m, double c) noexcept;
 
+/// The same for a region given as triangles and its walls: the sign of 2A - c·Σ|w_j|^2, 2A the sum
+/// of det(b - a, c - a) over the triangles (a, b, c) (their area twice, for counter-clockwise ones)
+/// and w_j the walls (2 point indices each; a wall listed twice counts twice). Exact (semi-static
+/// filter, then CGAL::Mpzf arithmetic). Used to tell the interior of a ring from a sliver between
+/// the two sides of a noisy band (docs/topology.md, "Open arcs").
+/// @param[in] tris 3 point indices per triangle; @param[in] walls 2 point indices per wall; c >= 0
+int compare_region_fatness2(const double* xy, const int* tris, std::size_t n_tris, const int* walls, std::size_t n_walls,
+                            double c) noexcept;
+
+/// compare_region_fatness2's semi-static filter, accumulated one triangle and one wall at a time
+/// (for regions scattered over a triangulation: no need to gather them first).
+class RegionFatness2Filter {
+ public:
+  void add_triangle(const double* a, const double* b, const double* c) noexcept;
+  void add_wall(const double* a, const double* b) noexcept;
+  /// The sign of 2A - c·Σ|w_j|^2 when the filter decides it; 0 when it cannot (cancellation,
+  /// overflow, underflow): then compare_region_fatness2() on the gathered region decides.
+  int sign(double c) const noexcept;
+
+ private:
+  double area_ = 0, area_perm_ = 0, edges_ = 0;
+  std::size_t terms_ = 0;
+};
+
 /// Compares the distances from p: sign(|p-q|^2 - |p-r|^2): -1 if q is nearer to p than r, 0 if
 /// equally near, +1 if farther. Exact (CGAL's filtered compare_distance_to_point).
 int compare_distance2(const double* p, const double* q, const double* r) noexcept;

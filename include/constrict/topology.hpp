@@ -70,6 +70,11 @@ struct Rings2Options {
   /// (Rings2Result::inferred). Off by default (single mode costs what it did); the CLI turns it on
   /// up to kNoteMaxPoints points.
   bool infer_in_single = false;
+  /// Tell an open arc without its polygon (RingsInference::open_parts): a part next to no bounded
+  /// region that is fat against its walls or bounded by other parts too. false: make every part's
+  /// polygon and test that (slower on large noisy input; the same decisions on every set
+  /// measured, docs/topology.md "Open arcs"; the tests compare the two).
+  bool open_arc_test = true;
   /// Validate the ring set exactly (validate_rings2()); a set that fails is a bug: Internal.
   bool validate = true;
   Constrict2Options polygon;  ///< the options of the single polygon (reconstruct2()), also used
@@ -107,6 +112,10 @@ struct RingsInference {
   /// Parts whose polygon was too thin to be a ring (kMinRingFatness: a sliver along an arc, or an
   /// arc closed by a chord), each joined to the part across its smallest gap.
   std::size_t thin_parts_joined = 0;
+  /// Of those, the parts found thin without a polygon: next to no bounded region that is fat or
+  /// bounded by other parts too (an open arc; compare_region_fatness2 on the regions their walls
+  /// enclose). Counted over all rounds of joining.
+  std::size_t open_parts = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the
   /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data

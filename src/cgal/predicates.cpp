@@ -187,6 +187,55 @@ int compare_ring_fatness2(const double* xy, const int* ring, std::size_t m, doub
   return static_cast<int>(CGAL::sign(a2 - CGAL::Mpzf(c) * e2));
 }
 
+void RegionFatness2Filter::add_triangle(const double* a, const double* b, const double* d) noexcept {
+  // Each triangle's determinant from its own first vertex; the error analysis of
+  // compare_ring_fatness2's filter, with one term per triangle and per wall.
+  const double ux = b[0] - a[0], uy = b[1] - a[1], vx = d[0] - a[0], vy = d[1] - a[1];
+  area_ += ux * vy - uy * vx;
+  area_perm_ += std::abs(ux * vy) + std::abs(uy * vx);
+  ++terms_;
+}
+
+void RegionFatness2Filter::add_wall(const double* a, const double* b) noexcept {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  edges_ += dx * dx + dy * dy;
+  ++terms_;
+}
+
+int RegionFatness2Filter::sign(double c) const noexcept {
+  const double eps = (static_cast<double>(terms_) + 16.0) * std::ldexp(1.0, -52);
+  const double value = area_ - c * edges_;
+  const double bound = eps * (area_perm_ + 2 * c * edges_);
+  if (std::isfinite(value) && std::isfinite(bound) && (area_perm_ > 1e-280 || edges_ > 1e-280) && std::abs(value) > bound)
+    return value > 0 ? 1 : -1;
+  return 0;
+}
+
+int compare_region_fatness2(const double* xy, const int* tris, std::size_t n_tris, const int* walls, std::size_t n_walls,
+                            double c) noexcept {
+  const auto pt = [&](int i) { return xy + 2 * static_cast<std::size_t>(i); };
+  RegionFatness2Filter filter;
+  for (std::size_t t = 0; t < n_tris; ++t) filter.add_triangle(pt(tris[3 * t]), pt(tris[3 * t + 1]), pt(tris[3 * t + 2]));
+  for (std::size_t w = 0; w < n_walls; ++w) filter.add_wall(pt(walls[2 * w]), pt(walls[2 * w + 1]));
+  if (const int s = filter.sign(c)) return s;
+  using Z = CGAL::Mpzf;
+  Z a2(0), e2(0);
+  for (std::size_t t = 0; t < n_tris; ++t) {
+    const double* a = pt(tris[3 * t]);
+    const double* b = pt(tris[3 * t + 1]);
+    const double* d = pt(tris[3 * t + 2]);
+    const Z ux = Z(b[0]) - Z(a[0]), uy = Z(b[1]) - Z(a[1]), vx = Z(d[0]) - Z(a[0]), vy = Z(d[1]) - Z(a[1]);
+    a2 = a2 + (ux * vy - uy * vx);
+  }
+  for (std::size_t w = 0; w < n_walls; ++w) {
+    const double* a = pt(walls[2 * w]);
+    const double* b = pt(walls[2 * w + 1]);
+    const Z dx = Z(b[0]) - Z(a[0]), dy = Z(b[1]) - Z(a[1]);
+    e2 = e2 + (dx * dx + dy * dy);
+  }
+  return static_cast<int>(CGAL::sign(a2 - Z(c) * e2));
+}
+
 int compare_gap2(const double* p, const double* q, const double* const* a, const double* const* b, int k,
                  double t) noexcept {
   return compare_gap<2>(p, q, a, b, k, t);

@@ -136,6 +136,7 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
                      {"parts", in.parts},
                      {"parts_polygon", in.parts_polygon},
                      {"thin_parts_joined", in.thin_parts_joined},
+                     {"open_parts", in.open_parts},
                      {"bad_degree_points", in.bad_degree_points},
                      {"split_gap_spacings", in.split_gap_spacings},
                      {"min_gap_spacings", finite_or_null(in.min_gap_spacings)},

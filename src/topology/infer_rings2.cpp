@@ -9,8 +9,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <numeric>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -35,13 +37,15 @@ bool lex_less(const double* p, const double* q) { return p[0] < q[0] || (p[0] ==
 struct detail::RingsAdjacency {
   std::vector<std::size_t> start;
   std::vector<int> nbr;
-  explicit RingsAdjacency(const Delaunay2& dt) : start(dt.n_vertices + 2, 0) {
+  std::vector<std::array<int, 3>> triangles, neighbors;  // dt's own (the enclosed regions)
+  explicit RingsAdjacency(Delaunay2&& d)
+      : start(d.n_vertices + 2, 0), triangles(std::move(d.triangles)), neighbors(std::move(d.neighbors)) {
     const auto for_edges = [&](const auto& f) {
-      for (std::size_t t = 0; t < dt.triangles.size(); ++t)
+      for (std::size_t t = 0; t < triangles.size(); ++t)
         for (std::size_t i = 0; i < 3; ++i) {
-          const int u = dt.neighbors[t][i];
+          const int u = neighbors[t][i];
           if (u >= 0 && static_cast<std::size_t>(u) < t) continue;
-          f(dt.triangles[t][(i + 1) % 3], dt.triangles[t][(i + 2) % 3]);
+          f(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]);
         }
     };
     for_edges([&](int a, int b) {
@@ -229,6 +233,127 @@ std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector
   return sorted;
 }
 
+// The regions the parts enclose (docs/topology.md, "Open arcs"). A wall is a Delaunay edge within
+// a part that the part's own points would not split at: mutual crust, or shorter than gap · local
+// spacing (find_parts' rule). The regions are the classes of triangles joined across every other
+// edge; the one that reaches past the convex hull is unbounded. The interior of a ring is a bounded
+// region that is fat against its walls (compare_region_fatness2 > 0 at kMinRingFatness, the
+// measure of the polygon rule); between the two sides of a noisy band the regions are slivers. A
+// part next to no bounded region that is fat or that other parts bound too encloses nothing: an
+// open arc, known without its polygon. Exact decisions and combinatorics: the same in any order.
+constexpr double kSealFactor = 2.0;
+class Enclosures {
+ public:
+  Enclosures(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double factor, const std::vector<int>& part_of) {
+    const std::size_t n_tris = adj.triangles.size();
+    const int outside = static_cast<int>(n_tris);
+    const auto other = [&](std::uint32_t e) {  // the triangle across edge e = 3t + i, or outside
+      const int u = adj.neighbors[e / 3][e % 3];
+      return u >= 0 ? u : outside;
+    };
+    const auto ends = [&](std::uint32_t e) {
+      const auto& t = adj.triangles[e / 3];
+      return std::array<int, 2>{t[(e % 3 + 1) % 3], t[(e % 3 + 2) % 3]};
+    };
+    UnionFind regions(n_tris + 1);
+    std::vector<std::uint32_t> walls_at;  // each wall once, as 3t + i
+    {
+      Gaps gaps(pts, crust);
+      for (std::uint32_t e = 0; e < 3 * n_tris; ++e) {
+        const int u = adj.neighbors[e / 3][e % 3];
+        if (u >= 0 && static_cast<std::uint32_t>(u) < e / 3) continue;
+        const auto [a, b] = ends(e);
+        // (Walls lie within the parts that part_of gives: the parts of the first round that
+        // needs them; joined parts stay unsealed at the gaps between them.)
+        const bool wall = part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)] &&
+                          (crust.mutual(a, b) || gaps.shorter(a, b, factor));
+        if (wall)
+          walls_at.push_back(e);
+        else
+          regions.join(static_cast<int>(e / 3), other(e));
+      }
+    }
+    // The bounded regions with walls, numbered; for each, the parts of its walls (ends[0]
+    // stands for its part) and its fatness: the filter summed in place, and the few regions it
+    // cannot decide gathered for the exact predicate.
+    const int unbounded = regions.find(outside);
+    std::vector<int> id(n_tris + 1, -1), last_part;
+    std::vector<RegionFatness2Filter> filter;
+    const auto at = [&](int v) { return pts[static_cast<std::size_t>(v)]; };
+    for (const std::uint32_t e : walls_at)
+      for (const int t : {static_cast<int>(e / 3), other(e)}) {
+        const int r = regions.find(t);
+        if (r == unbounded) continue;
+        int& k = id[static_cast<std::size_t>(r)];
+        if (k < 0) {
+          k = static_cast<int>(filter.size());
+          filter.emplace_back();
+          last_part.push_back(-1);
+        }
+        const auto [a, b] = ends(e);
+        filter[static_cast<std::size_t>(k)].add_wall(at(a), at(b));
+        int& last = last_part[static_cast<std::size_t>(k)];
+        if (last != part_of[static_cast<std::size_t>(a)]) sides_.push_back({k, a});
+        last = part_of[static_cast<std::size_t>(a)];
+      }
+    const auto region_of = [&](std::size_t t) { return id[static_cast<std::size_t>(regions.find(static_cast<int>(t)))]; };
+    for (std::size_t t = 0; t < n_tris; ++t)
+      if (const int k = region_of(t); k >= 0)
+        filter[static_cast<std::size_t>(k)].add_triangle(at(adj.triangles[t][0]), at(adj.triangles[t][1]), at(adj.triangles[t][2]));
+    const std::size_t n = filter.size();
+    fat_.resize(n);
+    std::vector<int> exact(n, -1);  // undecided region -> its slot among the gathered ones
+    std::vector<std::vector<int>> tris, walls;
+    for (std::size_t k = 0; k < n; ++k) {
+      const int sign = filter[k].sign(kMinRingFatness);
+      fat_[k] = sign > 0;
+      if (sign == 0) {
+        exact[k] = static_cast<int>(tris.size());
+        tris.emplace_back();
+        walls.emplace_back();
+      }
+    }
+    if (!tris.empty()) {
+      for (std::size_t t = 0; t < n_tris; ++t)
+        if (const int k = region_of(t); k >= 0 && exact[static_cast<std::size_t>(k)] >= 0)
+          tris[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])].insert(tris[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])].end(), adj.triangles[t].begin(), adj.triangles[t].end());
+      for (const std::uint32_t e : walls_at)
+        for (const int t : {static_cast<int>(e / 3), other(e)})
+          if (const int k = id[static_cast<std::size_t>(regions.find(t))]; k >= 0 && exact[static_cast<std::size_t>(k)] >= 0) {
+            auto& w = walls[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])];
+            w.push_back(ends(e)[0]);
+            w.push_back(ends(e)[1]);
+          }
+      for (std::size_t k = 0; k < n; ++k)
+        if (const int x = exact[k]; x >= 0) {
+          const auto& r = tris[static_cast<std::size_t>(x)];
+          const auto& w = walls[static_cast<std::size_t>(x)];
+          fat_[k] = compare_region_fatness2(pts.coords.data(), r.data(), r.size() / 3, w.data(), w.size() / 2, kMinRingFatness) > 0;
+        }
+    }
+  }
+  // For the current parts (ring_of: vertex -> part): does part k enclose a region -- next to a
+  // bounded region that is fat, or that other parts' walls bound too?
+  std::vector<char> enclosing(const std::vector<int>& ring_of, std::size_t parts) const {
+    std::vector<int> part(fat_.size(), -1);
+    std::vector<char> shared(fat_.size(), 0);
+    for (const auto& [r, a] : sides_) {
+      const int k = ring_of[static_cast<std::size_t>(a)];
+      int& p = part[static_cast<std::size_t>(r)];
+      if (p >= 0 && p != k) shared[static_cast<std::size_t>(r)] = 1;
+      p = k;
+    }
+    std::vector<char> out(parts, 0);
+    for (const auto& [r, a] : sides_)
+      if (shared[static_cast<std::size_t>(r)] || fat_[static_cast<std::size_t>(r)]) out[static_cast<std::size_t>(ring_of[static_cast<std::size_t>(a)])] = 1;
+    return out;
+  }
+
+ private:
+  std::vector<std::array<int, 2>> sides_;  // (bounded region, an end of a wall): each part at each region, about once
+  std::vector<char> fat_;                  // per bounded region
+};
+
 // The part as one crust cycle, if it is one (every point of degree 2, the trace covers the part).
 bool crust_cycle(const NnCrust& crust, const std::vector<int>& part, const std::vector<int>& part_of, std::vector<int>& ring) {
   const auto same = [&](int a, int b) { return part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)]; };
@@ -348,6 +473,19 @@ void debug_part(const PointSet& pts, const std::vector<int>& ring, std::size_t k
                thin ? " (thin)" : "");
 }
 
+void debug_open_part(std::size_t points, std::size_t k, std::size_t parts) {
+  static const bool on = std::getenv("CONSTRICT_DEBUG_RINGS") != nullptr;
+  if (on) std::fprintf(stderr, "rings: part %zu of %zu, %zu points, encloses no region (thin, no polygon)\n", k, parts, points);
+}
+
+// Are the part's points on one line? Exact.
+bool collinear(const PointSet& pts, const std::vector<int>& part) {
+  const auto at = [&](std::size_t i) { return pts[static_cast<std::size_t>(part[i])]; };
+  for (std::size_t i = 2; i < part.size(); ++i)
+    if (orient2(at(0), at(1), at(i)) != 0) return false;
+  return true;
+}
+
 // Does the ring have an edge longer than `factor` times its median edge? Exact (compare_gap2 on
 // the squared lengths, the median by exact comparisons).
 bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor) {
@@ -400,15 +538,15 @@ std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const 
 
 }  // namespace
 
-std::shared_ptr<const detail::RingsAdjacency> detail::rings_adjacency(const Delaunay2& dt) {
-  return std::make_shared<const RingsAdjacency>(dt);
+std::shared_ptr<const detail::RingsAdjacency> detail::rings_adjacency(Delaunay2&& dt) {
+  return std::make_shared<const RingsAdjacency>(std::move(dt));
 }
 
 Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Options& options, RingsInference& out) {
   out = RingsInference{};
   if (points.dim != 2 || dt.n_vertices != points.size() || dt.triangles.size() != dt.neighbors.size())
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
-  return detail::infer_rings2(points, detail::RingsAdjacency(dt), options, out);
+  return detail::infer_rings2(points, detail::RingsAdjacency(Delaunay2(dt)), options, out);
 }
 
 Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, const Rings2Options& options, RingsInference& out) {
@@ -425,6 +563,9 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   std::vector<std::vector<int>> parts = group_parts(points, part_of);
   out.parts = parts.size();
   if (parts.size() == 1) return Status::ok();  // OneCurve
+  // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
+  // part's own sparse spots up to kSealFactor times the threshold.
+  std::optional<Enclosures> enclosures, sealed;
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
@@ -446,19 +587,46 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       ++out.parts_polygon;
       if (!known[k]) todo.push_back(k);
     }
+    const bool test_open = options.open_arc_test && !todo.empty();
+    if (test_open && !enclosures) {
+      enclosures.emplace(points, adj, crust, gap, part_of);
+      sealed.emplace(points, adj, crust, kSealFactor * gap, part_of);
+    }
+    std::vector<char> encl(parts.size(), 1);
+    if (test_open) {
+      encl = enclosures->enclosing(ring_of, parts.size());
+      const std::vector<char> more = sealed->enclosing(ring_of, parts.size());
+      for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || more[k];
+    }
     // A part of fewer than 3 points has no polygon: decided before the others' polygons are made.
     for (const std::size_t k : todo)
       if (parts[k].size() < 3) {
         out.decision = RingsDecision::SmallPart;
         return Status::ok();
       }
-    // The parts' polygons are independent: on both cores (each the same whatever the threads).
-    tbb::parallel_for(std::size_t{0}, todo.size(), [&](std::size_t i) {
-      const std::size_t k = todo[i];
+    // A part that encloses no region is an open arc: thin without its polygon (Enclosures). A
+    // collinear one has no polygon at all (as part_polygon() finds).
+    std::vector<std::size_t> need;
+    for (const std::size_t k : todo) {
+      if (encl[k]) {
+        need.push_back(k);
+        continue;
+      }
+      if (collinear(points, parts[k])) {
+        out.decision = RingsDecision::SmallPart;
+        return Status::ok();
+      }
+      thin[k] = 1;
+      any_thin = true;
+      ++out.open_parts;
+      debug_open_part(parts[k].size(), k, parts.size());
+    }
+    // The polygons of the others are independent: on both cores (each the same whatever the threads).
+    tbb::parallel_for(std::size_t{0}, need.size(), [&](std::size_t i) {
+      const std::size_t k = need[i];
       ok[k] = part_polygon(points, parts[k], options.polygon, rings[k]) ? 1 : 0;
     });
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      if (!polygon_part[k]) continue;
+    for (const std::size_t k : need) {
       if (!ok[k]) {
         out.decision = RingsDecision::SmallPart;
         return Status::ok();
@@ -467,7 +635,6 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
       // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
       // from the last round passed already: a thin one joined another part.)
-      if (known[k]) continue;
       thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(), kMinRingFatness) <= 0 ||
                 has_chord(points, rings[k], kMaxRingEdge);
       any_thin = any_thin || thin[k];

@@ -79,18 +79,25 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
     tbb::task_group side;
     PointSet engine_points;
     std::vector<int> to_input;
-    std::shared_ptr<const detail::RingsAdjacency> adj;
+    Delaunay2 copy;
+    bool shared = false;
     single = detail::reconstruct2_sharing(points, o.polygon, r.polygon, visitor,
                                           [&](const PointSet& p, const Delaunay2& dt, const std::vector<int>& ids) {
+                                            // Copies only (the engine waits for them); the
+                                            // adjacency is built on the other core.
                                             const auto t = Clock::now();
-                                            adj = detail::rings_adjacency(dt);
+                                            copy = dt;
                                             engine_points = p;
                                             to_input = ids;
+                                            shared = true;
                                             r.ms_infer = ms_since(t);
-                                            side.run([&] { inferred = infer_shared(points, engine_points, *adj, to_input, o, r); });
+                                            side.run([&] {
+                                              const auto adj = detail::rings_adjacency(std::move(copy));
+                                              inferred = infer_shared(points, engine_points, *adj, to_input, o, r);
+                                            });
                                           });
     side.wait();
-    if (!adj && !single) return single;  // (the triangulation failed: the engine's error)
+    if (!shared && !single) return single;  // (the triangulation failed: the engine's error)
   } else {
     single = reconstruct2(points, o.polygon, r.polygon, visitor);
   }

@@ -28,6 +28,7 @@ struct TrueRing {
 struct TopoSample {
   PointSet points;
   std::vector<TrueRing> rings;
+  double spacing = 0;  ///< the sampling step after the random scale
 };
 
 namespace detail_gen {
@@ -69,6 +70,7 @@ inline TopoSample make_topology(TopoFamily f, double gap, unsigned seed, double 
   const double angle = 2 * M_PI * u(rng), scale = std::exp(6 * u(rng) - 3), ox = 200 * u(rng) - 100, oy = 200 * u(rng) - 100;
   TopoSample s;
   s.points.dim = 2;
+  s.spacing = scale * h;
   for (std::size_t k = 0; k < c.size(); ++k) {
     TrueRing tr;
     tr.shell = c[k].shell;

@@ -14,8 +14,9 @@ namespace constrict::detail {
 
 struct RingsAdjacency;  // the triangulation's vertex adjacency (infer_rings2.cpp)
 
-/// The adjacency of dt's vertices (reads dt only during the call).
-std::shared_ptr<const RingsAdjacency> rings_adjacency(const Delaunay2& dt);
+/// The adjacency of dt's vertices; keeps dt's triangles and neighbours (moved in: a caller whose
+/// triangulation goes on changing copies it, and builds this later, on another core).
+std::shared_ptr<const RingsAdjacency> rings_adjacency(Delaunay2&& dt);
 
 /// infer_rings2() on the points and the adjacency of their Delaunay triangulation.
 Status infer_rings2(const PointSet& points, const RingsAdjacency& adjacency, const Rings2Options& options,
