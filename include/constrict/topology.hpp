@@ -84,7 +84,8 @@ struct Rings2Options {
 /// Why infer_rings2() gave its answer.
 enum class RingsDecision {
   OneCurve,   ///< the points form one part (no gap of topology_gap spacings splits them)
-  SmallPart,  ///< a part has fewer than 3 points or is collinear: no ring through it
+  SmallPart,  ///< a part's polygon could not be made (parts of < 3 points or on a line are joined to
+              ///< their nearest part since 2026-12-03, like open arcs)
   Crossing,   ///< the rings of the parts would meet (validate_rings2() failed): not accepted
   Rings,      ///< several parts, each a ring, disjoint: the multi-ring answer
 };
@@ -112,9 +113,9 @@ struct RingsInference {
   /// Parts whose polygon was too thin to be a ring (kMinRingFatness: a sliver along an arc, or an
   /// arc closed by a chord), each joined to the part across its smallest gap.
   std::size_t thin_parts_joined = 0;
-  /// Of those, the parts found thin without a polygon: next to no bounded region that is fat or
-  /// bounded by other parts too (an open arc; compare_region_fatness2 on the regions their walls
-  /// enclose). Counted over all rounds of joining.
+  /// Of those, the parts found thin without a polygon: fewer than 3 points, on one line, or next
+  /// to no bounded region that is fat or bounded by other parts too (an open arc;
+  /// compare_region_fatness2 on the regions their walls enclose). Counted over all rounds.
   std::size_t open_parts = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the

@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -106,6 +105,14 @@ class NnCrust {
   }
   // Chosen by both ends.
   bool mutual(int p, int q) const { return chose(p, q) && chose(q, p); }
+  // For a crust edge chosen by one end only, and as its half-neighbour (not its nearest
+  // neighbour): the other end, else -1.
+  int unwilling_end(int p, int q) const {
+    const int chooser = chose(p, q) ? p : q, other = chooser == p ? q : p;
+    const auto& c = chosen_[static_cast<std::size_t>(chooser)];
+    return chose(other, chooser) || c[0] == other ? -1 : other;
+  }
+  const std::array<int, 2>& choices(int p) const { return chosen_[static_cast<std::size_t>(p)]; }
   std::size_t degree(int p) const { return start_[static_cast<std::size_t>(p) + 1] - start_[static_cast<std::size_t>(p)]; }
   const int* begin(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p)]; }
   const int* end(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p) + 1]; }
@@ -144,24 +151,53 @@ using detail::UnionFind;
 // The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
 class Gaps {
  public:
-  Gaps(const PointSet& pts, const NnCrust& crust) : pts_(pts), crust_(crust) {}
-  // |pq| < t · rms(crust edges at p and q)? Exact.
+  Gaps(const PointSet& pts, const NnCrust& crust, double t) : pts_(pts), crust_(crust), t_(t) {}
+  // A crust edge that is itself a gap: chosen by one end only, as its half-neighbour, and longer
+  // than 2t times the spacing of the other end's own choices (the root mean square of their
+  // lengths). A point moved off its curve by noise finds no half-neighbour on its own curve and
+  // takes one across the gap to the next curve; that edge would make the spacing at the gap as
+  // wide as the gap. (A nearest-neighbour edge is never one: an outlier keeps its spacing.)
+  bool across_gap(int p, int r) const {
+    const int o = crust_.unwilling_end(p, r);
+    if (o < 0) return false;
+    const int from = o == p ? r : p;
+    const double* a[2];
+    const double* b[2];
+    int k = 0;
+    for (const int c : crust_.choices(o))
+      if (c >= 0) {
+        a[k] = at(o);
+        b[k++] = at(c);
+      }
+    return k > 0 && compare_gap2(at(from), at(o), a, b, k, 2 * t_) > 0;
+  }
+  // The spacing edges at p and q: their crust edges but those across a gap, or all of them when
+  // that leaves none.
+  template <class F> void spacing_edges(int p, int q, F&& f) const {
+    bool any = false;
+    for (int pass = 0; pass < 2 && !any; ++pass)
+      for (int end : {p, q})
+        for (const int* r = crust_.begin(end); r != crust_.end(end); ++r)
+          if (pass == 1 || !across_gap(end, *r)) {
+            f(end, *r);
+            any = true;
+          }
+  }
+  // |pq| < t · rms(spacing edges at p and q)? Exact.
   bool shorter(int p, int q, double t) {
     a_.clear();
     b_.clear();
-    for (int end : {p, q})
-      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) {
-        a_.push_back(at(end));
-        b_.push_back(at(*r));
-      }
+    spacing_edges(p, q, [&](int end, int r) {
+      a_.push_back(at(end));
+      b_.push_back(at(r));
+    });
     return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
   }
-  // |pq| / rms(crust edges at p and q), double arithmetic (for the report), the squared lengths
+  // |pq| / rms(spacing edges at p and q), double arithmetic (for the report), the squared lengths
   // summed in ascending order: the same double for the same points in any file order.
   double ratio(int p, int q) const {
     scratch_.clear();
-    for (int end : {p, q})
-      for (const int* r = crust_.begin(end); r != crust_.end(end); ++r) scratch_.push_back(len2(end, *r));
+    spacing_edges(p, q, [&](int end, int r) { scratch_.push_back(len2(end, r)); });
     std::sort(scratch_.begin(), scratch_.end());
     double sum = 0;
     for (const double x : scratch_) sum += x;
@@ -176,6 +212,7 @@ class Gaps {
   }
   const PointSet& pts_;
   const NnCrust& crust_;
+  double t_;  // the gap threshold (across_gap)
   std::vector<const double*> a_, b_;
   mutable std::vector<double> scratch_;
 };
@@ -187,7 +224,7 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnC
                             RingsInference& out) {
   const std::size_t n = pts.size();
   UnionFind pieces(n), parts(n);
-  Gaps gaps(pts, crust);
+  Gaps gaps(pts, crust, gap);
   std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
   const auto for_edges = [&](const auto& f) {
     for (std::size_t p = 0; p < n; ++p)
@@ -241,10 +278,14 @@ std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector
 // measure of the polygon rule); between the two sides of a noisy band the regions are slivers. A
 // part next to no bounded region that is fat or that other parts bound too encloses nothing: an
 // open arc, known without its polygon. Exact decisions and combinatorics: the same in any order.
-constexpr double kSealFactor = 2.0;
+// The levels of walls: a ring's own sparse spot wider than the threshold leaks its interior (its
+// polygon closes it), sealed at one of the wider levels; a wide level alone would fill a small
+// ring's interior with walls (no fat region left), which the narrower levels keep.
+constexpr double kSealFactors[] = {1.0, 2.0, 4.0};
 class Enclosures {
  public:
-  Enclosures(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double factor, const std::vector<int>& part_of) {
+  Enclosures(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap, double factor,
+             const std::vector<int>& part_of) {
     const std::size_t n_tris = adj.triangles.size();
     const int outside = static_cast<int>(n_tris);
     const auto other = [&](std::uint32_t e) {  // the triangle across edge e = 3t + i, or outside
@@ -258,7 +299,7 @@ class Enclosures {
     UnionFind regions(n_tris + 1);
     std::vector<std::uint32_t> walls_at;  // each wall once, as 3t + i
     {
-      Gaps gaps(pts, crust);
+      Gaps gaps(pts, crust, gap);
       for (std::uint32_t e = 0; e < 3 * n_tris; ++e) {
         const int u = adj.neighbors[e / 3][e % 3];
         if (u >= 0 && static_cast<std::uint32_t>(u) < e / 3) continue;
@@ -413,8 +454,9 @@ void nest(const PointSet& pts, std::vector<std::vector<int>>& rings, RingsInfere
 }
 
 // Each ring's smallest gap to another part and the overall smallest (double, for the report).
-void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const std::vector<int>& ring_of, RingsInference& out) {
-  const Gaps gaps(pts, crust);
+void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap, const std::vector<int>& ring_of,
+                 RingsInference& out) {
+  const Gaps gaps(pts, crust, gap);
   for (std::size_t p = 0; p < ring_of.size(); ++p)
     for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
       const int ip = static_cast<int>(p), q = adj.nbr[k];
@@ -475,12 +517,13 @@ void debug_part(const PointSet& pts, const std::vector<int>& ring, std::size_t k
 
 void debug_open_part(std::size_t points, std::size_t k, std::size_t parts) {
   static const bool on = std::getenv("CONSTRICT_DEBUG_RINGS") != nullptr;
-  if (on) std::fprintf(stderr, "rings: part %zu of %zu, %zu points, encloses no region (thin, no polygon)\n", k, parts, points);
+  if (on) std::fprintf(stderr, "rings: part %zu of %zu, %zu points, encloses no region or is a line (thin, no polygon)\n", k, parts, points);
 }
 
 // Are the part's points on one line? Exact.
 bool collinear(const PointSet& pts, const std::vector<int>& part) {
   const auto at = [&](std::size_t i) { return pts[static_cast<std::size_t>(part[i])]; };
+  if (part.size() < 3) return true;
   for (std::size_t i = 2; i < part.size(); ++i)
     if (orient2(at(0), at(1), at(i)) != 0) return false;
   return true;
@@ -509,11 +552,11 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
 
 // For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
 // lexicographically smaller pair of points), -1 for none.
-std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust,
+std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
                                const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
-  const Gaps gaps(pts, crust);
+  const Gaps gaps(pts, crust, gap);
   const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
   const auto better = [&](double g, int p, int q, const Best& b) {
     if (b.p < 0 || g < b.gap) return true;
@@ -564,8 +607,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   out.parts = parts.size();
   if (parts.size() == 1) return Status::ok();  // OneCurve
   // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
-  // part's own sparse spots up to kSealFactor times the threshold.
-  std::optional<Enclosures> enclosures, sealed;
+  // part's own sparse spots up to kSealFactors times the threshold.
+  std::vector<Enclosures> enclosures;
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
@@ -588,33 +631,22 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       if (!known[k]) todo.push_back(k);
     }
     const bool test_open = options.open_arc_test && !todo.empty();
-    if (test_open && !enclosures) {
-      enclosures.emplace(points, adj, crust, gap, part_of);
-      sealed.emplace(points, adj, crust, kSealFactor * gap, part_of);
+    if (test_open && enclosures.empty())
+      for (const double seal : kSealFactors) enclosures.emplace_back(points, adj, crust, gap, seal * gap, part_of);
+    std::vector<char> encl(parts.size(), !test_open);
+    for (const Enclosures& level : enclosures) {
+      if (!test_open) break;
+      const std::vector<char> e = level.enclosing(ring_of, parts.size());
+      for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || e[k];
     }
-    std::vector<char> encl(parts.size(), 1);
-    if (test_open) {
-      encl = enclosures->enclosing(ring_of, parts.size());
-      const std::vector<char> more = sealed->enclosing(ring_of, parts.size());
-      for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || more[k];
-    }
-    // A part of fewer than 3 points has no polygon: decided before the others' polygons are made.
-    for (const std::size_t k : todo)
-      if (parts[k].size() < 3) {
-        out.decision = RingsDecision::SmallPart;
-        return Status::ok();
-      }
-    // A part that encloses no region is an open arc: thin without its polygon (Enclosures). A
-    // collinear one has no polygon at all (as part_polygon() finds).
+    // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no
+    // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one.
     std::vector<std::size_t> need;
     for (const std::size_t k : todo) {
-      if (encl[k]) {
+      const bool line = collinear(points, parts[k]);
+      if (!line && encl[k]) {
         need.push_back(k);
         continue;
-      }
-      if (collinear(points, parts[k])) {
-        out.decision = RingsDecision::SmallPart;
-        return Status::ok();
       }
       thin[k] = 1;
       any_thin = true;
@@ -643,7 +675,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (!any_thin) break;
     // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
     // rings of parts that did not change are kept).
-    const std::vector<int> nearest = nearest_parts(points, adj, crust, ring_of, parts.size());
+    const std::vector<int> nearest = nearest_parts(points, adj, crust, gap, ring_of, parts.size());
     UnionFind joined(parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k)
       if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
@@ -670,7 +702,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     }
   }
   nest(points, rings, out);
-  report_gaps(points, adj, crust, ring_of, out);
+  report_gaps(points, adj, crust, gap, ring_of, out);
   out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
   return Status::ok();
 }

@@ -347,6 +347,30 @@ TEST(Topology2Property, RegionFatnessPredicateExact) {
 // A large noisy sample of one closed curve: its largest gaps grow like ln N spacings, so the gap
 // rule alone split some of these into arcs (thin slivers, or arcs closed by a chord). The arcs are
 // joined back: one ring, the single polygon (docs/topology.md, "Open arcs").
+// Scans are not jittered along the arc: points at random angles leave gaps of up to ln(n)
+// spacings along each curve, and normal noise of 0.1 spacing moves some point off its curve by
+// more than half of a short neighbour gap. Such a point finds no half-neighbour on its own curve
+// and its NN-crust edge runs across to the next curve; that edge used to enter the local spacing
+// at the gap, and the parts merged even 20 spacings apart (docs/topology.md, Open).
+TEST(Topology2Property, RandomNoisySamplesKeepTheirParts) {
+  int right = 0, total = 0;
+  for (const TopoFamily f : {TopoFamily::Annulus, TopoFamily::Parts})
+    for (const double gap : {12.0, 20.0})
+      for (unsigned seed = 1; seed <= 5; ++seed) {
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        const test::TopoSample s = test::make_topology(f, gap, seed, 1.0, 0.1);
+        const Rings2Result a = run(s.points, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        ++total;
+        right += a.rings.size() == s.rings.size();
+        if (a.rings.size() != s.rings.size())
+          std::printf("  %s gap %g seed %u: %zu rings of %zu (%s, %zu parts, %zu joined)\n", name(f), gap, seed, a.rings.size(),
+                      s.rings.size(), to_string(a.inferred.decision), a.inferred.parts, a.inferred.thin_parts_joined);
+      }
+  std::printf("[ Topology2Property ] random noisy samples: %d of %d give the true number of rings\n", right, total);
+  EXPECT_GE(right, total * 9 / 10);
+}
+
 TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
   std::size_t joined = 0, open = 0;
   for (unsigned seed = 1; seed <= 4; ++seed) {
@@ -369,15 +393,6 @@ TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
         << to_string(a.inferred.decision);
     joined += a.inferred.thin_parts_joined;
     open += a.inferred.open_parts;
-    // The arcs found open without their polygons are the ones the polygon rule joins.
-    const Rings2Result b = run(p, Topology2::Auto, kDefaultTopologyGap, false);
-    EXPECT_EQ(b.inferred.decision, a.inferred.decision);
-    EXPECT_EQ(b.inferred.thin_parts_joined, a.inferred.thin_parts_joined);
-    EXPECT_EQ(b.inferred.open_parts, 0u);
-    EXPECT_EQ(b.rings.size(), a.rings.size());
-    if (b.rings.size() == a.rings.size()) {
-      for (std::size_t k = 0; k < a.rings.size(); ++k) EXPECT_EQ(a.rings[k].indices, b.rings[k].indices);
-    }
   }
   EXPECT_GT(joined, 0u);  // the case this test is for: some sample split and was joined back
   EXPECT_GT(open, 0u);    // and some of its arcs were found open without a polygon
@@ -409,8 +424,31 @@ TEST(Topology2Property, OpenArcTestAgreesWithThePolygonRule) {
           open += a.inferred.open_parts;
           parts += a.inferred.parts_polygon;
         }
+  // Noisy closed curves large enough to split into arcs (noise of one spacing, random positions).
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("noisy curve, seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> along(0, 2 * M_PI);
+    std::normal_distribution<double> noise(0, 1);
+    const std::size_t n = 5000;
+    const double h = 7.0 / static_cast<double>(n);
+    PointSet p;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
+      p.coords.push_back(r * std::cos(t) + h * noise(rng));
+      p.coords.push_back(r * std::sin(t) + h * noise(rng));
+    }
+    const Rings2Result a = run(p, Topology2::Auto);
+    const Rings2Result b = run(p, Topology2::Auto, kDefaultTopologyGap, false);
+    EXPECT_EQ(a.inferred.decision, b.inferred.decision);
+    EXPECT_EQ(a.inferred.thin_parts_joined, b.inferred.thin_parts_joined);
+    EXPECT_EQ(structure(a.rings), structure(b.rings));
+    open += a.inferred.open_parts;
+    parts += a.inferred.parts_polygon;
+  }
   std::printf("open arcs %zu, parts not a clean cycle %zu\n", open, parts);
   EXPECT_GT(parts, 0u);  // some parts went to the test at all
+  EXPECT_GT(open, 0u);   // and some were found open
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Generator of 2D ring sets with known topology for the topology tests (docs/topology.md
 // §"Generator"): annuli, shells with holes, separate parts, island in a lake in an island, curves
-// sampled at about one spacing h (jittered along the arc), every two curves gap·h apart, then a
+// sampled at about one spacing h (jittered along the arc, or at random angles with normal noise),
+// every two curves gap·h apart, then a
 // random rotation, scale and offset, and the points shuffled. Deterministic per seed.
 #pragma once
 
@@ -41,7 +42,10 @@ struct Circle {
 
 /// @param gap distance between neighbouring curves in spacings (>= 1)
 /// @param h the spacing (before the random scale)
-inline TopoSample make_topology(TopoFamily f, double gap, unsigned seed, double h = 1.0) {
+/// @param noise < 0: the points jittered along the arc by up to 0.3 h; >= 0: the points at
+///   uniformly random angles (the mean spacing h, gaps up to about ln(n) h), then moved by normal
+///   noise of noise·h per coordinate (a scan's samples)
+inline TopoSample make_topology(TopoFamily f, double gap, unsigned seed, double h = 1.0, double noise = -1) {
   using detail_gen::Circle;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
@@ -77,9 +81,14 @@ inline TopoSample make_topology(TopoFamily f, double gap, unsigned seed, double 
     tr.parent = c[k].parent;
     const int n = std::max(8, static_cast<int>(std::lround(2 * M_PI * c[k].r / h)));
     const double phase = 2 * M_PI * u(rng);
+    std::normal_distribution<double> normal(0, 1);
     for (int i = 0; i < n; ++i) {
-      const double t = phase + 2 * M_PI * (i + 0.3 * (2 * u(rng) - 1)) / n;
-      const double x = c[k].cx + c[k].r * std::cos(t), y = c[k].cy + c[k].r * std::sin(t);
+      const double t = noise < 0 ? phase + 2 * M_PI * (i + 0.3 * (2 * u(rng) - 1)) / n : 2 * M_PI * u(rng);
+      double x = c[k].cx + c[k].r * std::cos(t), y = c[k].cy + c[k].r * std::sin(t);
+      if (noise >= 0) {
+        x += noise * h * normal(rng);
+        y += noise * h * normal(rng);
+      }
       const double xr = std::cos(angle) * x - std::sin(angle) * y, yr = std::sin(angle) * x + std::cos(angle) * y;
       tr.points.push_back(static_cast<int>(s.points.size()));
       s.points.coords.push_back(ox + scale * xr);
