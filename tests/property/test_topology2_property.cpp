@@ -46,6 +46,22 @@ Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGa
   return r;
 }
 
+// n points at uniformly random positions along a five-petal closed curve (about 7 long), with
+// normal noise of about one spacing per coordinate: large enough, it splits into arcs.
+PointSet noisy_petal_curve(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> along(0, 2 * M_PI);
+  std::normal_distribution<double> noise(0, 1);
+  const double h = 7.0 / static_cast<double>(n);
+  PointSet p;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
+    p.coords.push_back(r * std::cos(t) + h * noise(rng));
+    p.coords.push_back(r * std::sin(t) + h * noise(rng));
+  }
+  return p;
+}
+
 // The rings as sets of points, each with its role and its parent's point set (comparable across
 // any renumbering of the rings).
 using RingKey = std::set<int>;
@@ -375,17 +391,7 @@ TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
   std::size_t joined = 0, open = 0;
   for (unsigned seed = 1; seed <= 4; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> along(0, 2 * M_PI);
-    std::normal_distribution<double> noise(0, 1);
-    const std::size_t n = 100000;
-    const double h = 7.0 / static_cast<double>(n);  // about the spacing (the curve is ~7 long)
-    PointSet p;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
-      p.coords.push_back(r * std::cos(t) + h * noise(rng));
-      p.coords.push_back(r * std::sin(t) + h * noise(rng));
-    }
+    const PointSet p = noisy_petal_curve(100000, seed);
     const Rings2Result a = run(p, Topology2::Auto);
     ASSERT_TRUE(a.valid()) << a.check.reason;
     EXPECT_EQ(a.rings.size(), 1u);
@@ -427,17 +433,7 @@ TEST(Topology2Property, OpenArcTestAgreesWithThePolygonRule) {
   // Noisy closed curves large enough to split into arcs (noise of one spacing, random positions).
   for (unsigned seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("noisy curve, seed " + std::to_string(seed));
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> along(0, 2 * M_PI);
-    std::normal_distribution<double> noise(0, 1);
-    const std::size_t n = 5000;
-    const double h = 7.0 / static_cast<double>(n);
-    PointSet p;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
-      p.coords.push_back(r * std::cos(t) + h * noise(rng));
-      p.coords.push_back(r * std::sin(t) + h * noise(rng));
-    }
+    const PointSet p = noisy_petal_curve(5000, seed);
     const Rings2Result a = run(p, Topology2::Auto);
     const Rings2Result b = run(p, Topology2::Auto, kDefaultTopologyGap, false);
     EXPECT_EQ(a.inferred.decision, b.inferred.decision);
