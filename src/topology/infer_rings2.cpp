@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -282,9 +283,35 @@ std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector
 // polygon closes it), sealed at one of the wider levels; a wide level alone would fill a small
 // ring's interior with walls (no fat region left), which the narrower levels keep.
 constexpr double kSealFactors[] = {1.0, 2.0, 4.0};
+constexpr std::uint8_t kLevels = 3;
+
+// For each Delaunay edge (as 3t + i, from the triangle that takes it), the first level at which it
+// is a wall if its ends are in one part: 0 mutual crust or shorter than the threshold (never
+// between two parts), 1 and 2 shorter than 2 and 4 times it; kLevels: never. Exact (compare_gap2).
+std::vector<std::uint8_t> wall_levels(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap) {
+  std::vector<std::uint8_t> level(3 * adj.triangles.size(), kLevels);
+  Gaps gaps(pts, crust, gap);
+  for (std::size_t e = 0; e < level.size(); ++e) {
+    const int u = adj.neighbors[e / 3][e % 3];
+    if (u >= 0 && static_cast<std::size_t>(u) < e / 3) continue;
+    const auto& t = adj.triangles[e / 3];
+    const int a = t[(e % 3 + 1) % 3], b = t[(e % 3 + 2) % 3];
+    if (crust.mutual(a, b)) {
+      level[e] = 0;
+      continue;
+    }
+    for (std::uint8_t k = kLevels; k-- > 0;) {  // from the widest: most edges stop at the first test
+      if (!gaps.shorter(a, b, kSealFactors[k] * gap)) break;
+      level[e] = k;
+    }
+  }
+  return level;
+}
+
 class Enclosures {
  public:
-  Enclosures(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap, double factor,
+  // The regions with the walls of `level` within the parts of part_of.
+  Enclosures(const PointSet& pts, const Adjacency& adj, const std::vector<std::uint8_t>& wall_level, std::uint8_t level,
              const std::vector<int>& part_of) {
     const std::size_t n_tris = adj.triangles.size();
     const int outside = static_cast<int>(n_tris);
@@ -298,49 +325,51 @@ class Enclosures {
     };
     UnionFind regions(n_tris + 1);
     std::vector<std::uint32_t> walls_at;  // each wall once, as 3t + i
-    {
-      Gaps gaps(pts, crust, gap);
-      for (std::uint32_t e = 0; e < 3 * n_tris; ++e) {
-        const int u = adj.neighbors[e / 3][e % 3];
-        if (u >= 0 && static_cast<std::uint32_t>(u) < e / 3) continue;
-        const auto [a, b] = ends(e);
-        // (Walls lie within the parts that part_of gives: the parts of the first round that
-        // needs them; joined parts stay unsealed at the gaps between them.)
-        const bool wall = part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)] &&
-                          (crust.mutual(a, b) || gaps.shorter(a, b, factor));
-        if (wall)
-          walls_at.push_back(e);
-        else
-          regions.join(static_cast<int>(e / 3), other(e));
-      }
+    for (std::uint32_t e = 0; e < 3 * n_tris; ++e) {
+      const int u = adj.neighbors[e / 3][e % 3];
+      if (u >= 0 && static_cast<std::uint32_t>(u) < e / 3) continue;
+      const auto [a, b] = ends(e);
+      const bool wall = wall_level[e] <= level && part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)];
+      if (wall)
+        walls_at.push_back(e);
+      else
+        regions.join(static_cast<int>(e / 3), other(e));
     }
-    // The bounded regions with walls, numbered; for each, the parts of its walls (ends[0]
-    // stands for its part) and its fatness: the filter summed in place, and the few regions it
-    // cannot decide gathered for the exact predicate.
+    // The bounded regions, numbered in the order of their first triangle; for each, the parts of
+    // its walls (ends[0] stands for its part) and its fatness: the filter summed in place, and the
+    // few regions it cannot decide gathered for the exact predicate.
     const int unbounded = regions.find(outside);
-    std::vector<int> id(n_tris + 1, -1), last_part;
-    std::vector<RegionFatness2Filter> filter;
-    const auto at = [&](int v) { return pts[static_cast<std::size_t>(v)]; };
-    for (const std::uint32_t e : walls_at)
-      for (const int t : {static_cast<int>(e / 3), other(e)}) {
-        const int r = regions.find(t);
+    std::vector<int> rid(n_tris, -1);  // region of each triangle, -1: the unbounded one
+    unbounded_.assign(n_tris, 1);
+    std::size_t count = 0;
+    {
+      std::vector<int> id(n_tris + 1, -1);
+      for (std::size_t t = 0; t < n_tris; ++t) {
+        const int r = regions.find(static_cast<int>(t));
         if (r == unbounded) continue;
         int& k = id[static_cast<std::size_t>(r)];
-        if (k < 0) {
-          k = static_cast<int>(filter.size());
-          filter.emplace_back();
-          last_part.push_back(-1);
-        }
+        if (k < 0) k = static_cast<int>(count++);
+        rid[t] = k;
+        unbounded_[t] = 0;
+      }
+    }
+    std::vector<RegionFatness2Filter> filter(count);
+    std::vector<int> last_part(count, -1);
+    const auto at = [&](int v) { return pts[static_cast<std::size_t>(v)]; };
+    const auto region_of = [&](int t) { return t == outside ? -1 : rid[static_cast<std::size_t>(t)]; };
+    for (std::size_t t = 0; t < n_tris; ++t)
+      if (const int k = rid[t]; k >= 0)
+        filter[static_cast<std::size_t>(k)].add_triangle(at(adj.triangles[t][0]), at(adj.triangles[t][1]), at(adj.triangles[t][2]));
+    for (const std::uint32_t e : walls_at)
+      for (const int t : {static_cast<int>(e / 3), other(e)}) {
+        const int k = region_of(t);
+        if (k < 0) continue;
         const auto [a, b] = ends(e);
         filter[static_cast<std::size_t>(k)].add_wall(at(a), at(b));
         int& last = last_part[static_cast<std::size_t>(k)];
         if (last != part_of[static_cast<std::size_t>(a)]) sides_.push_back({k, a});
         last = part_of[static_cast<std::size_t>(a)];
       }
-    const auto region_of = [&](std::size_t t) { return id[static_cast<std::size_t>(regions.find(static_cast<int>(t)))]; };
-    for (std::size_t t = 0; t < n_tris; ++t)
-      if (const int k = region_of(t); k >= 0)
-        filter[static_cast<std::size_t>(k)].add_triangle(at(adj.triangles[t][0]), at(adj.triangles[t][1]), at(adj.triangles[t][2]));
     const std::size_t n = filter.size();
     fat_.resize(n);
     std::vector<int> exact(n, -1);  // undecided region -> its slot among the gathered ones
@@ -356,11 +385,11 @@ class Enclosures {
     }
     if (!tris.empty()) {
       for (std::size_t t = 0; t < n_tris; ++t)
-        if (const int k = region_of(t); k >= 0 && exact[static_cast<std::size_t>(k)] >= 0)
+        if (const int k = rid[t]; k >= 0 && exact[static_cast<std::size_t>(k)] >= 0)
           tris[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])].insert(tris[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])].end(), adj.triangles[t].begin(), adj.triangles[t].end());
       for (const std::uint32_t e : walls_at)
         for (const int t : {static_cast<int>(e / 3), other(e)})
-          if (const int k = id[static_cast<std::size_t>(regions.find(t))]; k >= 0 && exact[static_cast<std::size_t>(k)] >= 0) {
+          if (const int k = region_of(t); k >= 0 && exact[static_cast<std::size_t>(k)] >= 0) {
             auto& w = walls[static_cast<std::size_t>(exact[static_cast<std::size_t>(k)])];
             w.push_back(ends(e)[0]);
             w.push_back(ends(e)[1]);
@@ -390,10 +419,137 @@ class Enclosures {
     return out;
   }
 
+  // Per triangle: in the unbounded region?
+  const std::vector<char>& unbounded() const { return unbounded_; }
+
  private:
+  std::vector<char> unbounded_;
   std::vector<std::array<int, 2>> sides_;  // (bounded region, an end of a wall): each part at each region, about once
   std::vector<char> fat_;                  // per bounded region
 };
+
+// Walls of `level` (wall_levels) and their components: the points joined by them.
+bool is_wall(const Adjacency& adj, const std::vector<std::uint8_t>& wall_level, std::uint8_t level, const std::vector<int>& part_of,
+             int t, int i) {
+  const auto& tri = adj.triangles[static_cast<std::size_t>(t)];
+  const int a = tri[static_cast<std::size_t>((i + 1) % 3)], b = tri[static_cast<std::size_t>((i + 2) % 3)];
+  if (part_of[static_cast<std::size_t>(a)] != part_of[static_cast<std::size_t>(b)]) return false;
+  int u = adj.neighbors[static_cast<std::size_t>(t)][static_cast<std::size_t>(i)];
+  if (u >= 0 && u < t)  // the edge is listed at u
+    for (int j = 0; j < 3; ++j)
+      if (adj.neighbors[static_cast<std::size_t>(u)][static_cast<std::size_t>(j)] == t)
+        return wall_level[3 * static_cast<std::size_t>(u) + static_cast<std::size_t>(j)] <= level;
+  return wall_level[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(i)] <= level;
+}
+
+UnionFind wall_components(const PointSet& pts, const Adjacency& adj, const std::vector<std::uint8_t>& wall_level, std::uint8_t level,
+                          const std::vector<int>& part_of) {
+  UnionFind c(pts.size());
+  for (std::size_t e = 0; e < wall_level.size(); ++e) {
+    if (wall_level[e] > level) continue;
+    const auto& t = adj.triangles[e / 3];
+    const int a = t[(e % 3 + 1) % 3], b = t[(e % 3 + 2) % 3];
+    if (part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)]) c.join(a, b);
+  }
+  return c;
+}
+
+// After parts were joined: do the walls that the joins added at `level` change its regions in a
+// way that matters? A new wall between two wall components hangs in a region (the region's
+// triangles stay the same); one that closes a loop cuts a region in two. When the side cut off is
+// a small region (kSmallFace triangles) that is thin and bounded by one part, the decisions
+// stand; otherwise the level's regions are made again. (The noisy arcs of one curve, joined at
+// their gaps, close only such small loops across each gap.) comps: the wall components, updated.
+constexpr std::size_t kSmallFace = 4096;
+// (Up to Rings2Options::open_arc_rebuild_max points the levels are simply made again after every
+// round of joins, O(N) each; above it regions_changed() decides, which can miss a change that a
+// new loop makes away from the walls it checks: measured, 4 of 144 generated random-angle sets
+// differ when it decides for them too.)
+bool regions_changed(const PointSet& pts, const Adjacency& adj, const std::vector<std::uint8_t>& wall_level, std::uint8_t level,
+                     const std::vector<int>& part_of, const std::vector<int>& built_part_of, const std::vector<char>& unbounded,
+                     const std::vector<std::uint32_t>& candidates, UnionFind& comps) {
+  std::vector<int> face;
+  std::vector<int> seen(adj.triangles.size(), -1);  // the flood that last took a triangle
+  int flood = 0;
+  const auto wall = [&](int t, int i) { return is_wall(adj, wall_level, level, part_of, t, i); };
+  // The region of t0 if it is small and bounded (false: it reaches the hull or grows past the cap).
+  const auto small_face = [&](int t0, std::size_t cap) {
+    ++flood;
+    face.assign(1, t0);
+    seen[static_cast<std::size_t>(t0)] = flood;
+    for (std::size_t q = 0; q < face.size(); ++q)
+      for (int i = 0; i < 3; ++i) {
+        if (wall(face[q], i)) continue;
+        const int u = adj.neighbors[static_cast<std::size_t>(face[q])][static_cast<std::size_t>(i)];
+        if (u < 0) return false;
+        if (seen[static_cast<std::size_t>(u)] == flood) continue;
+        seen[static_cast<std::size_t>(u)] = flood;
+        face.push_back(u);
+        if (face.size() > cap) return false;
+      }
+    return true;
+  };
+  const auto harmless = [&]() {  // the small face in `face`: thin, and of one part
+    std::vector<int> tris, walls;
+    int part = -1;
+    for (const int t : face) {
+      const auto& tri = adj.triangles[static_cast<std::size_t>(t)];
+      tris.insert(tris.end(), tri.begin(), tri.end());
+      for (int i = 0; i < 3; ++i)
+        if (wall(t, i)) {
+          const int a = tri[static_cast<std::size_t>((i + 1) % 3)], b = tri[static_cast<std::size_t>((i + 2) % 3)];
+          walls.push_back(a);
+          walls.push_back(b);
+          if (part >= 0 && part != part_of[static_cast<std::size_t>(a)]) return false;
+          part = part_of[static_cast<std::size_t>(a)];
+        }
+    }
+    return compare_region_fatness2(pts.coords.data(), tris.data(), tris.size() / 3, walls.data(), walls.size() / 2, kMinRingFatness) <= 0;
+  };
+  // Each loop closed adds one bounded region (Euler); every new region borders a wall that closed
+  // one. The joins are harmless when those regions are all small, thin and of one part, and the
+  // other side of each such wall lay in the unbounded region (no bounded region changed).
+  std::size_t loops = 0;
+  std::vector<int> found;  // the small regions, by their first triangle
+  for (const std::uint32_t e : candidates) {
+    if (wall_level[e] > level) continue;
+    const auto& tri = adj.triangles[e / 3];
+    const int a = tri[(e % 3 + 1) % 3], b = tri[(e % 3 + 2) % 3];
+    const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+    if (part_of[ia] != part_of[ib] || built_part_of[ia] == built_part_of[ib]) continue;  // not new
+    if (comps.join(a, b)) continue;
+    ++loops;
+    const int sides[2] = {static_cast<int>(e / 3), adj.neighbors[e / 3][e % 3]};
+    // (Tiny regions first: most loops close across a gap between two of its edges.)
+    std::vector<int> small[2];
+    bool open_side[2] = {false, false};
+    for (const std::size_t cap : {std::size_t{64}, kSmallFace}) {
+      for (int k = 0; k < 2; ++k)
+        if (sides[k] >= 0 && small[k].empty()) {
+          if (small_face(sides[k], cap)) {
+            if (!harmless()) return true;
+            small[k] = face;
+          }
+        }
+      if (!small[0].empty() || !small[1].empty()) break;
+    }
+    for (int k = 0; k < 2; ++k) open_side[k] = small[k].empty();
+    if (!open_side[0] && !open_side[1]) {  // both sides small: a small region cut in two, not a new one
+      --loops;
+      continue;
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (!open_side[k]) {
+        const int id = *std::min_element(small[k].begin(), small[k].end());
+        if (std::find(found.begin(), found.end(), id) == found.end()) found.push_back(id);
+      } else if (sides[k] >= 0 && !unbounded[static_cast<std::size_t>(sides[k])]) {
+        return true;  // a bounded region changed
+      }
+    }
+    if (found.size() > loops) return true;
+  }
+  return found.size() != loops;
+}
 
 // The part as one crust cycle, if it is one (every point of degree 2, the trace covers the part).
 bool crust_cycle(const NnCrust& crust, const std::vector<int>& part, const std::vector<int>& part_of, std::vector<int>& ring) {
@@ -608,7 +764,11 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   if (parts.size() == 1) return Status::ok();  // OneCurve
   // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
   // part's own sparse spots up to kSealFactors times the threshold.
-  std::vector<Enclosures> enclosures;
+  std::vector<std::optional<Enclosures>> enclosures;  // per level
+  std::vector<std::uint8_t> wall_level;
+  std::vector<int> built_part_of;  // part_of when the levels were last looked at
+  std::vector<UnionFind> components;  // per level: the points joined by its walls
+  std::vector<std::uint32_t> joinable;  // the edges that joins can make walls
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
@@ -631,12 +791,39 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       if (!known[k]) todo.push_back(k);
     }
     const bool test_open = options.open_arc_test && !todo.empty();
-    if (test_open && enclosures.empty())
-      for (const double seal : kSealFactors) enclosures.emplace_back(points, adj, crust, gap, seal * gap, part_of);
+    // The regions of this round's parts, per level on both cores. Joined parts are sealed at the
+    // gaps between them, so levels 1.. are made again after a round of joins (level 0 never lies
+    // between two parts): always up to open_arc_rebuild_max points, else where regions_changed().
+    const bool incremental = points.size() > options.open_arc_rebuild_max;
+    if (test_open) {
+      const bool first = enclosures.empty();
+      if (first) {
+        wall_level = wall_levels(points, adj, crust, gap);
+        enclosures.resize(kLevels);
+        for (std::uint8_t level = 0; level < kLevels; ++level) components.emplace_back(incremental ? points.size() : 0);
+        // The edges that a join can make walls: between two parts, at a level > 0.
+        for (std::size_t e = 0; e < wall_level.size(); ++e) {
+          if (wall_level[e] == 0 || wall_level[e] >= kLevels) continue;
+          const auto& t = adj.triangles[e / 3];
+          if (part_of[static_cast<std::size_t>(t[(e % 3 + 1) % 3])] != part_of[static_cast<std::size_t>(t[(e % 3 + 2) % 3])])
+            joinable.push_back(static_cast<std::uint32_t>(e));
+        }
+      }
+      std::vector<char> again(kLevels, first ? 1 : 0);
+      tbb::parallel_for(std::uint8_t{0}, kLevels, [&](std::uint8_t level) {
+        if (!first && level > 0)
+          again[level] = !incremental || regions_changed(points, adj, wall_level, level, part_of, built_part_of,
+                                                         enclosures[level]->unbounded(), joinable, components[level]);
+        if (!again[level]) return;
+        enclosures[level].emplace(points, adj, wall_level, level, part_of);
+        if (incremental) components[level] = wall_components(points, adj, wall_level, level, part_of);
+      });
+      built_part_of = part_of;
+    }
     std::vector<char> encl(parts.size(), !test_open);
-    for (const Enclosures& level : enclosures) {
+    for (const auto& level : enclosures) {
       if (!test_open) break;
-      const std::vector<char> e = level.enclosing(ring_of, parts.size());
+      const std::vector<char> e = level->enclosing(ring_of, parts.size());
       for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || e[k];
     }
     // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no

@@ -35,8 +35,10 @@ const char* name(TopoFamily f) {
   return "?";
 }
 
-Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGap, bool open_arc_test = true) {
+Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGap, bool open_arc_test = true,
+                 std::size_t rebuild_max = Rings2Options{}.open_arc_rebuild_max) {
   Rings2Options o;
+  o.open_arc_rebuild_max = rebuild_max;
   o.topology = t;
   o.topology_gap = gap;
   o.open_arc_test = open_arc_test;
@@ -399,6 +401,10 @@ TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
         << to_string(a.inferred.decision);
     joined += a.inferred.thin_parts_joined;
     open += a.inferred.open_parts;
+    // The way of large inputs (regions made again only where a join closed a loop): the same ring.
+    const Rings2Result c = run(p, Topology2::Auto, kDefaultTopologyGap, true, 0);
+    EXPECT_EQ(c.inferred.decision, a.inferred.decision);
+    EXPECT_EQ(structure(c.rings), structure(a.rings));
   }
   EXPECT_GT(joined, 0u);  // the case this test is for: some sample split and was joined back
   EXPECT_GT(open, 0u);    // and some of its arcs were found open without a polygon
@@ -430,6 +436,38 @@ TEST(Topology2Property, OpenArcTestAgreesWithThePolygonRule) {
           open += a.inferred.open_parts;
           parts += a.inferred.parts_polygon;
         }
+  // Three circles of 250-310 points at uniformly random angles, 10 and 20 spacings apart, noise
+  // 0.1 spacing: a circle can split into arcs at its own sampling gaps, and the arcs joined back
+  // must again be a ring (the regions are made again for the joined parts).
+  std::size_t joined = 0;
+  int same_incremental = 0;
+  for (const double gap : {10.0, 20.0})
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      SCOPED_TRACE("random-angle circles, gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+      std::normal_distribution<double> noise(0, 0.1 * 0.02);
+      PointSet p;
+      const double cx[3] = {0, 2 + gap * 0.02, 1 + gap * 0.01}, cy[3] = {0, 0, 2}, r[3] = {1, 1, 0.8};
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < static_cast<int>(2 * M_PI * r[c] / 0.02); ++i) {
+          const double t = angle(rng);
+          p.coords.push_back(cx[c] + r[c] * std::cos(t) + noise(rng));
+          p.coords.push_back(cy[c] + r[c] * std::sin(t) + noise(rng));
+        }
+      const Rings2Result a = run(p, Topology2::Auto);
+      const Rings2Result b = run(p, Topology2::Auto, kDefaultTopologyGap, false);
+      const Rings2Result c = run(p, Topology2::Auto, kDefaultTopologyGap, true, 0);  // the large-input way
+      EXPECT_EQ(a.inferred.decision, b.inferred.decision);
+      EXPECT_EQ(structure(a.rings), structure(b.rings));
+      same_incremental += structure(c.rings) == structure(b.rings);
+      open += a.inferred.open_parts;
+      parts += a.inferred.parts_polygon;
+      joined += a.inferred.thin_parts_joined;
+    }
+  EXPECT_GT(joined, 0u);  // some circle split into arcs that were joined back
+  std::printf("random-angle circles: the large-input way agrees on %d of 12\n", same_incremental);
+  EXPECT_GE(same_incremental, 11);
   // Noisy closed curves large enough to split into arcs (noise of one spacing, random positions).
   for (unsigned seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("noisy curve, seed " + std::to_string(seed));
