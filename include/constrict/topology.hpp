@@ -78,7 +78,7 @@ struct Rings2Options {
   /// Up to this many points the open-arc regions are made again after every round of joins
   /// (O(N) each); above it only where a join closed a loop that is not a small thin region
   /// (docs/topology.md, Method 3c). For tests; the default is measured.
-  std::size_t open_arc_rebuild_max = std::size_t{1} << 18;
+  std::size_t open_arc_rebuild_max = std::size_t{1} << 14;
   /// Validate the ring set exactly (validate_rings2()); a set that fails is a bug: Internal.
   bool validate = true;
   Constrict2Options polygon;  ///< the options of the single polygon (reconstruct2()), also used
