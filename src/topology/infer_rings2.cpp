@@ -186,13 +186,16 @@ class Gaps {
   }
   // |pq| < t · rms(spacing edges at p and q)? Exact.
   bool shorter(int p, int q, double t) {
-    a_.clear();
-    b_.clear();
-    spacing_edges(p, q, [&](int end, int r) {
-      a_.push_back(at(end));
-      b_.push_back(at(r));
-    });
+    collect(p, q);
     return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
+  }
+  // The smallest k with |pq| < t[k] · rms(spacing edges), for t ascending (the spacing edges
+  // gathered once); n when none. Exact.
+  std::size_t first_shorter(int p, int q, const double* t, std::size_t n) {
+    collect(p, q);
+    std::size_t k = n;
+    while (k > 0 && compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t[k - 1]) < 0) --k;
+    return k;
   }
   // |pq| / rms(spacing edges at p and q), double arithmetic (for the report), the squared lengths
   // summed in ascending order: the same double for the same points in any file order.
@@ -210,6 +213,14 @@ class Gaps {
   double len2(int a, int b) const {
     const double dx = at(a)[0] - at(b)[0], dy = at(a)[1] - at(b)[1];
     return dx * dx + dy * dy;
+  }
+  void collect(int p, int q) {
+    a_.clear();
+    b_.clear();
+    spacing_edges(p, q, [&](int end, int r) {
+      a_.push_back(at(end));
+      b_.push_back(at(r));
+    });
   }
   const PointSet& pts_;
   const NnCrust& crust_;
@@ -285,25 +296,29 @@ std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector
 constexpr double kSealFactors[] = {1.0, 2.0, 4.0};
 constexpr std::uint8_t kLevels = 3;
 
+// The ends of edge slot e = 3t + i (the edge of triangle t opposite its vertex i).
+std::array<int, 2> edge_ends(const Adjacency& adj, std::size_t e) {
+  const auto& t = adj.triangles[e / 3];
+  return {t[(e % 3 + 1) % 3], t[(e % 3 + 2) % 3]};
+}
+
 // For each Delaunay edge (as 3t + i, from the triangle that takes it), the first level at which it
 // is a wall if its ends are in one part: 0 mutual crust or shorter than the threshold (never
 // between two parts), 1 and 2 shorter than 2 and 4 times it; kLevels: never. Exact (compare_gap2).
 std::vector<std::uint8_t> wall_levels(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap) {
   std::vector<std::uint8_t> level(3 * adj.triangles.size(), kLevels);
   Gaps gaps(pts, crust, gap);
+  double factors[kLevels];
+  for (std::uint8_t k = 0; k < kLevels; ++k) factors[k] = kSealFactors[k] * gap;
   for (std::size_t e = 0; e < level.size(); ++e) {
     const int u = adj.neighbors[e / 3][e % 3];
     if (u >= 0 && static_cast<std::size_t>(u) < e / 3) continue;
-    const auto& t = adj.triangles[e / 3];
-    const int a = t[(e % 3 + 1) % 3], b = t[(e % 3 + 2) % 3];
+    const auto [a, b] = edge_ends(adj, e);
     if (crust.mutual(a, b)) {
       level[e] = 0;
       continue;
     }
-    for (std::uint8_t k = kLevels; k-- > 0;) {  // from the widest: most edges stop at the first test
-      if (!gaps.shorter(a, b, kSealFactors[k] * gap)) break;
-      level[e] = k;
-    }
+    level[e] = static_cast<std::uint8_t>(gaps.first_shorter(a, b, factors, kLevels));
   }
   return level;
 }
@@ -319,10 +334,7 @@ class Enclosures {
       const int u = adj.neighbors[e / 3][e % 3];
       return u >= 0 ? u : outside;
     };
-    const auto ends = [&](std::uint32_t e) {
-      const auto& t = adj.triangles[e / 3];
-      return std::array<int, 2>{t[(e % 3 + 1) % 3], t[(e % 3 + 2) % 3]};
-    };
+    const auto ends = [&](std::uint32_t e) { return edge_ends(adj, e); };
     UnionFind regions(n_tris + 1);
     std::vector<std::uint32_t> walls_at;  // each wall once, as 3t + i
     for (std::uint32_t e = 0; e < 3 * n_tris; ++e) {
@@ -447,8 +459,7 @@ UnionFind wall_components(const PointSet& pts, const Adjacency& adj, const std::
   UnionFind c(pts.size());
   for (std::size_t e = 0; e < wall_level.size(); ++e) {
     if (wall_level[e] > level) continue;
-    const auto& t = adj.triangles[e / 3];
-    const int a = t[(e % 3 + 1) % 3], b = t[(e % 3 + 2) % 3];
+    const auto [a, b] = edge_ends(adj, e);
     if (part_of[static_cast<std::size_t>(a)] == part_of[static_cast<std::size_t>(b)]) c.join(a, b);
   }
   return c;
@@ -513,8 +524,7 @@ bool regions_changed(const PointSet& pts, const Adjacency& adj, const std::vecto
   std::vector<int> found;  // the small regions, by their first triangle
   for (const std::uint32_t e : candidates) {
     if (wall_level[e] > level) continue;
-    const auto& tri = adj.triangles[e / 3];
-    const int a = tri[(e % 3 + 1) % 3], b = tri[(e % 3 + 2) % 3];
+    const auto [a, b] = edge_ends(adj, e);
     const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
     if (part_of[ia] != part_of[ib] || built_part_of[ia] == built_part_of[ib]) continue;  // not new
     if (comps.join(a, b)) continue;
@@ -804,8 +814,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         // The edges that a join can make walls: between two parts, at a level > 0.
         for (std::size_t e = 0; e < wall_level.size(); ++e) {
           if (wall_level[e] == 0 || wall_level[e] >= kLevels) continue;
-          const auto& t = adj.triangles[e / 3];
-          if (part_of[static_cast<std::size_t>(t[(e % 3 + 1) % 3])] != part_of[static_cast<std::size_t>(t[(e % 3 + 2) % 3])])
+          const auto [a, b] = edge_ends(adj, e);
+          if (part_of[static_cast<std::size_t>(a)] != part_of[static_cast<std::size_t>(b)])
             joinable.push_back(static_cast<std::uint32_t>(e));
         }
       }
