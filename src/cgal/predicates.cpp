@@ -119,9 +119,8 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
 
 
 namespace {
-// sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) in D dimensions. Semi-static filter
-// (core/detail/semi_static.hpp): the expression over exact double leaves has depth
-// <= D + 1 + (k - 1) + D + 1 + 2; the bound uses 2k + 2D + 4 (2k + 8 in 2D, as before).
+// sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) in D dimensions: the semi-static filter
+// (core/detail/semi_static.hpp, gap_filtered), then exact Mpzf arithmetic.
 template <int D>
 int compare_gap(const double* p, const double* q, const double* const* a, const double* const* b, int k, double t) {
   const auto sq = [](const double* u, const double* v) {
@@ -131,10 +130,9 @@ int compare_gap(const double* p, const double* q, const double* const* a, const 
   };
   double sum = 0;
   for (int i = 0; i < k; ++i) sum += sq(a[i], b[i]);
-  const double lhs = static_cast<double>(k) * sq(p, q), rhs = t * t * sum;
-  const double d = lhs - rhs, m = lhs + rhs;  // every leaf product is a square: m is the |tree|
-  const double depth = 2.0 * k + 2 * D + 4;
-  if (std::isfinite(m) && detail::safe_range(m) && std::fabs(d) > depth * detail::kU * m) return d > 0 ? 1 : -1;
+  bool ok = false;
+  const int sign = detail::gap_filtered(static_cast<double>(k) * sq(p, q), sum, t, k, D, ok);
+  if (ok) return sign;
   using Z = CGAL::Mpzf;
   const auto zsq = [](const double* u, const double* v) {
     Z s(0);

@@ -16,10 +16,12 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/semi_static.hpp"
 #include "core/detail/union_find.hpp"
 #include "topology/detail/infer_rings2.hpp"
 #include "topology/detail/ring_nesting.hpp"
@@ -71,10 +73,13 @@ using Adjacency = detail::RingsAdjacency;
 class NnCrust {
  public:
   NnCrust(const PointSet& pts, const Adjacency& adj) : pts_(pts), adj_(adj), chosen_(adj.start.size() - 1) {
-    for (std::size_t p = 0; p < chosen_.size(); ++p) {
-      const int q = nearest(static_cast<int>(p), -1);
-      chosen_[p] = {q, q < 0 ? -1 : nearest(static_cast<int>(p), q)};
-    }
+    // Each point's choices on both cores (each its own, the same whatever the threads).
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chosen_.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t p = range.begin(); p != range.end(); ++p) {
+        const int q = nearest(static_cast<int>(p), -1);
+        chosen_[p] = {q, q < 0 ? -1 : nearest(static_cast<int>(p), q)};
+      }
+    });
     // The crust edges at each point: its choices and the points that chose it, without repeats
     // (CSR by counting; each list holds a few entries, deduplicated in place).
     start_.assign(chosen_.size() + 2, 0);
@@ -117,6 +122,9 @@ class NnCrust {
   std::size_t degree(int p) const { return start_[static_cast<std::size_t>(p) + 1] - start_[static_cast<std::size_t>(p)]; }
   const int* begin(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p)]; }
   const int* end(int p) const { return nbr_.data() + start_[static_cast<std::size_t>(p) + 1]; }
+  // The crust edges at all points as slots 0 .. slots() - 1 (r in [begin(p), end(p)) is slot(r)).
+  std::size_t slots() const { return nbr_.size(); }
+  std::size_t slot(const int* r) const { return static_cast<std::size_t>(r - nbr_.data()); }
 
  private:
   const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
@@ -152,7 +160,14 @@ using detail::UnionFind;
 // The gap of a Delaunay edge pq against the local spacing (the crust edges at p and q).
 class Gaps {
  public:
-  Gaps(const PointSet& pts, const NnCrust& crust, double t) : pts_(pts), crust_(crust), t_(t) {}
+  // The crust edges across a gap are marked once (both ends' slots; on both cores).
+  Gaps(const PointSet& pts, const NnCrust& crust, double t) : pts_(pts), crust_(crust), t_(t), across_(crust.slots(), 0) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t p = range.begin(); p != range.end(); ++p)
+        for (const int* r = crust.begin(static_cast<int>(p)); r != crust.end(static_cast<int>(p)); ++r)
+          across_[crust.slot(r)] = across_gap(static_cast<int>(p), *r) ? 1 : 0;
+    });
+  }
   // A crust edge that is itself a gap: chosen by one end only, as its half-neighbour, and longer
   // than 2t times the spacing of the other end's own choices (the root mean square of their
   // lengths). A point moved off its curve by noise finds no half-neighbour on its own curve and
@@ -179,65 +194,86 @@ class Gaps {
     for (int pass = 0; pass < 2 && !any; ++pass)
       for (int end : {p, q})
         for (const int* r = crust_.begin(end); r != crust_.end(end); ++r)
-          if (pass == 1 || !across_gap(end, *r)) {
+          if (pass == 1 || !across_[crust_.slot(r)]) {
             f(end, *r);
             any = true;
           }
   }
   // |pq| < t · rms(spacing edges at p and q)? Exact.
-  bool shorter(int p, int q, double t) {
-    collect(p, q);
-    return compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t) < 0;
-  }
+  bool shorter(int p, int q, double t) const { return first_shorter(p, q, &t, 1) == 0; }
   // The smallest k with |pq| < t[k] · rms(spacing edges), for t ascending (the spacing edges
   // gathered once); n when none. Exact.
-  std::size_t first_shorter(int p, int q, const double* t, std::size_t n) {
-    collect(p, q);
-    std::size_t k = n;
-    while (k > 0 && compare_gap2(at(p), at(q), a_.data(), b_.data(), static_cast<int>(a_.size()), t[k - 1]) < 0) --k;
-    return k;
-  }
+  std::size_t first_shorter(int p, int q, const double* t, std::size_t n) const { return first_shorter(p, q, collect(p, q), t, n); }
   // |pq| / rms(spacing edges at p and q), double arithmetic (for the report), the squared lengths
   // summed in ascending order: the same double for the same points in any file order.
-  double ratio(int p, int q) const {
-    scratch_.clear();
-    spacing_edges(p, q, [&](int end, int r) { scratch_.push_back(len2(end, r)); });
-    std::sort(scratch_.begin(), scratch_.end());
-    double sum = 0;
-    for (const double x : scratch_) sum += x;
-    return std::sqrt(len2(p, q) / (sum / static_cast<double>(scratch_.size())));
+  double ratio(int p, int q) const { return ratio(p, q, collect(p, q)); }
+  // ratio() and shorter(p, q, t) from one gathering of the spacing edges.
+  std::pair<double, bool> ratio_and_shorter(int p, int q, double t) const {
+    const Edges& s = collect(p, q);
+    return {ratio(p, q, s), first_shorter(p, q, s, &t, 1) == 0};
   }
 
  private:
+  struct Edges {  // the spacing edges of one pair (per thread: the methods run on both cores)
+    std::vector<const double*> a, b;
+  };
   const double* at(int i) const { return pts_[static_cast<std::size_t>(i)]; }
-  double len2(int a, int b) const {
-    const double dx = at(a)[0] - at(b)[0], dy = at(a)[1] - at(b)[1];
+  static double len2(const double* a, const double* b) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1];
     return dx * dx + dy * dy;
   }
-  void collect(int p, int q) {
-    a_.clear();
-    b_.clear();
+  // The spacing edges of p and q, in a buffer of the calling thread (the methods run on both cores).
+  const Edges& collect(int p, int q) const {
+    thread_local Edges s;
+    s.a.clear();
+    s.b.clear();
     spacing_edges(p, q, [&](int end, int r) {
-      a_.push_back(at(end));
-      b_.push_back(at(r));
+      s.a.push_back(at(end));
+      s.b.push_back(at(r));
     });
+    return s;
+  }
+  // compare_gap2's own filter (gap_filtered) on the lengths summed once for all the factors, in
+  // the same order and doubles, and its exact arithmetic where the filter cannot decide.
+  std::size_t first_shorter(int p, int q, const Edges& s, const double* t, std::size_t n) const {
+    const int k = static_cast<int>(s.a.size());
+    double sum = 0;
+    for (std::size_t i = 0; i < s.a.size(); ++i) sum += len2(s.a[i], s.b[i]);
+    const double lhs = static_cast<double>(k) * len2(at(p), at(q));
+    const auto less = [&](double f) {  // sign(k·|pq|² - f²·Σ) < 0
+      bool ok = false;
+      const int sign = detail::gap_filtered(lhs, sum, f, k, 2, ok);
+      return (ok ? sign : compare_gap2(at(p), at(q), s.a.data(), s.b.data(), k, f)) < 0;
+    };
+    std::size_t j = n;
+    while (j > 0 && less(t[j - 1])) --j;
+    return j;
+  }
+  double ratio(int p, int q, const Edges& s) const {
+    thread_local std::vector<double> l;
+    l.clear();
+    for (std::size_t i = 0; i < s.a.size(); ++i) l.push_back(len2(s.a[i], s.b[i]));
+    std::sort(l.begin(), l.end());
+    double sum = 0;
+    for (const double x : l) sum += x;
+    return std::sqrt(len2(at(p), at(q)) / (sum / static_cast<double>(l.size())));
   }
   const PointSet& pts_;
   const NnCrust& crust_;
   double t_;  // the gap threshold (across_gap)
-  std::vector<const double*> a_, b_;
-  mutable std::vector<double> scratch_;
+  std::vector<char> across_;  // per crust slot: across_gap()
 };
 
 // The parts: components of the mutual crust edges and of the Delaunay edges shorter than
 // gap · local spacing. Also the split gap: the bottleneck of the single-linkage tree over the
 // mutual-crust pieces (the largest threshold that still splits), in double, for the report.
-std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
-                            RingsInference& out) {
+// links: the Delaunay edges between pieces with their ratio (Gaps::ratio), ascending; every edge
+// between two parts is one of them.
+using Links = std::vector<std::pair<double, std::array<int, 2>>>;
+std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const Gaps& gaps, double gap,
+                            Links& links, RingsInference& out) {
   const std::size_t n = pts.size();
   UnionFind pieces(n), parts(n);
-  Gaps gaps(pts, crust, gap);
-  std::vector<std::pair<double, std::array<int, 2>>> links;  // Delaunay edges between pieces
   const auto for_edges = [&](const auto& f) {
     for (std::size_t p = 0; p < n; ++p)
       for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k)
@@ -249,12 +285,22 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnC
       parts.join(p, q);
     }
   });
-  // Only edges between two pieces can split: the gap test runs on those alone.
+  // Only edges between two pieces can split: the gap test runs on those alone (on both cores).
+  std::vector<std::array<int, 2>> between;
   for_edges([&](int p, int q) {
-    if (pieces.find(p) == pieces.find(q)) return;
-    if (gaps.shorter(p, q, gap)) parts.join(p, q);
-    links.push_back({gaps.ratio(p, q), {p, q}});
+    if (pieces.find(p) != pieces.find(q)) between.push_back({p, q});
   });
+  links.assign(between.size(), {});
+  std::vector<char> short_link(between.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, between.size(), 2048), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const auto [ratio, shorter] = gaps.ratio_and_shorter(between[i][0], between[i][1], gap);
+      links[i] = {ratio, between[i]};
+      short_link[i] = shorter ? 1 : 0;
+    }
+  });
+  for (std::size_t i = 0; i < between.size(); ++i)
+    if (short_link[i]) parts.join(between[i][0], between[i][1]);
   std::sort(links.begin(), links.end());
   for (const auto& [g, e] : links)
     if (pieces.join(e[0], e[1])) out.split_gap_spacings = g;
@@ -305,21 +351,18 @@ std::array<int, 2> edge_ends(const Adjacency& adj, std::size_t e) {
 // For each Delaunay edge (as 3t + i, from the triangle that takes it), the first level at which it
 // is a wall if its ends are in one part: 0 mutual crust or shorter than the threshold (never
 // between two parts), 1 and 2 shorter than 2 and 4 times it; kLevels: never. Exact (compare_gap2).
-std::vector<std::uint8_t> wall_levels(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap) {
+std::vector<std::uint8_t> wall_levels(const Adjacency& adj, const NnCrust& crust, const Gaps& gaps, double gap) {
   std::vector<std::uint8_t> level(3 * adj.triangles.size(), kLevels);
-  Gaps gaps(pts, crust, gap);
   double factors[kLevels];
   for (std::uint8_t k = 0; k < kLevels; ++k) factors[k] = kSealFactors[k] * gap;
-  for (std::size_t e = 0; e < level.size(); ++e) {
-    const int u = adj.neighbors[e / 3][e % 3];
-    if (u >= 0 && static_cast<std::size_t>(u) < e / 3) continue;
-    const auto [a, b] = edge_ends(adj, e);
-    if (crust.mutual(a, b)) {
-      level[e] = 0;
-      continue;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, level.size(), 6144), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t e = range.begin(); e != range.end(); ++e) {
+      const int u = adj.neighbors[e / 3][e % 3];
+      if (u >= 0 && static_cast<std::size_t>(u) < e / 3) continue;
+      const auto [a, b] = edge_ends(adj, e);
+      level[e] = crust.mutual(a, b) ? 0 : static_cast<std::uint8_t>(gaps.first_shorter(a, b, factors, kLevels));
     }
-    level[e] = static_cast<std::uint8_t>(gaps.first_shorter(a, b, factors, kLevels));
-  }
+  });
   return level;
 }
 
@@ -365,29 +408,45 @@ class Enclosures {
         unbounded_[t] = 0;
       }
     }
-    std::vector<RegionFatness2Filter> filter(count);
+    // Per region its wall sides (a wall inside a region counts twice) and the parts at its walls.
+    std::vector<std::uint32_t> sides(count, 0);
     std::vector<int> last_part(count, -1);
     const auto at = [&](int v) { return pts[static_cast<std::size_t>(v)]; };
     const auto region_of = [&](int t) { return t == outside ? -1 : rid[static_cast<std::size_t>(t)]; };
-    for (std::size_t t = 0; t < n_tris; ++t)
-      if (const int k = rid[t]; k >= 0)
-        filter[static_cast<std::size_t>(k)].add_triangle(at(adj.triangles[t][0]), at(adj.triangles[t][1]), at(adj.triangles[t][2]));
     for (const std::uint32_t e : walls_at)
       for (const int t : {static_cast<int>(e / 3), other(e)}) {
         const int k = region_of(t);
         if (k < 0) continue;
-        const auto [a, b] = ends(e);
-        filter[static_cast<std::size_t>(k)].add_wall(at(a), at(b));
+        ++sides[static_cast<std::size_t>(k)];
+        const int a = ends(e)[0];
         int& last = last_part[static_cast<std::size_t>(k)];
         if (last != part_of[static_cast<std::size_t>(a)]) sides_.push_back({k, a});
         last = part_of[static_cast<std::size_t>(a)];
       }
-    const std::size_t n = filter.size();
-    fat_.resize(n);
-    std::vector<int> exact(n, -1);  // undecided region -> its slot among the gathered ones
+    // A region with at most kThinWallSides wall sides is never fat (detail/infer_rings2.hpp), so only the
+    // others are measured: the filter summed in place, the few it cannot decide then gathered for
+    // the exact predicate.
+    std::vector<int> slot(count, -1);  // region -> its filter
+    std::size_t measured = 0;
+    for (std::size_t k = 0; k < count; ++k)
+      if (sides[k] > detail::kThinWallSides) slot[k] = static_cast<int>(measured++);
+    std::vector<RegionFatness2Filter> filter(measured);
+    const auto filter_of = [&](int t) -> RegionFatness2Filter* {
+      const int k = region_of(t);
+      return k < 0 || slot[static_cast<std::size_t>(k)] < 0 ? nullptr : &filter[static_cast<std::size_t>(slot[static_cast<std::size_t>(k)])];
+    };
+    for (std::size_t t = 0; t < n_tris; ++t)
+      if (RegionFatness2Filter* f = filter_of(static_cast<int>(t)))
+        f->add_triangle(at(adj.triangles[t][0]), at(adj.triangles[t][1]), at(adj.triangles[t][2]));
+    for (const std::uint32_t e : walls_at)
+      for (const int t : {static_cast<int>(e / 3), other(e)})
+        if (RegionFatness2Filter* f = filter_of(t)) f->add_wall(at(ends(e)[0]), at(ends(e)[1]));
+    fat_.assign(count, 0);
+    std::vector<int> exact(count, -1);  // undecided region -> its slot among the gathered ones
     std::vector<std::vector<int>> tris, walls;
-    for (std::size_t k = 0; k < n; ++k) {
-      const int sign = filter[k].sign(kMinRingFatness);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (slot[k] < 0) continue;
+      const int sign = filter[static_cast<std::size_t>(slot[k])].sign(kMinRingFatness);
       fat_[k] = sign > 0;
       if (sign == 0) {
         exact[k] = static_cast<int>(tris.size());
@@ -406,7 +465,7 @@ class Enclosures {
             w.push_back(ends(e)[0]);
             w.push_back(ends(e)[1]);
           }
-      for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t k = 0; k < count; ++k)
         if (const int x = exact[k]; x >= 0) {
           const auto& r = tris[static_cast<std::size_t>(x)];
           const auto& w = walls[static_cast<std::size_t>(x)];
@@ -620,9 +679,7 @@ void nest(const PointSet& pts, std::vector<std::vector<int>>& rings, RingsInfere
 }
 
 // Each ring's smallest gap to another part and the overall smallest (double, for the report).
-void report_gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap, const std::vector<int>& ring_of,
-                 RingsInference& out) {
-  const Gaps gaps(pts, crust, gap);
+void report_gaps(const Adjacency& adj, const Gaps& gaps, const std::vector<int>& ring_of, RingsInference& out) {
   for (std::size_t p = 0; p < ring_of.size(); ++p)
     for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
       const int ip = static_cast<int>(p), q = adj.nbr[k];
@@ -717,12 +774,10 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
 }
 
 // For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
-// lexicographically smaller pair of points), -1 for none.
-std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double gap,
-                               const std::vector<int>& ring_of, std::size_t parts) {
+// lexicographically smaller pair of points), -1 for none. The edges between parts are links.
+std::vector<int> nearest_parts(const PointSet& pts, const Links& links, const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
-  const Gaps gaps(pts, crust, gap);
   const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
   const auto better = [&](double g, int p, int q, const Best& b) {
     if (b.p < 0 || g < b.gap) return true;
@@ -730,15 +785,14 @@ std::vector<int> nearest_parts(const PointSet& pts, const Adjacency& adj, const 
     if (lex_less(at(p), at(b.p))) return true;
     return !lex_less(at(b.p), at(p)) && lex_less(at(q), at(b.q));
   };
-  for (std::size_t p = 0; p < ring_of.size(); ++p)
-    for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
-      const int ip = static_cast<int>(p), q = adj.nbr[k];
-      const int rp = ring_of[p], rq = ring_of[static_cast<std::size_t>(q)];
-      if (rp == rq) continue;
-      const double g = gaps.ratio(ip, q);
-      Best& b = best[static_cast<std::size_t>(rp)];
-      if (better(g, ip, q, b)) b = Best{g, ip, q};
+  for (const auto& [g, e] : links) {
+    const int rp = ring_of[static_cast<std::size_t>(e[0])], rq = ring_of[static_cast<std::size_t>(e[1])];
+    if (rp == rq) continue;
+    for (const auto& [r, p, q] : {std::array<int, 3>{rp, e[0], e[1]}, std::array<int, 3>{rq, e[1], e[0]}}) {
+      Best& b = best[static_cast<std::size_t>(r)];
+      if (better(g, p, q, b)) b = Best{g, p, q};
     }
+  }
   std::vector<int> out(parts, -1);
   for (std::size_t k = 0; k < parts; ++k)
     if (best[k].q >= 0) out[k] = ring_of[static_cast<std::size_t>(best[k].q)];
@@ -768,7 +822,9 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
   const NnCrust crust(points, adj);
   for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
-  std::vector<int> part_of = find_parts(points, adj, crust, gap, out);
+  Gaps gaps(points, crust, gap);
+  Links links;
+  std::vector<int> part_of = find_parts(points, adj, crust, gaps, gap, links, out);
   std::vector<std::vector<int>> parts = group_parts(points, part_of);
   out.parts = parts.size();
   if (parts.size() == 1) return Status::ok();  // OneCurve
@@ -808,7 +864,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (test_open) {
       const bool first = enclosures.empty();
       if (first) {
-        wall_level = wall_levels(points, adj, crust, gap);
+        wall_level = wall_levels(adj, crust, gaps, gap);
         enclosures.resize(kLevels);
         for (std::uint8_t level = 0; level < kLevels; ++level) components.emplace_back(incremental ? points.size() : 0);
         // The edges that a join can make walls: between two parts, at a level > 0.
@@ -872,7 +928,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (!any_thin) break;
     // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
     // rings of parts that did not change are kept).
-    const std::vector<int> nearest = nearest_parts(points, adj, crust, gap, ring_of, parts.size());
+    const std::vector<int> nearest = nearest_parts(points, links, ring_of, parts.size());
     UnionFind joined(parts.size());
     for (std::size_t k = 0; k < parts.size(); ++k)
       if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
@@ -899,7 +955,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     }
   }
   nest(points, rings, out);
-  report_gaps(points, adj, crust, gap, ring_of, out);
+  report_gaps(adj, gaps, ring_of, out);
   out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
   return Status::ok();
 }

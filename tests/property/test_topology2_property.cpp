@@ -19,6 +19,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "topology/detail/infer_rings2.hpp"
 #include "topology_gen.hpp"
 
 namespace constrict {
@@ -306,6 +307,46 @@ TEST(Topology2Property, RingFatnessPredicateExact) {
 // four walls, exact at the tie and at extreme scales; a counter-clockwise ring fanned into
 // triangles with its edges as walls gives compare_ring_fatness2's sign; the accumulated filter
 // never contradicts the exact answer.
+// The open-arc test measures only regions with more than kThinWallSides wall sides: no region
+// bounded by fewer walls is fat. Star-shaped polygons (random angles and radii, seed printed) of
+// 3..kThinWallSides vertices, fanned from their centre, never are; the regular polygon is the
+// fattest, and the regular polygon with one side more is fat, so the constant is the largest valid.
+TEST(Topology2Property, RegionsOfFewWallsAreNeverFat) {
+  const auto fatness = [](const std::vector<double>& radius, const std::vector<double>& angle) {
+    const int m = static_cast<int>(radius.size());
+    std::vector<double> xy = {0.0, 0.0};  // the centre, then the ring
+    for (int i = 0; i < m; ++i) xy.insert(xy.end(), {radius[static_cast<std::size_t>(i)] * std::cos(angle[static_cast<std::size_t>(i)]), radius[static_cast<std::size_t>(i)] * std::sin(angle[static_cast<std::size_t>(i)])});
+    std::vector<int> tris, walls;
+    for (int i = 0; i < m; ++i) {
+      tris.insert(tris.end(), {0, 1 + i, 1 + (i + 1) % m});
+      walls.insert(walls.end(), {1 + i, 1 + (i + 1) % m});
+    }
+    return compare_region_fatness2(xy.data(), tris.data(), tris.size() / 3, walls.data(), walls.size() / 2, kMinRingFatness);
+  };
+  const double pi = std::acos(-1.0);
+  const auto regular = [&](int m) {
+    std::vector<double> r(static_cast<std::size_t>(m), 1.0), a;
+    for (int i = 0; i < m; ++i) a.push_back(2 * pi * i / m);
+    return fatness(r, a);
+  };
+  const int most = static_cast<int>(detail::kThinWallSides);
+  for (int m = 3; m <= most; ++m) EXPECT_LT(regular(m), 0) << m << "-gon";
+  EXPECT_GT(regular(most + 1), 0) << "the regular " << most + 1 << "-gon is fat: kThinWallSides cannot grow";
+  const unsigned seed = 17;
+  std::printf("RegionsOfFewWallsAreNeverFat: seed %u\n", seed);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5), rad(0.2, 1.0);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int m = 3 + trial % (most - 2);
+    std::vector<double> r, a;
+    for (int i = 0; i < m; ++i) {
+      r.push_back(trial % 3 == 0 ? 1.0 : rad(rng));
+      a.push_back(2 * pi * (i + jitter(rng) * (trial % 2 ? 0.1 : 0.9)) / m);
+    }
+    EXPECT_LT(fatness(r, a), 0) << "trial " << trial << ", " << m << " walls";
+  }
+}
+
 TEST(Topology2Property, RegionFatnessPredicateExact) {
   const std::vector<double> xy = {0, 0, 1, 0, 1, 1, 0, 1};
   const int tris[6] = {0, 1, 2, 0, 2, 3}, walls[8] = {0, 1, 1, 2, 2, 3, 3, 0};

@@ -15,6 +15,15 @@ namespace constrict::detail {
 constexpr double kU = std::numeric_limits<double>::epsilon() / 2;
 inline bool safe_range(double m) { return m > 1e-250 && m < 1e250; }
 
+// sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) from lhs = k·|pq|^2 and sum = Σ|a_i b_i|^2, each squared
+// length summed coordinate by coordinate in D dimensions and the sum in any order (compare_gap2/3):
+// depth <= D + 1 + (k - 1) + D + 1 + 2, the bound uses 2k + 2D + 4.
+inline int gap_filtered(double lhs, double sum, double t, int k, int dim, bool& ok) {
+  const double rhs = t * t * sum, d = lhs - rhs, m = lhs + rhs;  // every leaf product is a square: m is the |tree|
+  ok = std::isfinite(m) && safe_range(m) && std::fabs(d) > (2.0 * k + 2 * dim + 4) * kU * m;
+  return d > 0 ? 1 : (d < 0 ? -1 : 0);
+}
+
 // sign((b-a) x (c-a)); depth 3.
 inline int orient2_filtered(const double* a, const double* b, const double* c, bool& ok) {
   const double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - a[0], vy = c[1] - a[1];

@@ -12,6 +12,15 @@
 
 namespace constrict::detail {
 
+/// A region of triangles with W wall sides (its walls, one inside it counted twice) is never fat
+/// (compare_region_fatness2 > 0 at kMinRingFatness) when W <= kThinWallSides, so the open-arc test
+/// measures only the others. Its boundary is at most W walls: closed polygons of k_j <= W edges,
+/// each enclosing at most P_j² / (4 k_j tan(π/k_j)) (the regular polygon) <= Σ|e|² / (4 tan(π/W))
+/// by Cauchy–Schwarz, so 2A / Σ|w|² <= 1 / (2 tan(π/W)): 0.866 for W = 6, below kMinRingFatness
+/// (W = 7: 1.04). Test: Topology2Property.RegionsOfFewWallsAreNeverFat.
+constexpr unsigned kThinWallSides = 6;
+static_assert(kMinRingFatness >= 0.87, "kThinWallSides needs kMinRingFatness > 1 / (2 tan(pi / 6))");
+
 struct RingsAdjacency;  // the triangulation's vertex adjacency (infer_rings2.cpp)
 
 /// The adjacency of dt's vertices; keeps dt's triangles and neighbours (moved in: a caller whose
