@@ -33,6 +33,7 @@
 #include "constrict/topology.hpp"
 #include "constrict/detail/share3.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
 #include "core/detail/union_find.hpp"
 
@@ -66,24 +67,40 @@ constexpr int kSpacingRank = 3;
 
 // Each point's kSpacingRank-th nearest Delaunay neighbour (exact comparisons; ties -> the
 // lexicographically smaller point; fewer neighbours -> the farthest).
+// |ab|² summed coordinate by coordinate, as compare_gap3 sums it (the same double).
+double len2(const double* a, const double* b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
 std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
   constexpr int k = kSpacingRank;
   std::vector<std::array<int, k>> best(pts.size());
+  std::vector<std::array<double, k>> best_d2(pts.size());  // their len2 from the point
   for (auto& b : best) b.fill(-1);
-  const auto closer = [&](int p, int q, int r) {  // is q nearer to p than r?
-    const int c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(r)]);
+  // Is q (at squared distance dq from p) nearer to p than r (dr)? compare_distance3's own filter
+  // (gap_filtered) on the cached squared lengths, its exact arithmetic when that cannot decide.
+  const auto closer = [&](int p, int q, double dq, int r, double dr) {
+    bool ok = false;
+    int c = detail::gap_filtered(dq, dr, 1.0, 1, 3, ok);
+    if (!ok) c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(r)]);
     return c < 0 || (c == 0 && lex_less3(pts[uz(q)], pts[uz(r)]));
   };
   const auto offer = [&](int p, int q) {
     auto& b = best[uz(p)];
+    auto& d = best_d2[uz(p)];
     for (int x : b)
       if (x == q) return;
+    const double dq = len2(pts[uz(p)], pts[uz(q)]);
     // Insert q into the sorted list of the k nearest so far.
     int i = k;
-    while (i > 0 && (b[uz(i - 1)] < 0 || closer(p, q, b[uz(i - 1)]))) --i;
+    while (i > 0 && (b[uz(i - 1)] < 0 || closer(p, q, dq, b[uz(i - 1)], d[uz(i - 1)]))) --i;
     if (i == k) return;
-    for (int j = k - 1; j > i; --j) b[uz(j)] = b[uz(j - 1)];
+    for (int j = k - 1; j > i; --j) {
+      b[uz(j)] = b[uz(j - 1)];
+      d[uz(j)] = d[uz(j - 1)];
+    }
     b[uz(i)] = q;
+    d[uz(i)] = dq;
   };
   // In parallel over ranges of points: each range reads every tetrahedron and offers only to its
   // own points, so each point sees the same offers in the same order as one sequential pass (and
@@ -111,9 +128,6 @@ struct Parts {
   std::vector<std::array<int, 2>> long_edges;  // the Delaunay edges the gap rule did not join (p < q)
 };
 
-double len2(const double* a, const double* b) {
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-}
 // |pq| / rms(nn(p), nn(q)) in double (the report).
 double gap_ratio(const PointSet& pts, const std::vector<int>& nn, int p, int q) {
   const double s = 0.5 * (len2(pts[uz(p)], pts[uz(nn[uz(p)])]) + len2(pts[uz(q)], pts[uz(nn[uz(q)])]));
@@ -183,11 +197,20 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
   std::vector<std::array<int, 2>> long_edges;
   // (An edge whose ends are joined already decides nothing: every edge between two final parts
   // is tested, and recorded as long.)
+  // Each point's squared spacing, as compare_gap3 sums it: its filter (gap_filtered) decides most
+  // edges from these, its exact arithmetic the rest.
+  std::vector<double> s2(pts.size());
+  for (std::size_t v = 0; v < pts.size(); ++v) s2[v] = len2(pts[v], pts[uz(nn[v])]);
   for_tet_edges(dt, [&](int p, int q) {
     if (uf.find(p) == uf.find(q)) return;
-    const double* a[2] = {pts[uz(p)], pts[uz(q)]};
-    const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
-    if (compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, gap) < 0) uf.join(p, q);
+    bool ok = false;
+    int c = detail::gap_filtered(2.0 * len2(pts[uz(p)], pts[uz(q)]), s2[uz(p)] + s2[uz(q)], gap, 2, 3, ok);
+    if (!ok) {
+      const double* a[2] = {pts[uz(p)], pts[uz(q)]};
+      const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
+      c = compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, gap);
+    }
+    if (c < 0) uf.join(p, q);
     else long_edges.push_back({std::min(p, q), std::max(p, q)});
   });
   std::sort(long_edges.begin(), long_edges.end());

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <numeric>
@@ -290,6 +291,37 @@ TEST(Surfaces3Property, BodyCheckRejectsBrokenBodies) {
   TriMesh3 missing = m;  // a surface triangle dropped
   missing.triangles.pop_back();
   EXPECT_FALSE(validate_body3(s.points, missing, body).is_ok());
+  // The message names the face in the caller's ids (the check renumbers the vertices inside).
+  auto face = flipped.triangles[7];
+  std::sort(face.begin(), face.end());
+  const std::string name = "(" + std::to_string(face[0]) + ", " + std::to_string(face[1]) + ", " + std::to_string(face[2]) + ")";
+  EXPECT_NE(validate_body3(s.points, flipped, body).message().find(name), std::string::npos);
+  // The same verdicts and messages (up to the ids) with the points in another order.
+  const unsigned seed = 23;
+  std::printf("BodyCheckRejectsBrokenBodies: permutation seed %u\n", seed);
+  std::vector<int> perm(s.points.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+  PointSet moved = s.points;
+  for (std::size_t v = 0; v < perm.size(); ++v)
+    std::copy(s.points[v], s.points[v] + 3, &moved.coords[3 * static_cast<std::size_t>(perm[v])]);
+  const auto mv_mesh = [&](TriMesh3 x) {
+    for (auto& t : x.triangles)
+      for (int& v : t) v = perm[static_cast<std::size_t>(v)];
+    return x;
+  };
+  const auto mv_body = [&](std::vector<std::array<int, 4>> x) {
+    for (auto& t : x)
+      for (int& v : t) v = perm[static_cast<std::size_t>(v)];
+    return x;
+  };
+  const auto kind = [](const Status& st) { return st.is_ok() ? std::string("ok") : st.message().substr(0, st.message().find('(')); };
+  EXPECT_EQ(kind(validate_body3(moved, mv_mesh(m), mv_body(body))), "ok");
+  EXPECT_EQ(kind(validate_body3(moved, mv_mesh(flipped), mv_body(body))), kind(validate_body3(s.points, flipped, body)));
+  EXPECT_EQ(kind(validate_body3(moved, mv_mesh(m), mv_body(inverted))), kind(validate_body3(s.points, m, inverted)));
+  EXPECT_EQ(kind(validate_body3(moved, mv_mesh(m), mv_body(twice))), kind(validate_body3(s.points, m, twice)));
+  EXPECT_FALSE(validate_body3(moved, mv_mesh(m), mv_body(fewer)).is_ok());
+  EXPECT_FALSE(validate_body3(moved, mv_mesh(missing), mv_body(body)).is_ok());
 }
 
 // A handle's cut in a noisy sample: the points near the cut lie a little inside the tube, and
