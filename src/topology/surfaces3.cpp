@@ -364,6 +364,64 @@ bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& f
 }
 
 // The free faces of a body of positively oriented tetrahedra, oriented out of it.
+// The parts' surfaces made of Delaunay faces of all points where edge flips can: a surface face
+// that is not one (the other points of the data are inside all of its empty spheres; seen on
+// random samples of nested spheres, where a part's own surface keeps nearly coplanar triangles on
+// the diagonals that the other part's points exclude) and the surface face across one of its
+// edges are replaced by the two triangles on the quad's other diagonal, when fewer of those are
+// not Delaunay faces (so every flip lowers their number) and that diagonal is no surface edge yet. Each flip keeps
+// every surface a closed, oriented 2-manifold of the same genus through the same points (a
+// tetrahedron added to or taken from one part's body); assemble_body() then checks the rest.
+// Returns the number of flips (0: faces unchanged); at most `max_flips`, in at most 4 passes.
+std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<int, 3>>& faces, std::size_t max_flips) {
+  std::unordered_map<FaceKey, char, FaceHash> delaunay;
+  delaunay.reserve(2 * dt.tets.size() + 16);
+  for (const auto& t : dt.tets)
+    for (int i = 0; i < 4; ++i) {
+      const auto& f = kFaceOut[i];
+      delaunay.emplace(key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]), 1);
+    }
+  const auto is_delaunay = [&](int a, int b, int c) { return delaunay.count(key_of(a, b, c)) > 0; };
+  // Directed surface edge (a, b) -> its face, and the undirected edges for the manifold test.
+  const auto ekey = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
+  std::unordered_map<std::uint64_t, int> face_of_edge;
+  face_of_edge.reserve(3 * faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) face_of_edge[ekey(faces[f][uz(k)], faces[f][uz((k + 1) % 3)])] = static_cast<int>(f);
+  std::size_t flips = 0;
+  for (int pass = 0, changed = 1; changed && pass < 4 && flips < max_flips; ++pass) {
+    changed = 0;
+    for (std::size_t f = 0; f < faces.size() && flips < max_flips; ++f) {
+      if (is_delaunay(faces[f][0], faces[f][1], faces[f][2])) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int a = faces[f][uz(k)], b = faces[f][uz((k + 1) % 3)], c = faces[f][uz((k + 2) % 3)];
+        const auto across = face_of_edge.find(ekey(b, a));
+        if (across == face_of_edge.end()) continue;
+        const std::size_t g = uz(across->second);
+        const auto& tg = faces[g];
+        int d = -1;
+        for (int v : tg)
+          if (v != a && v != b) d = v;
+        // (a, b, c) and (b, a, d) -> (a, d, c) and (d, b, c): the quad a d b c, diagonal c d.
+        if (d < 0 || d == c || face_of_edge.count(ekey(c, d)) || face_of_edge.count(ekey(d, c))) continue;
+        // (Fewer faces that are not Delaunay after the flip: a strip of them goes a flip at a time.)
+        const int before = 1 + !is_delaunay(tg[0], tg[1], tg[2]), after = !is_delaunay(a, d, c) + !is_delaunay(d, b, c);
+        if (after >= before) continue;
+        for (const std::size_t h : {f, g})
+          for (int j = 0; j < 3; ++j) face_of_edge.erase(ekey(faces[h][uz(j)], faces[h][uz((j + 1) % 3)]));
+        faces[f] = {a, d, c};
+        faces[g] = {d, b, c};
+        for (const std::size_t h : {f, g})
+          for (int j = 0; j < 3; ++j) face_of_edge[ekey(faces[h][uz(j)], faces[h][uz((j + 1) % 3)])] = static_cast<int>(h);
+        ++flips;
+        changed = 1;
+        break;
+      }
+    }
+  }
+  return flips;
+}
+
 TriMesh3 body_surface(const std::vector<std::array<int, 4>>& body) {
   std::unordered_map<FaceKey, int, FaceHash> count;
   count.reserve(body.size() * 4);
@@ -603,7 +661,12 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
     }
   const auto t0 = Clock::now();
   std::vector<std::array<int, 4>> body;
-  if (!assemble_body(dt, faces, body)) {
+  bool assembled = assemble_body(dt, faces, body);
+  // Parts inside others need the common tetrahedralization: a few faces that are not Delaunay
+  // faces of all points are flipped where they can be (parts apart keep their own bodies below).
+  if (!assembled && !boxes_apart(pts, parts) && flip_to_delaunay_faces(dt, faces, faces.size() / 64 + 16) > 0)
+    assembled = assemble_body(dt, faces, body);
+  if (!assembled) {
     if (!boxes_apart(pts, parts)) {
       r.decision = SurfacesDecision::NotDelaunay;
       return false;

@@ -165,19 +165,24 @@ TEST(Surfaces3Property, NoisyRandomSpheresApartAreTwoSurfaces) {
 // one sample, 10 on another). Now: the outer surface and the inner shell, genus 0. (About one
 // random sample in seven still has a face that is not Delaunay in all points, and then gives one
 // genus-0 surface: docs/topology.md §Limits.)
+// Uniformly random points on two concentric spheres: the outer part's own surface can keep a few
+// nearly coplanar triangles on the diagonals that the inner points exclude (not Delaunay faces of
+// all points); they are flipped before the body is assembled (seed 5 fails without the flips).
 TEST(Surfaces3Property, RandomHollowBallIsTwoSurfaces) {
-  std::mt19937_64 rng(1);
-  PointSet p;
-  p.dim = 3;
-  for (int k = 0; k < 20000; ++k) {
-    const auto v = test::detail_gen3::on_sphere(rng, {0, 0, 0}, k < 12000 ? 1.0 : 0.7);
-    p.coords.insert(p.coords.end(), v.begin(), v.end());
+  for (const unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u}) {
+    std::mt19937_64 rng(seed);
+    PointSet p;
+    p.dim = 3;
+    for (int k = 0; k < 20000; ++k) {
+      const auto v = test::detail_gen3::on_sphere(rng, {0, 0, 0}, k < 12000 ? 1.0 : 0.7);
+      p.coords.insert(p.coords.end(), v.begin(), v.end());
+    }
+    test::Sample3 s;
+    s.points = p;
+    s.surfaces = 2;
+    s.inner = 1;
+    expect_topology(s, run_auto(p), "random hollow ball, seed " + std::to_string(seed));
   }
-  test::Sample3 s;
-  s.points = p;
-  s.surfaces = 2;
-  s.inner = 1;
-  expect_topology(s, run_auto(p), "random hollow ball");
 }
 
 TEST(Surfaces3Property, GenusZeroControlsKeepTheSingleSurface) {
