@@ -3,6 +3,7 @@
 // against their truth, brute-force validity, invariance of the decision, the validators on broken
 // ring sets, and the exact gap predicate. Seeds are printed with every failure.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
@@ -428,6 +429,42 @@ TEST(Topology2Property, RandomNoisySamplesKeepTheirParts) {
       }
   std::printf("[ Topology2Property ] random noisy samples: %d of %d give the true number of rings\n", right, total);
   EXPECT_GE(right, total * 9 / 10);
+}
+
+// The inference runs its per-point and per-edge loops on both cores, each result in its own
+// slot: one thread gives the same rings, decisions and report doubles (bit for bit).
+TEST(Topology2Property, InferenceIsTheSameOnOneThread) {
+  const auto infer = [](const PointSet& p, std::size_t threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    Delaunay2 dt;
+    EXPECT_TRUE(build_delaunay2(p, dt).is_ok());
+    Rings2Options o;
+    o.topology = Topology2::Auto;
+    o.open_arc_rebuild_max = 0;  // (the large-input way too)
+    RingsInference r;
+    EXPECT_TRUE(infer_rings2(p, dt, o, r).is_ok());
+    return r;
+  };
+  std::vector<PointSet> inputs = {noisy_petal_curve(20000, 3), test::make_topology(TopoFamily::Nested, 2.5, 4, 1.0, 0.3).points,
+                                  test::make_topology(TopoFamily::Parts, 3.0, 2).points};
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    SCOPED_TRACE("input " + std::to_string(k));
+    const RingsInference a = infer(inputs[k], 1), b = infer(inputs[k], 2);
+    EXPECT_EQ(a.decision, b.decision);
+    EXPECT_EQ(a.parts, b.parts);
+    EXPECT_EQ(a.open_parts, b.open_parts);
+    EXPECT_EQ(a.thin_parts_joined, b.thin_parts_joined);
+    EXPECT_EQ(a.split_gap_spacings, b.split_gap_spacings);
+    EXPECT_EQ(a.min_gap_spacings, b.min_gap_spacings);
+    ASSERT_EQ(a.rings.size(), b.rings.size());
+    for (std::size_t r = 0; r < a.rings.size(); ++r) {
+      EXPECT_EQ(a.rings[r].indices, b.rings[r].indices);
+      EXPECT_EQ(a.rings[r].gap_spacings, b.rings[r].gap_spacings);
+    }
+    if (k == 0) {
+      EXPECT_GT(a.thin_parts_joined, 0u);  // (the many-part path ran)
+    }
+  }
 }
 
 TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
