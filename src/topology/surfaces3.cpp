@@ -65,13 +65,13 @@ void for_tet_edges(const Delaunay3& dt, F&& f) {
 // the sampling spacing for blue-noise and random samples alike (docs/topology.md §"3D").
 constexpr int kSpacingRank = 3;
 
-// Each point's kSpacingRank-th nearest Delaunay neighbour (exact comparisons; ties -> the
-// lexicographically smaller point; fewer neighbours -> the farthest).
 // |ab|² summed coordinate by coordinate, as compare_gap3 sums it (the same double).
 double len2(const double* a, const double* b) {
   return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
 }
 
+// Each point's kSpacingRank-th nearest Delaunay neighbour (exact comparisons; ties -> the
+// lexicographically smaller point; fewer neighbours -> the farthest).
 std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
   constexpr int k = kSpacingRank;
   std::vector<std::array<int, k>> best(pts.size());
@@ -363,15 +363,15 @@ bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& f
   return true;
 }
 
-// The free faces of a body of positively oriented tetrahedra, oriented out of it.
 // The parts' surfaces made of Delaunay faces of all points where edge flips can: a surface face
 // that is not one (the other points of the data are inside all of its empty spheres; seen on
 // random samples of nested spheres, where a part's own surface keeps nearly coplanar triangles on
 // the diagonals that the other part's points exclude) and the surface face across one of its
 // edges are replaced by the two triangles on the quad's other diagonal, when fewer of those are
-// not Delaunay faces (so every flip lowers their number) and that diagonal is no surface edge yet. Each flip keeps
-// every surface a closed, oriented 2-manifold of the same genus through the same points (a
-// tetrahedron added to or taken from one part's body); assemble_body() then checks the rest.
+// not Delaunay faces (so every flip lowers their number) and that diagonal is no surface edge
+// yet. Each flip keeps every surface a closed, oriented 2-manifold of the same genus through the
+// same points (a tetrahedron added to or taken from one part's body); assemble_body() then checks
+// the rest.
 // Returns the number of flips (0: faces unchanged); at most `max_flips`, in at most 4 passes.
 std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<int, 3>>& faces, std::size_t max_flips) {
   std::unordered_map<FaceKey, char, FaceHash> delaunay;
@@ -382,7 +382,7 @@ std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<i
       delaunay.emplace(key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]), 1);
     }
   const auto is_delaunay = [&](int a, int b, int c) { return delaunay.count(key_of(a, b, c)) > 0; };
-  // Directed surface edge (a, b) -> its face, and the undirected edges for the manifold test.
+  // Directed surface edge (a, b) -> its face (an edge is a surface edge in either direction).
   const auto ekey = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
   std::unordered_map<std::uint64_t, int> face_of_edge;
   face_of_edge.reserve(3 * faces.size());
@@ -422,6 +422,7 @@ std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<i
   return flips;
 }
 
+// The free faces of a body of positively oriented tetrahedra, oriented out of it.
 TriMesh3 body_surface(const std::vector<std::array<int, 4>>& body) {
   std::unordered_map<FaceKey, int, FaceHash> count;
   count.reserve(body.size() * 4);
