@@ -27,11 +27,16 @@
 #include <CGAL/Hilbert_sort_median_3.h>
 #include <CGAL/algorithm.h>
 #include <CGAL/spatial_sort.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,8 +54,35 @@ using Fb2 = CGAL::Triangulation_face_base_with_info_2<int, K>;
 using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
 using DT2 = CGAL::Delaunay_triangulation_2<K, Tds2>;
 
+// ---- CGAL's cells given back while they are exported (3D) --------------------------------------
+// At 10^6 points CGAL's cells are about 600 bytes per point (72-byte cells, 6-8 per point) and the
+// exported tetrahedra with their neighbours 32 bytes per cell: written beside the cells, the two
+// made the peak of a whole 3D run. Instead, each finite cell's export record is first written
+// into the cell itself (over its four vertex handles, which nothing reads afterwards), then the
+// records are copied out in container order and copied cells' pages are given back to the
+// system (export_released3; from kReleasedExportFromTets tetrahedra on). The triangulation is then destroyed without reading its cells:
+// while t_cells_released is set on this thread, every cell reports itself free to CGAL's
+// Compact_container, whose clear() then only deallocates the blocks.
+thread_local bool t_cells_released = false;
+
+template <class Cb>
+class ReleasableCell : public Cb {
+ public:
+  template <class Tds2>
+  struct Rebind_TDS {
+    using Other = ReleasableCell<typename Cb::template Rebind_TDS<Tds2>::Other>;
+  };
+  using Cb::Cb;
+  // Compact_container's type bits (the low two bits): 2 = FREE.
+  void* for_compact_container() const {
+    if (t_cells_released) return reinterpret_cast<void*>(std::uintptr_t{2});
+    return Cb::for_compact_container();
+  }
+  void for_compact_container(void* p) { Cb::for_compact_container(p); }
+};
+
 using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Cb3 = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+using Cb3 = ReleasableCell<CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using DT3 = CGAL::Delaunay_triangulation_3<K, Tds3>;
 
@@ -176,6 +208,157 @@ void export_finite(It first, It last, VertexHandle inf, const detail::BigArray<i
     }
   }
   export_simplices<K>(hs, base, id, simplices, neighbors, lm, local);
+}
+
+// ---- The 3D export that gives CGAL's cells back (see ReleasableCell) ----------------------------
+// The record of a finite cell: its tetrahedron (input ids) and its neighbours (finite indices, -1
+// on the hull), written over the cell's vertex handles: bytes [32, 64) of CGAL 5's
+// Triangulation_ds_cell_base_3 (Cell_handle N[4], then Vertex_handle V[4]). The layout is checked
+// on a cell before it is used (record_layout_holds); if it ever differs, export_finite runs.
+struct CellRecord {
+  std::array<int, 4> tet;
+  std::array<int, 4> nb;
+};
+constexpr std::size_t kRecordOffset = 4 * sizeof(void*);
+static_assert(sizeof(DT3::Vertex_handle) == sizeof(void*) && sizeof(DT3::Cell_handle) == sizeof(void*));
+static_assert(sizeof(CellRecord) == 4 * sizeof(void*));
+
+unsigned char* cell_bytes(DT3::Cell_handle c) { return reinterpret_cast<unsigned char*>(&*c); }
+
+bool record_layout_holds(DT3::Cell_handle c) {
+  const unsigned char* raw = cell_bytes(c);
+  for (int k = 0; k < 4; ++k) {
+    const DT3::Cell_handle n = c->neighbor(k);
+    const DT3::Vertex_handle v = c->vertex(k);
+    const std::size_t at = static_cast<std::size_t>(k) * sizeof(void*);
+    if (std::memcmp(raw + at, &n, sizeof n) != 0 || std::memcmp(raw + kRecordOffset + at, &v, sizeof v) != 0)
+      return false;
+  }
+  const auto* info = reinterpret_cast<const unsigned char*>(&c->info());
+  return info >= raw + kRecordOffset + sizeof(CellRecord) && info + sizeof(int) <= raw + sizeof(*c);
+}
+
+// Gives the whole pages within [b, e) back to the system (they read as zeros afterwards).
+void give_back(const unsigned char* b, const unsigned char* e) {
+#if defined(__linux__)
+  static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t lo = (reinterpret_cast<std::uintptr_t>(b) + page - 1) & ~(page - 1);
+  const std::uintptr_t hi = reinterpret_cast<std::uintptr_t>(e) & ~(page - 1);
+  if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_DONTNEED);
+#else
+  (void)b;
+  (void)e;
+#endif
+}
+
+constexpr std::size_t kCell = sizeof(DT3::Cell);
+
+bool is_used(const unsigned char* p) {  // CGAL's type bits: 0 = a cell in use
+  return (reinterpret_cast<std::uintptr_t>(reinterpret_cast<const DT3::Cell*>(p)->for_compact_container()) & 3) == 0;
+}
+
+// Whether the elements of CGAL's container in [from, to) are all free slots of one block: then
+// the cells before and after them lie in the same block. A block ends with a boundary element,
+// so a walk that leaves the block meets it first.
+bool free_slots_between(const unsigned char* from, const unsigned char* to) {
+  if (to <= from || static_cast<std::size_t>(to - from) % kCell != 0) return false;
+  for (const unsigned char* p = from; p != to; p += kCell)
+    if ((reinterpret_cast<std::uintptr_t>(reinterpret_cast<const DT3::Cell*>(p)->for_compact_container()) & 3) != 2)
+      return false;  // not FREE
+  return true;
+}
+
+// A piece of CGAL's cell container: n elements from `first` (cells in use and free slots, all in
+// one block), whose finite cells are numbered from `base` on.
+struct Piece {
+  unsigned char* first;
+  std::size_t n;
+  std::size_t base;
+  std::size_t finite;
+  bool joined;  // the next piece continues this one's run of elements in the same block
+};
+constexpr std::size_t kPieceElements = 8192;
+
+// export_finite for the 3D triangulation without the local mesh, in three passes:
+//  (1) number the finite cells in container order, and cut the container into pieces;
+//  (2) on both cores, write each finite cell's record into it (reading its own vertex handles and
+//      its neighbours' numbers);
+//  (3) in container order, a group of pieces at a time: copy the records out (on both cores; the
+//      number of a cell is its output position) and give the group's pages back, as long as no
+//      more bytes were given back than the output holds.
+// The peak is then CGAL's triangulation alone instead of it plus 32 bytes per cell. Same arrays,
+// same order as export_finite.
+void export_released3(DT3& dt, const detail::BigArray<int>& id, Delaunay3& out) {
+  const DT3::Vertex_handle inf = dt.infinite_vertex();
+  std::vector<Piece> pieces;
+  std::size_t T = 0;
+  unsigned char* end = nullptr;  // end of the last element met
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    unsigned char* a = cell_bytes(c);
+    const bool same_run = end != nullptr && (a == end || free_slots_between(end, a));
+    if (same_run && static_cast<std::size_t>(a - pieces.back().first) / kCell < kPieceElements) {
+      pieces.back().n = static_cast<std::size_t>(a - pieces.back().first) / kCell + 1;
+    } else {
+      if (!pieces.empty()) pieces.back().joined = same_run;
+      pieces.push_back({a, 1, T, 0, false});
+    }
+    end = a + kCell;
+    if (c->has_vertex(inf)) {
+      c->info() = -1;
+    } else {
+      c->info() = static_cast<int>(T++);
+      ++pieces.back().finite;
+    }
+  }
+
+  const auto for_cells = [&](std::size_t p0, std::size_t p1, const auto& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(p0, p1, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) {
+        unsigned char* e = pieces[p].first;
+        for (std::size_t k = 0; k < pieces[p].n; ++k, e += kCell)
+          if (is_used(e) && reinterpret_cast<DT3::Cell*>(e)->info() >= 0) f(*reinterpret_cast<DT3::Cell*>(e), e);
+      }
+    });
+  };
+  for_cells(0, pieces.size(), [&](DT3::Cell& c, unsigned char* bytes) {
+    CellRecord rec{};
+    for (int k = 0; k < 4; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      rec.tet[u] = id[static_cast<std::size_t>(c.vertex(k)->info())];
+      rec.nb[u] = c.neighbor(k)->info();
+    }
+    std::memcpy(bytes + kRecordOffset, &rec, sizeof rec);
+  });
+
+  out.tets.clear();
+  out.neighbors.clear();
+  tbb::parallel_invoke([&] { detail::reserve_big(out.tets, T); }, [&] { detail::reserve_big(out.neighbors, T); });
+  std::size_t given = 0;  // bytes given back
+  for (std::size_t p0 = 0; p0 < pieces.size();) {
+    std::size_t p1 = p0, m = 0;
+    while (p1 < pieces.size() && m < kExportChunk) m += pieces[p1++].finite;
+    const std::size_t size = pieces[p1 - 1].base + pieces[p1 - 1].finite;
+    tbb::parallel_invoke([&] { out.tets.resize(size); }, [&] { out.neighbors.resize(size); });
+    for_cells(p0, p1, [&](DT3::Cell& c, const unsigned char* bytes) {
+      CellRecord rec;
+      std::memcpy(&rec, bytes + kRecordOffset, sizeof rec);
+      const auto t = static_cast<std::size_t>(c.info());
+      out.tets[t] = rec.tet;
+      out.neighbors[t] = rec.nb;
+    });
+    // Only as many bytes as the output holds by now are given back: the peak stays the
+    // triangulation's, and the rest stays with the heap, which takes the engine's next (small)
+    // arrays from it without faulting pages in again.
+    if (given < size * sizeof(CellRecord))
+      for (std::size_t p = p0; p < p1;) {  // each run of joined pieces at once (whole pages)
+        std::size_t q = p;
+        while (q + 1 < p1 && pieces[q].joined) ++q;
+        given += static_cast<std::size_t>(pieces[q].first + pieces[q].n * kCell - pieces[p].first);
+        give_back(pieces[p].first, pieces[q].first + pieces[q].n * kCell);
+        p = q + 1;
+      }
+    p0 = p1;
+  }
 }
 
 template <class Traits, int x, bool upx, bool upy, class It>
@@ -371,10 +554,20 @@ Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& 
   return Status::ok();
 }
 
-Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local) {
+bool released_export3_available() {
+  DT3 dt;
+  for (int k = 0; k < 5; ++k) dt.insert(K::Point_3(k == 1, k == 2, k == 3 ? 1 : k == 4 ? 2 : 0));
+  return dt.dimension() == 3 && record_layout_holds(dt.finite_cells_begin());
+}
+
+Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local, std::size_t release_from) {
   if (points.dim != 3) return {StatusCode::InvalidArgument, "build_delaunay3: points are not 3D"};
   const std::size_t n = points.size();
   auto items = sorted_input<3, K::Point_3>(points);
+  // Declared before dt, so that dt is destroyed while a released export's flag is still set.
+  struct ReleaseGuard {
+    ~ReleaseGuard() { t_cells_released = false; }
+  } release_guard;
   DT3 dt;
   {
     DT3::Vertex_handle hint;
@@ -393,6 +586,13 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   fill_local<3>(items, lm, local != nullptr);
   std::vector<std::pair<K::Point_3, int>>().swap(items);  // lower peak memory during the export
   const detail::BigArray<int>& id = lm.id;
+
+  if (!local && dt.number_of_cells() >= release_from && record_layout_holds(dt.infinite_vertex()->cell())) {
+    out.n_vertices = n;
+    export_released3(dt, id, out);
+    t_cells_released = true;  // dt's cells are (partly) given back: destroy it without reading them
+    return Status::ok();
+  }
 
   // Finite cells in CGAL's finite_cells order (= all cells, infinite ones skipped).
   const DT3::Vertex_handle inf = dt.infinite_vertex();

@@ -40,9 +40,22 @@ struct LocalMesh {
   std::vector<HullFace> hull;
 };
 
+/// Whether build_delaunay3 (without a local mesh) can give CGAL's cells back while it exports
+/// them: CGAL's cell layout is the one it writes the export records into (src/cgal/delaunay.cpp).
+bool released_export3_available();
+
+/// From this many tetrahedra on (about 300 000 points), build_delaunay3 gives CGAL's cells back
+/// while it exports them, so that its peak is CGAL's triangulation alone. Below, the plain export
+/// is faster: the engine's next arrays are small enough for the heap to take them from the freed
+/// triangulation's pages, while given-back pages are faulted in again (igea, 134 000 points:
+/// 6-10 % more time in all; at 10^6 points the time is the same).
+inline constexpr std::size_t kReleasedExportFromTets = std::size_t{1} << 21;
+
 /// build_delaunay2/3 that also fills @p local (may be null). Same triangulation, same order.
+/// 3D without a local mesh: the export gives the cells back from @p release_from tetrahedra on.
 Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local);
-Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local);
+Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local,
+                             std::size_t release_from = kReleasedExportFromTets);
 
 /// The 2D Delaunay triangulation in *ranked* vertex ids: vertex k is the k-th point of CGAL's
 /// insertion order (its spatial sort), ranked.coords holds its coordinates (the input doubles)

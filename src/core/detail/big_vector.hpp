@@ -15,9 +15,10 @@
 
 namespace constrict::detail {
 
-/// v.resize(n), with a huge-page hint for the newly allocated storage.
+/// v.reserve(n), with a huge-page hint for the newly allocated storage (nothing is written: the
+/// pages count only once the elements are).
 template <class T>
-void resize_big(std::vector<T>& v, std::size_t n) {
+void reserve_big(std::vector<T>& v, std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::size_t kHuge = std::size_t{2} << 20;
   if (n * sizeof(T) >= 2 * kHuge && v.capacity() < n) {
@@ -28,6 +29,13 @@ void resize_big(std::vector<T>& v, std::size_t n) {
     if (e > b) (void)madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
   }
 #endif
+  v.reserve(n);
+}
+
+/// v.resize(n), with a huge-page hint for the newly allocated storage.
+template <class T>
+void resize_big(std::vector<T>& v, std::size_t n) {
+  reserve_big(v, n);
   v.resize(n);
 }
 
