@@ -36,6 +36,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
+#include <atomic>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -60,10 +61,14 @@ using DT2 = CGAL::Delaunay_triangulation_2<K, Tds2>;
 // made the peak of a whole 3D run. Instead, each finite cell's export record is first written
 // into the cell itself (over its four vertex handles, which nothing reads afterwards), then the
 // records are copied out in container order and copied cells' pages are given back to the
-// system (export_released3; from kReleasedExportFromTets tetrahedra on). The triangulation is then destroyed without reading its cells:
-// while t_cells_released is set on this thread, every cell reports itself free to CGAL's
-// Compact_container, whose clear() then only deallocates the blocks.
+// system (export_released3; from kReleasedExportFromTets tetrahedra on). The triangulation is
+// then destroyed without reading its cells: while t_cells_released is set on this thread, every
+// cell reports itself free to CGAL's Compact_container, whose clear() then only deallocates the
+// blocks. (The thread-local flag is read only while some thread destroys such a triangulation:
+// g_releasing counts them. CGAL's insertion reads the accessor for every cell it creates or
+// frees, and in a shared library, the Python module, a thread-local read is a function call.)
 thread_local bool t_cells_released = false;
+std::atomic<int> g_releasing{0};
 
 template <class Cb>
 class ReleasableCell : public Cb {
@@ -75,7 +80,8 @@ class ReleasableCell : public Cb {
   using Cb::Cb;
   // Compact_container's type bits (the low two bits): 2 = FREE.
   void* for_compact_container() const {
-    if (t_cells_released) return reinterpret_cast<void*>(std::uintptr_t{2});
+    if (g_releasing.load(std::memory_order_relaxed) != 0 && t_cells_released)
+      return reinterpret_cast<void*>(std::uintptr_t{2});
     return Cb::for_compact_container();
   }
   void for_compact_container(void* p) { Cb::for_compact_container(p); }
@@ -566,7 +572,15 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   auto items = sorted_input<3, K::Point_3>(points);
   // Declared before dt, so that dt is destroyed while a released export's flag is still set.
   struct ReleaseGuard {
-    ~ReleaseGuard() { t_cells_released = false; }
+    void arm() {
+      g_releasing.fetch_add(1, std::memory_order_relaxed);
+      t_cells_released = true;
+    }
+    ~ReleaseGuard() {
+      if (!t_cells_released) return;
+      t_cells_released = false;
+      g_releasing.fetch_sub(1, std::memory_order_relaxed);
+    }
   } release_guard;
   DT3 dt;
   {
@@ -590,7 +604,7 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
   if (!local && dt.number_of_cells() >= release_from && record_layout_holds(dt.infinite_vertex()->cell())) {
     out.n_vertices = n;
     export_released3(dt, id, out);
-    t_cells_released = true;  // dt's cells are (partly) given back: destroy it without reading them
+    release_guard.arm();  // dt's cells are (partly) given back: destroy it without reading them
     return Status::ok();
   }
 
