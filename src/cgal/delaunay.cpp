@@ -259,9 +259,12 @@ void give_back(const unsigned char* b, const unsigned char* e) {
 
 constexpr std::size_t kCell = sizeof(DT3::Cell);
 
-bool is_used(const unsigned char* p) {  // CGAL's type bits: 0 = a cell in use
-  return (reinterpret_cast<std::uintptr_t>(reinterpret_cast<const DT3::Cell*>(p)->for_compact_container()) & 3) == 0;
+// CGAL's type bits of the container element at p: 0 a cell in use, 2 a free slot (1 and 3: the
+// boundary elements of a block).
+std::uintptr_t type_bits(const unsigned char* p) {
+  return reinterpret_cast<std::uintptr_t>(reinterpret_cast<const DT3::Cell*>(p)->for_compact_container()) & 3;
 }
+bool is_used(const unsigned char* p) { return type_bits(p) == 0; }
 
 // Whether the elements of CGAL's container in [from, to) are all free slots of one block: then
 // the cells before and after them lie in the same block. A block ends with a boundary element,
@@ -269,8 +272,7 @@ bool is_used(const unsigned char* p) {  // CGAL's type bits: 0 = a cell in use
 bool free_slots_between(const unsigned char* from, const unsigned char* to) {
   if (to <= from || static_cast<std::size_t>(to - from) % kCell != 0) return false;
   for (const unsigned char* p = from; p != to; p += kCell)
-    if ((reinterpret_cast<std::uintptr_t>(reinterpret_cast<const DT3::Cell*>(p)->for_compact_container()) & 3) != 2)
-      return false;  // not FREE
+    if (type_bits(p) != 2) return false;
   return true;
 }
 
