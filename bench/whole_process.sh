@@ -2,8 +2,8 @@
 # Whole-process speed against the yardstick (issue 19; docs/benchmarks.md "Whole process"):
 # generates the inputs (fixed seeds) into OUT, then per input runs, in ROUNDS alternating rounds,
 # the yardstick (read with fast_float + CGAL's Delaunay, bench/yardstick/cgal_delaunay.cpp) and
-# `constrict reconstruct` (read to written result), and writes a Markdown table of the medians,
-# their ratio and constrict's peak memory per point to OUT/table.md.
+# `constrict reconstruct` (read to written result), single mode and `--topology auto`, and writes
+# a Markdown table of the medians, their ratios and the peak memory (per point) to OUT/table.md.
 # Usage: bench/whole_process.sh [BUILD_DIR (build-bench)] [OUT (out/bench)] [ROUNDS (3)] [N (1000000)]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,15 +44,15 @@ inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3" "star3.xyz 
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 table="$OUT/table.md"
 {
-  echo "| input | points | yardstick s | constrict s | ratio | yardstick with huge pages s | ratio to it | constrict peak MB | bytes/point |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  echo "| input | points | yardstick s | constrict s | ratio | yardstick with huge pages s | ratio to it | constrict peak MB | bytes/point | --topology auto s | auto ÷ single | auto peak MB |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$table"
 for entry in "${inputs[@]}"; do
   set -- $entry; name=$1; dim=$2; in="$OUT/$name"
   [ -f "$in" ] || in=$name
   # 3D results as binary PLY, as issue 19 measures them (ASCII OFF formatting costs ~0.7 s more at 10^6).
   ext=$([ "$dim" = 2 ] && echo idx || echo ply)
-  ys=(); hs=(); cs=(); mem=()
+  ys=(); hs=(); cs=(); mem=(); as=(); amem=()
   for ((k = 0; k < ROUNDS; ++k)); do
     ys+=("$( { /usr/bin/time -f "%e" "$YARD" "$dim" "$in" >/dev/null; } 2>&1 | tail -1)")
     # The CLI runs with transparent huge pages (cli/main.cpp); the yardstick as given does not:
@@ -60,11 +60,19 @@ for entry in "${inputs[@]}"; do
     hs+=("$( { /usr/bin/time -f "%e" env GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$YARD" "$dim" "$in" >/dev/null; } 2>&1 | tail -1)")
     line=$( { /usr/bin/time -f "%e %M" "$CLI" reconstruct "$in" -o "$OUT/result.$ext" -q >/dev/null; } 2>&1 | tail -1)
     cs+=("${line% *}"); mem+=("${line#* }")
+    # The same input with --topology auto (issues 16 and 19: within 1.3x of single mode). A run
+    # that fails (a 2D result of several rings cannot be written as .idx) counts as missing.
+    line=$( { /usr/bin/time -f "%e %M %x" "$CLI" reconstruct "$in" -o "$OUT/result_auto.$ext" -q --topology auto >/dev/null; } 2>&1 | tail -1) || true
+    set -- $line
+    if [ "${3:-1}" = 0 ]; then as+=("$1"); amem+=("$2"); fi
   done
   y=$(printf '%s\n' "${ys[@]}" | median); yh=$(printf '%s\n' "${hs[@]}" | median); c=$(printf '%s\n' "${cs[@]}" | median); m=$(printf '%s\n' "${mem[@]}" | median)
+  a=n/a; am=n/a
+  if [ ${#as[@]} -gt 0 ]; then a=$(printf '%s\n' "${as[@]}" | median); am=$(printf '%s\n' "${amem[@]}" | median); fi
   pts=$(wc -l < "$in")
-  awk -v n="$(basename "$name")" -v p="$pts" -v y="$y" -v yh="$yh" -v c="$c" -v m="$m" \
-    'BEGIN { printf "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f |\n", n, p, y, c, c / y, yh, c / yh, m / 1024, m * 1024 / p }' >> "$table"
+  awk -v n="$(basename "$name")" -v p="$pts" -v y="$y" -v yh="$yh" -v c="$c" -v m="$m" -v a="$a" -v am="$am" \
+    'BEGIN { printf "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f | ", n, p, y, c, c / y, yh, c / yh, m / 1024, m * 1024 / p;
+             if (a == "n/a") printf "n/a | n/a | n/a |\n"; else printf "%.2f | %.2f | %.0f |\n", a, a / c, am / 1024 }' >> "$table"
   echo "$(basename "$name"): yardstick $y s, constrict $c s"
 done
 echo "table: $table"
