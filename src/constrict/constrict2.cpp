@@ -894,18 +894,31 @@ struct Constrictor2::Impl {
     return false;
   }
 
+  // In the γ0 and degree-4 stages a candidate is queued by its key alone and tested when it comes
+  // out of the heap (test_candidate): most stuck points are placed by their best candidate, so
+  // the others, among them the long pairs across an empty interior whose side searches are the
+  // fallback's main cost, are never tested. The same insertions in the same order as testing
+  // before queueing: the graph tests are properties of the pair and the stage, and a valid
+  // insertion only becomes invalid (valid_insert), so a candidate that fails when it is queued
+  // fails when it comes out. The repair's candidates (every boundary edge within k hops, k up to
+  // N) are tested before queueing, so that its heap holds only the valid ones.
   void push_candidate(Heap& h, Graph g, double gamma0, int a, int z) {
     const int b = nxt[U(a)];
     if (b < 0 || onb[U(z)]) return;
     if (orient2_fast(P(a), P(b), P(z)) <= 0) return;
     // Witnesses among the endpoints' neighbours rule most pairs out at once (a long pair across
-    // an empty interior has very obtuse angles behind both ends); then the graph test (its side
-    // searches read little, sides_below) before the geometric one, which rejects few and reads
-    // a long candidate's whole strip.
+    // an empty interior has very obtuse angles behind both ends), which keeps the heap small.
     if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return;
-    if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return;
-    if (!valid_insert(a, b, z)) return;
-    h.push(Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0});
+    const Entry e{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0};
+    if (g != Graph::Complete || test_candidate(e, g, gamma0)) h.push(e);
+  }
+  // The graph test (its side searches read little, sides_below) before the geometric one, which
+  // rejects few and reads a long candidate's whole strip.
+  bool test_candidate(const Entry& e, Graph g, double gamma0) {
+    const int a = e.a, b = e.b, z = e.y;
+    if (onb[U(z)] || !onb[U(a)] || nxt[U(a)] != b) return false;
+    if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return false;
+    return valid_insert(a, b, z);
   }
 
   // Candidate boundary edges for apex z: those with an endpoint within k hops of z.
@@ -930,7 +943,7 @@ struct Constrictor2::Impl {
     while (!h.empty() && n_onb < n) {
       const Entry e = h.top();
       h.pop();
-      if (!valid_insert(e.a, e.b, e.y)) continue;  // validity only decays (spec §3.6)
+      if (!test_candidate(e, g, gamma0)) continue;  // validity only decays (spec §3.6)
       insert_point(e.a, e.b, e.y);
       ++placed;
       emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage.c_str());
