@@ -308,11 +308,19 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
   }
   j["surfaces"] = list;
   if (!j.contains("handles")) j["handles"] = nlohmann::json::array();  // (to_json lists them when any)
-  j["topology"] = {{"mode", to_string(sr.topology)}, {"decision", to_string(sr.decision)}, {"parts", sr.parts},
-                   {"part_sizes", sr.part_sizes}, {"small_parts_merged", sr.small_parts_merged}, {"gap_threshold", sr.gap_threshold},
-                   {"min_gap_spacings", std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},
-                   {"handles_closed", sr.mesh.handle_added}, {"handles_opened", sr.mesh.handle_removed},
-                   {"ms_infer", sr.ms_infer}, {"ms_assemble", sr.ms_assemble}};
+  j["topology"] = {{"mode", to_string(sr.topology)},
+                   {"decision", to_string(sr.decision)},
+                   {"parts", sr.parts},
+                   {"part_sizes", sr.part_sizes},
+                   {"small_parts_merged", sr.small_parts_merged},
+                   {"repaired_tetrahedra", sr.repaired_tetrahedra},
+                   {"gap_threshold", sr.gap_threshold},
+                   {"min_gap_spacings",
+                    std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},
+                   {"handles_closed", sr.mesh.handle_added},
+                   {"handles_opened", sr.mesh.handle_removed},
+                   {"ms_infer", sr.ms_infer},
+                   {"ms_assemble", sr.ms_assemble}};
 }
 
 // --topology auto in 3D (validate: the library's own check; the CLI validates and reports it).

@@ -284,6 +284,9 @@ struct Surfaces3Result {
   /// Parts that could not have a surface of their own (fewer than 4 points, or flat: outliers),
   /// joined to the part across their shortest Delaunay edge.
   std::size_t small_parts_merged = 0;
+  /// Tetrahedra toggled to repair the parts' common body where their own surfaces were not
+  /// Delaunay faces of all points (noisy nested parts; docs/topology.md §"3D", step 3).
+  std::size_t repaired_tetrahedra = 0;
   double gap_threshold = kDefaultTopologyGap3;
   /// The smallest gap between two parts in local spacings (double; infinity with one part).
   double min_gap_spacings = std::numeric_limits<double>::infinity();
@@ -298,8 +301,10 @@ struct Surfaces3Result {
 /// §"3D"): (1) parts: components of the Delaunay edges shorter than topology_gap local spacings
 /// (exact); (2) each part's surface by reconstruct3() on its points, with handles when the labels
 /// show them (Constrict3Options::handles); (3) with several parts, the body: the Delaunay
-/// tetrahedra of all points inside an odd number of the surfaces (each surface must be made of
-/// Delaunay faces of all points, else NotDelaunay and one part); roles and parents from the nesting;
+/// tetrahedra of all points inside an odd number of the surfaces (when a surface is not made of
+/// Delaunay faces of all points: edge flips, then for parts that are not apart that body repaired
+/// point by point, kept when it has the parts' topology; else NotDelaunay and one part); roles and
+/// parents from the nesting;
 /// (4) validate_surfaces3(). Deterministic; the same surfaces for the points in any order.
 /// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
 ///   what reconstruct3() returns, Internal if a complete result fails validation (a bug)

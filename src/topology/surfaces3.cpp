@@ -629,6 +629,262 @@ bool boxes_apart(const PointSet& pts, const Parts& parts) {
   return true;
 }
 
+// The body of the parts' own surfaces in the tetrahedralization of all points, when those
+// surfaces cannot be assembled as they are (noisy nested parts: a point that noise moved off its
+// shell leaves a "tent" of faces that are not Delaunay faces of all points). A tetrahedron of dt
+// lies inside c of the parts' closed surfaces and is in the body when c is odd: a part's depth is
+// the number of other parts whose own body holds its first point (exact orient3); a tetrahedron
+// of one part's points lies inside the parts around that part, and inside that part too when it
+// is one of the part's own body tetrahedra (a Delaunay tetrahedron of all points is one of the
+// part's points alone); a tetrahedron joining parts lies in the gap between them, inside the
+// parts around the deepest of them. The tetrahedra keep dt's orientation.
+std::vector<char> parts_body(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
+                             const std::vector<Mesh3Result>& res) {
+  const std::size_t P = parts.points.size();
+  std::vector<std::vector<std::array<int, 4>>> own(P);
+  for (std::size_t k = 0; k < P; ++k)
+    for (const auto& t : res[k].tets) {
+      const auto& ids = parts.points[k];
+      own[k].push_back({ids[uz(t[0])], ids[uz(t[1])], ids[uz(t[2])], ids[uz(t[3])]});
+    }
+  std::vector<int> depth(P, 0);
+  for (std::size_t q = 0; q < P; ++q) {
+    const double* x = pts[uz(parts.points[q].front())];
+    for (std::size_t p = 0; p < P; ++p) {
+      if (p == q) continue;
+      for (const auto& t : own[p]) {
+        const double* v[4] = {pts[uz(t[0])], pts[uz(t[1])], pts[uz(t[2])], pts[uz(t[3])]};
+        if (orient3(x, v[1], v[2], v[3]) >= 0 && orient3(v[0], x, v[2], v[3]) >= 0 &&
+            orient3(v[0], v[1], x, v[3]) >= 0 && orient3(v[0], v[1], v[2], x) >= 0) {
+          ++depth[q];
+          break;
+        }
+      }
+    }
+  }
+  std::vector<std::array<int, 4>> inside;
+  for (auto& o : own)
+    for (auto t : o) {
+      std::sort(t.begin(), t.end());
+      inside.push_back(t);
+    }
+  std::sort(inside.begin(), inside.end());
+  std::vector<char> body(dt.tets.size(), 0);
+  for (std::size_t i = 0; i < dt.tets.size(); ++i) {
+    const auto& t = dt.tets[i];
+    const int k0 = parts.part_of[uz(t[0])];
+    bool one = true;
+    int c = 0;
+    for (int v : t) {
+      const int k = parts.part_of[uz(v)];
+      one = one && k == k0;
+      c = std::max(c, depth[uz(k)]);
+    }
+    if (one) {
+      std::array<int, 4> key = t;
+      std::sort(key.begin(), key.end());
+      c = depth[uz(k0)] + (std::binary_search(inside.begin(), inside.end(), key) ? 1 : 0);
+    }
+    body[i] = static_cast<char>(c % 2 == 1);
+  }
+  return body;
+}
+
+// Repairs the points where the body of parts_body() is not a surface: a point not on it (buried
+// in the body, or in a region outside it) or whose free faces do not form one disk. Toggles one
+// tetrahedron of dt at the point, else two that share a face, else (a point off the surface) a
+// channel of up to kChannel tetrahedra in the point's state from one at the point to one with a
+// free face. A choice is valid when every vertex of its tetrahedra (the only links that change)
+// ends on the surface with a link that is one cycle and the surface keeps its Euler
+// characteristic (two faces more for each point brought to it: no handle, no extra surface);
+// among the valid ones the one that adds the least area (double arithmetic, a choice only),
+// ties by the smaller sorted vertex ids. Points in ascending order (canonical ids: the same for
+// any file order). in_body: per tetrahedron of dt, updated; run() adds the toggles to changed and
+// is false when some point has no valid choice.
+class SurfaceRepair {
+  static constexpr int kChannel = 4;
+
+ public:
+  SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
+      : pts_(pts), dt_(dt), in_(in_body), at_(pts.size()) {
+    count_.reserve(4 * dt.tets.size());
+    for (std::size_t t = 0; t < dt.tets.size(); ++t) {
+      for (int i = 0; i < 4; ++i) count_[face(static_cast<int>(t), i)] += in_[t] ? 1 : 0;
+      for (int x : dt.tets[t]) at_[uz(x)].push_back(static_cast<int>(t));
+    }
+  }
+
+  bool run(std::size_t& changed) {
+    for (std::size_t v = 0; v < pts_.size(); ++v) {
+      if (vertex_ok(static_cast<int>(v))) continue;
+      std::vector<int> best;
+      double best_gain = HUGE_VAL;
+      std::vector<std::array<int, 4>> best_key;
+      const auto consider = [&](const std::vector<int>& set) {
+        // The surface's Euler characteristic V - F/2 (closed, edge-manifold) must not change: the
+        // points brought to the surface, two faces each.
+        std::vector<int> verts;
+        for (int t : set)
+          for (int x : dt_.tets[uz(t)]) verts.push_back(x);
+        std::sort(verts.begin(), verts.end());
+        verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+        long long off = 0;
+        for (int x : verts) off += on_surface(x) ? 0 : 1;
+        const double before = area_of(set);
+        const long long f0 = free_faces_of(set);
+        for (int t : set) toggle(t);
+        bool ok = free_faces_of(set) - f0 == 2 * off;
+        for (int x : verts) ok = ok && vertex_ok(x);
+        const double gain = area_of(set) - before;
+        for (int t : set) toggle(t);
+        if (!ok) return;
+        std::vector<std::array<int, 4>> key;
+        for (int t : set) {
+          std::array<int, 4> k = dt_.tets[uz(t)];
+          std::sort(k.begin(), k.end());
+          key.push_back(k);
+        }
+        std::sort(key.begin(), key.end());
+        if (best.empty() || gain < best_gain || (gain == best_gain && key < best_key)) {
+          best = set;
+          best_gain = gain;
+          best_key = key;
+        }
+      };
+      for (int t : at_[v]) consider({t});
+      // Two that share a face (a pair of the point's own tetrahedra once).
+      if (best.empty())
+        for (int t : at_[v])
+          for (int m : dt_.neighbors[uz(t)])
+            if (m >= 0 && in_[uz(m)] == in_[uz(t)] && (m > t || !contains(at_[v], m))) consider({t, m});
+      // Deeper: a channel of tetrahedra in the point's state, from one at the point to one with
+      // a free face (breadth first through their faces, at most kChannel long).
+      if (best.empty() && !on_surface(static_cast<int>(v))) {
+        bool buried = false;
+        for (int t : at_[v]) buried = buried || in_[uz(t)];
+        std::unordered_map<int, int> parent;  // tetrahedron -> the one it was reached from (-1: at v)
+        std::vector<int> layer;
+        for (int t : at_[v])
+          if ((in_[uz(t)] != 0) == buried) {
+            parent.emplace(t, -1);
+            layer.push_back(t);
+          }
+        for (int depth = 1; depth <= kChannel && best.empty() && !layer.empty(); ++depth) {
+          std::vector<int> next;
+          for (int t : layer)
+            for (int m : dt_.neighbors[uz(t)]) {
+              if (m < 0 || (in_[uz(m)] != 0) != buried || parent.count(m)) continue;
+              parent.emplace(m, t);
+              next.push_back(m);
+            }
+          std::sort(next.begin(), next.end());
+          for (int m : next) {
+            bool touches = false;
+            for (int i = 0; i < 4; ++i) touches = touches || free_face(m, i);
+            if (!touches) continue;
+            std::vector<int> path;
+            for (int x = m; x >= 0; x = parent[x]) path.push_back(x);
+            consider(path);
+          }
+          layer = std::move(next);
+        }
+      }
+      if (best.empty()) return false;
+      for (int t : best) toggle(t);
+      changed += best.size();
+    }
+    return true;
+  }
+
+ private:
+  static bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+  FaceKey face(int t, int i) const {
+    const auto& v = dt_.tets[uz(t)];
+    const auto& f = kFaceOut[i];
+    return key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]);
+  }
+  void toggle(int t) {
+    const int d = in_[uz(t)] ? -1 : 1;
+    in_[uz(t)] = static_cast<char>(!in_[uz(t)]);
+    for (int i = 0; i < 4; ++i) count_[face(t, i)] += d;
+  }
+  bool free_face(int t, int i) { return count_[face(t, i)] == 1; }
+  bool on_surface(int x) {
+    for (int t : at_[uz(x)])
+      for (int i = 0; i < 4; ++i)
+        if (dt_.tets[uz(t)][uz(i)] != x && free_face(t, i)) return true;
+    return false;
+  }
+  // The free faces at x: their edges opposite x form one cycle (each free face once: from the
+  // tetrahedron in the body; a face on the convex hull has no other side).
+  bool vertex_ok(int x) {
+    std::vector<std::array<int, 2>> link;
+    for (int t : at_[uz(x)]) {
+      if (!in_[uz(t)]) continue;
+      for (int i = 0; i < 4; ++i) {
+        const auto& v = dt_.tets[uz(t)];
+        if (v[uz(i)] == x || !free_face(t, i)) continue;
+        std::array<int, 2> e{};
+        int k = 0;
+        for (int l = 0; l < 3; ++l) {
+          const int y = v[uz(kFaceOut[i][l])];
+          if (y != x) e[uz(k++)] = y;
+        }
+        link.push_back(e);
+      }
+    }
+    if (link.size() < 3) return false;
+    std::size_t steps = 0;
+    int prev_e = 0, cur = link[0][1];
+    for (;;) {
+      int next = -1, deg = 0;
+      for (std::size_t j = 0; j < link.size(); ++j)
+        if (link[j][0] == cur || link[j][1] == cur) {
+          ++deg;
+          if (static_cast<int>(j) != prev_e) next = static_cast<int>(j);
+        }
+      if (deg != 2) return false;
+      ++steps;
+      cur = link[uz(next)][0] == cur ? link[uz(next)][1] : link[uz(next)][0];
+      prev_e = next;
+      if (next == 0) break;
+      if (steps > link.size()) return false;
+    }
+    return steps == link.size();
+  }
+  // The free faces among the faces of these tetrahedra (each face once).
+  long long free_faces_of(const std::vector<int>& set) {
+    std::vector<FaceKey> fs;
+    for (int t : set)
+      for (int i = 0; i < 4; ++i)
+        if (free_face(t, i)) fs.push_back(face(t, i));
+    std::sort(fs.begin(), fs.end(), [](const FaceKey& a, const FaceKey& b) { return a.v < b.v; });
+    return std::unique(fs.begin(), fs.end()) - fs.begin();
+  }
+  // The area of the free faces of these tetrahedra.
+  double area_of(const std::vector<int>& set) {
+    double a = 0;
+    for (int t : set)
+      for (int i = 0; i < 4; ++i) {
+        if (!free_face(t, i)) continue;
+        const auto& v = dt_.tets[uz(t)];
+        const double* p = pts_[uz(v[uz(kFaceOut[i][0])])];
+        const double* q = pts_[uz(v[uz(kFaceOut[i][1])])];
+        const double* r = pts_[uz(v[uz(kFaceOut[i][2])])];
+        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+        const double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
+        a += std::sqrt(cx * cx + cy * cy + cz * cz);
+      }
+    return a;
+  }
+
+  const PointSet& pts_;
+  const Delaunay3& dt_;
+  std::vector<char>& in_;
+  std::vector<std::vector<int>> at_;
+  std::unordered_map<FaceKey, int, FaceHash> count_;
+};
+
 // Several parts: one engine run each; their body from the tetrahedralization of all points when
 // every part's surface is made of its Delaunay faces, else (noisy or random samples: a face of one
 // part's tetrahedralization need not be one of all points) the union of the parts' own bodies when
@@ -667,6 +923,25 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   // faces of all points are flipped where they can be (parts apart keep their own bodies below).
   if (!assembled && !boxes_apart(pts, parts) && flip_to_delaunay_faces(dt, faces, faces.size() / 64 + 16) > 0)
     assembled = assemble_body(dt, faces, body);
+  // Still not: the body that the parts' surfaces put in the common tetrahedralization, with the
+  // points it buries brought to its surface by dimples; taken when that is a valid set of surfaces.
+  if (!assembled && !boxes_apart(pts, parts)) {
+    std::vector<char> in_body = parts_body(pts, dt, parts, res);
+    std::size_t freed = 0;
+    if (SurfaceRepair(pts, dt, in_body).run(freed)) {
+      body.clear();
+      for (std::size_t t = 0; t < dt.tets.size(); ++t)
+        if (in_body[t]) body.push_back(dt.tets[t]);
+      MeshCheckOptions mo;
+      mo.any_topology = true;
+      MeshCheck ck;
+      const TriMesh3 surface = body_surface(body);
+      // (The same topology as the parts' own surfaces: as many surfaces, as many faces.)
+      assembled = surface.triangles.size() == faces.size() && validate_mesh3(pts, surface, &ck, mo).is_ok() &&
+                  ck.components == static_cast<int>(parts.points.size());
+      if (assembled) r.repaired_tetrahedra = freed;
+    }
+  }
   if (!assembled) {
     if (!boxes_apart(pts, parts)) {
       r.decision = SurfacesDecision::NotDelaunay;
