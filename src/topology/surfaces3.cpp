@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -699,10 +700,12 @@ std::vector<char> parts_body(const PointSet& pts, const Delaunay3& dt, const Par
 // characteristic (two faces more for each point brought to it: no handle, no extra surface);
 // among the valid ones the one that adds the least area (double arithmetic, a choice only),
 // ties by the smaller sorted vertex ids. Points in ascending order (canonical ids: the same for
-// any file order). in_body: per tetrahedron of dt, updated; run() adds the toggles to changed and
-// is false when some point has no valid choice.
+// any file order). The points left then go to a local search (local_search). in_body: per
+// tetrahedron of dt, updated; run() adds the toggles to changed and is false when a defect is
+// left (in_body is then not a body to use).
 class SurfaceRepair {
   static constexpr int kChannel = 4;
+  static constexpr std::size_t kSearchSteps = 16;
 
  public:
   SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
@@ -712,9 +715,12 @@ class SurfaceRepair {
       for (int i = 0; i < 4; ++i) count_[face(static_cast<int>(t), i)] += in_[t] ? 1 : 0;
       for (int x : dt.tets[t]) at_[uz(x)].push_back(static_cast<int>(t));
     }
+    for (const auto& fc : count_) nfree_ += fc.second == 1 ? 1 : 0;
   }
 
-  bool run(std::size_t& changed) {
+  // target_faces: the face count of the parts' own surfaces (the same Euler characteristic).
+  bool run(std::size_t target_faces, std::size_t& changed) {
+    std::vector<int> left;  // points the first pass could not repair
     for (std::size_t v = 0; v < pts_.size(); ++v) {
       if (vertex_ok(static_cast<int>(v))) continue;
       std::vector<int> best;
@@ -789,11 +795,14 @@ class SurfaceRepair {
           layer = std::move(next);
         }
       }
-      if (best.empty()) return false;
+      if (best.empty()) {
+        left.push_back(static_cast<int>(v));
+        continue;
+      }
       for (int t : best) toggle(t);
       changed += best.size();
     }
-    return true;
+    return left.empty() || local_search(left, target_faces, changed);
   }
 
  private:
@@ -806,7 +815,12 @@ class SurfaceRepair {
   void toggle(int t) {
     const int d = in_[uz(t)] ? -1 : 1;
     in_[uz(t)] = static_cast<char>(!in_[uz(t)]);
-    for (int i = 0; i < 4; ++i) count_[face(t, i)] += d;
+    for (int i = 0; i < 4; ++i) {
+      int& c = count_[face(t, i)];
+      nfree_ -= c == 1 ? 1 : 0;
+      c += d;
+      nfree_ += c == 1 ? 1 : 0;
+    }
   }
   bool free_face(int t, int i) { return count_[face(t, i)] == 1; }
   bool on_surface(int x) {
@@ -852,6 +866,59 @@ class SurfaceRepair {
     }
     return steps == link.size();
   }
+  // The points the first pass left: single toggles of a tetrahedron at a bad vertex (one not on
+  // the surface or whose link is not one cycle), each time the one that leaves the smallest
+  // defect 4 * (bad vertices) + |F - target_faces| (ties: the smaller sorted vertex ids), also
+  // when that is no smaller (a point two layers deep needs a step that first pinches a
+  // neighbour), under a tabu list (a toggled tetrahedron is not toggled again); at most
+  // kSearchSteps per point left. The fill's local search in the engine (carve3.cpp) works alike.
+  bool local_search(const std::vector<int>& left, std::size_t target_faces, std::size_t& changed) {
+    std::set<int> bad(left.begin(), left.end());
+    std::set<int> tabu;
+    const auto defect = [&] {
+      const long long df = static_cast<long long>(nfree_) - static_cast<long long>(target_faces);
+      return 4 * static_cast<long long>(bad.size()) + (df < 0 ? -df : df);
+    };
+    const auto update = [&](int t) {  // the bad set after t was toggled
+      for (int x : dt_.tets[uz(t)]) {
+        if (vertex_ok(x))
+          bad.erase(x);
+        else
+          bad.insert(x);
+      }
+    };
+    std::size_t steps = 0;
+    const std::size_t max_steps = kSearchSteps * left.size();
+    while (defect() > 0 && steps++ < max_steps) {
+      long long best_d = 0;
+      int best_t = -1;
+      std::array<int, 4> best_key{};
+      const std::vector<int> now(bad.begin(), bad.end());
+      for (int v : now)
+        for (int t : at_[uz(v)]) {
+          if (tabu.count(t)) continue;
+          const std::set<int> saved = bad;
+          toggle(t);
+          update(t);
+          const long long d = defect();
+          toggle(t);
+          bad = saved;
+          std::array<int, 4> key = dt_.tets[uz(t)];
+          std::sort(key.begin(), key.end());
+          if (best_t < 0 || d < best_d || (d == best_d && key < best_key)) {
+            best_d = d;
+            best_t = t;
+            best_key = key;
+          }
+        }
+      if (best_t < 0) return false;
+      toggle(best_t);
+      update(best_t);
+      tabu.insert(best_t);
+      ++changed;
+    }
+    return defect() == 0;
+  }
   // The free faces among the faces of these tetrahedra (each face once).
   long long free_faces_of(const std::vector<int>& set) {
     std::vector<FaceKey> fs;
@@ -883,6 +950,7 @@ class SurfaceRepair {
   std::vector<char>& in_;
   std::vector<std::vector<int>> at_;
   std::unordered_map<FaceKey, int, FaceHash> count_;
+  std::size_t nfree_ = 0;  // faces with one body tetrahedron
 };
 
 // Several parts: one engine run each; their body from the tetrahedralization of all points when
@@ -928,7 +996,7 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   if (!assembled && !boxes_apart(pts, parts)) {
     std::vector<char> in_body = parts_body(pts, dt, parts, res);
     std::size_t freed = 0;
-    if (SurfaceRepair(pts, dt, in_body).run(freed)) {
+    if (SurfaceRepair(pts, dt, in_body).run(faces.size(), freed)) {
       body.clear();
       for (std::size_t t = 0; t < dt.tets.size(); ++t)
         if (in_body[t]) body.push_back(dt.tets[t]);
