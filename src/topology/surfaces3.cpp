@@ -710,12 +710,27 @@ class SurfaceRepair {
  public:
   SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
       : pts_(pts), dt_(dt), in_(in_body), at_(pts.size()) {
-    count_.reserve(4 * dt.tets.size());
-    for (std::size_t t = 0; t < dt.tets.size(); ++t) {
-      for (int i = 0; i < 4; ++i) count_[face(static_cast<int>(t), i)] += in_[t] ? 1 : 0;
+    // Face ids through the neighbour relation (a face and its mirror in the neighbour share one).
+    const std::size_t T = dt.tets.size();
+    face_id_.assign(T, {{-1, -1, -1, -1}});
+    int faces = 0;
+    for (std::size_t t = 0; t < T; ++t)
+      for (int i = 0; i < 4; ++i) {
+        if (face_id_[t][uz(i)] >= 0) continue;
+        face_id_[t][uz(i)] = faces;
+        const int m = dt.neighbors[t][uz(i)];
+        if (m >= 0)
+          for (int j = 0; j < 4; ++j)
+            if (dt.neighbors[uz(m)][uz(j)] == static_cast<int>(t)) face_id_[uz(m)][uz(j)] = faces;
+        ++faces;
+      }
+    count_.assign(uz(faces), 0);
+    for (std::size_t t = 0; t < T; ++t) {
+      if (in_[t])
+        for (int i = 0; i < 4; ++i) ++count_[uz(face_id_[t][uz(i)])];
       for (int x : dt.tets[t]) at_[uz(x)].push_back(static_cast<int>(t));
     }
-    for (const auto& fc : count_) nfree_ += fc.second == 1 ? 1 : 0;
+    for (const int c : count_) nfree_ += c == 1 ? 1 : 0;
   }
 
   // target_faces: the face count of the parts' own surfaces (the same Euler characteristic).
@@ -802,27 +817,23 @@ class SurfaceRepair {
       for (int t : best) toggle(t);
       changed += best.size();
     }
-    return left.empty() || local_search(left, target_faces, changed);
+    return (left.empty() || local_search(left, target_faces, changed)) && nfree_ == target_faces;
   }
 
  private:
   static bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
-  FaceKey face(int t, int i) const {
-    const auto& v = dt_.tets[uz(t)];
-    const auto& f = kFaceOut[i];
-    return key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]);
-  }
+  int face(int t, int i) const { return face_id_[uz(t)][uz(i)]; }
   void toggle(int t) {
     const int d = in_[uz(t)] ? -1 : 1;
     in_[uz(t)] = static_cast<char>(!in_[uz(t)]);
     for (int i = 0; i < 4; ++i) {
-      int& c = count_[face(t, i)];
+      int& c = count_[uz(face(t, i))];
       nfree_ -= c == 1 ? 1 : 0;
       c += d;
       nfree_ += c == 1 ? 1 : 0;
     }
   }
-  bool free_face(int t, int i) { return count_[face(t, i)] == 1; }
+  bool free_face(int t, int i) const { return count_[uz(face(t, i))] == 1; }
   bool on_surface(int x) {
     for (int t : at_[uz(x)])
       for (int i = 0; i < 4; ++i)
@@ -921,11 +932,11 @@ class SurfaceRepair {
   }
   // The free faces among the faces of these tetrahedra (each face once).
   long long free_faces_of(const std::vector<int>& set) {
-    std::vector<FaceKey> fs;
+    std::vector<int> fs;
     for (int t : set)
       for (int i = 0; i < 4; ++i)
         if (free_face(t, i)) fs.push_back(face(t, i));
-    std::sort(fs.begin(), fs.end(), [](const FaceKey& a, const FaceKey& b) { return a.v < b.v; });
+    std::sort(fs.begin(), fs.end());
     return std::unique(fs.begin(), fs.end()) - fs.begin();
   }
   // The area of the free faces of these tetrahedra.
@@ -949,8 +960,9 @@ class SurfaceRepair {
   const Delaunay3& dt_;
   std::vector<char>& in_;
   std::vector<std::vector<int>> at_;
-  std::unordered_map<FaceKey, int, FaceHash> count_;
-  std::size_t nfree_ = 0;  // faces with one body tetrahedron
+  std::vector<std::array<int, 4>> face_id_;  // per tetrahedron, the id of the face opposite vertex i
+  std::vector<int> count_;                   // per face id, its tetrahedra in the body
+  std::size_t nfree_ = 0;                    // faces with one body tetrahedron
 };
 
 // Several parts: one engine run each; their body from the tetrahedralization of all points when
@@ -996,17 +1008,22 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   if (!assembled && !boxes_apart(pts, parts)) {
     std::vector<char> in_body = parts_body(pts, dt, parts, res);
     std::size_t freed = 0;
+    // run(): every point on the surface with a disk link (a closed 2-manifold through all points,
+    // oriented out of the body) and the parts' face count; kept with as many surfaces as parts
+    // (then the same Euler characteristic: the parts' topology). validate_surfaces3() checks all.
     if (SurfaceRepair(pts, dt, in_body).run(faces.size(), freed)) {
       body.clear();
       for (std::size_t t = 0; t < dt.tets.size(); ++t)
         if (in_body[t]) body.push_back(dt.tets[t]);
-      MeshCheckOptions mo;
-      mo.any_topology = true;
-      MeshCheck ck;
       const TriMesh3 surface = body_surface(body);
-      // (The same topology as the parts' own surfaces: as many surfaces, as many faces.)
-      assembled = surface.triangles.size() == faces.size() && validate_mesh3(pts, surface, &ck, mo).is_ok() &&
-                  ck.components == static_cast<int>(parts.points.size());
+      UnionFind uf(pts.size());
+      for (const auto& f : surface.triangles) {
+        uf.join(f[0], f[1]);
+        uf.join(f[0], f[2]);
+      }
+      std::size_t components = 0;
+      for (std::size_t v = 0; v < pts.size(); ++v) components += uf.find(static_cast<int>(v)) == static_cast<int>(v);
+      assembled = components == parts.points.size();
       if (assembled) r.repaired_tetrahedra = freed;
     }
   }
