@@ -375,14 +375,28 @@ bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& f
 // the rest.
 // Returns the number of flips (0: faces unchanged); at most `max_flips`, in at most 4 passes.
 std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<int, 3>>& faces, std::size_t max_flips) {
-  std::unordered_map<FaceKey, char, FaceHash> delaunay;
-  delaunay.reserve(2 * dt.tets.size() + 16);
+  // (a, b, c) is a Delaunay face iff a tetrahedron at a holds b and c: the tetrahedra per vertex
+  // (CSR) instead of a hash set of all Delaunay faces (a few surface faces are asked about).
+  std::size_t n = 0;
   for (const auto& t : dt.tets)
-    for (int i = 0; i < 4; ++i) {
-      const auto& f = kFaceOut[i];
-      delaunay.emplace(key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]), 1);
+    for (int v : t) n = std::max(n, uz(v) + 1);
+  std::vector<int> off(n + 1, 0), at;
+  for (const auto& t : dt.tets)
+    for (int v : t) ++off[uz(v) + 1];
+  for (std::size_t v = 0; v < n; ++v) off[v + 1] += off[v];
+  at.resize(uz(off[n]));
+  {
+    std::vector<int> fill(off.begin(), off.end() - 1);
+    for (std::size_t t = 0; t < dt.tets.size(); ++t)
+      for (int v : dt.tets[t]) at[uz(fill[uz(v)]++)] = static_cast<int>(t);
+  }
+  const auto is_delaunay = [&](int a, int b, int c) {
+    for (int k = off[uz(a)]; k < off[uz(a) + 1]; ++k) {
+      const auto& t = dt.tets[uz(at[uz(k)])];
+      if (std::find(t.begin(), t.end(), b) != t.end() && std::find(t.begin(), t.end(), c) != t.end()) return true;
     }
-  const auto is_delaunay = [&](int a, int b, int c) { return delaunay.count(key_of(a, b, c)) > 0; };
+    return false;
+  };
   // Directed surface edge (a, b) -> its face (an edge is a surface edge in either direction).
   const auto ekey = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
   std::unordered_map<std::uint64_t, int> face_of_edge;
@@ -424,15 +438,26 @@ std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<i
 }
 
 // The free faces of a body of positively oriented tetrahedra, oriented out of it.
+// (Sorted, not hashed: every face with its sorted ids, then the ones met once.)
 TriMesh3 body_surface(const std::vector<std::array<int, 4>>& body) {
-  std::unordered_map<FaceKey, int, FaceHash> count;
-  count.reserve(body.size() * 4);
+  struct Occurrence {
+    std::array<int, 3> key, face;
+  };
+  std::vector<Occurrence> all;
+  all.reserve(4 * body.size());
   for (const auto& t : body)
-    for (const auto& f : kFaceOut) ++count[key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])])];
+    for (const auto& f : kFaceOut) {
+      const std::array<int, 3> face{{t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]}};
+      all.push_back({key_of(face[0], face[1], face[2]).v, face});
+    }
+  std::sort(all.begin(), all.end(), [](const Occurrence& a, const Occurrence& b) { return a.key < b.key; });
   TriMesh3 m;
-  for (const auto& t : body)
-    for (const auto& f : kFaceOut)
-      if (count[key_of(t[uz(f[0])], t[uz(f[1])], t[uz(f[2])])] == 1) m.triangles.push_back({t[uz(f[0])], t[uz(f[1])], t[uz(f[2])]});
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i + 1;
+    while (j < all.size() && all[j].key == all[i].key) ++j;
+    if (j - i == 1) m.triangles.push_back(all[i].face);
+    i = j;
+  }
   std::sort(m.triangles.begin(), m.triangles.end());
   return m;
 }

@@ -23,7 +23,7 @@ class ApexLens2 {
  public:
   /// The lens of segment a -> b (a != b, finite) for threshold t (t >= 0: the diametral disk's
   /// halves, the obtuse angles).
-  ApexLens2(const double* a, const double* b, double t) : a_(a), b_(b) {
+  ApexLens2(const double* a, const double* b, double t) : a_(a) {
     len_ = std::hypot(b[0] - a[0], b[1] - a[1]);
     ux_ = (b[0] - a[0]) / len_;
     uy_ = (b[1] - a[1]) / len_;
@@ -109,7 +109,6 @@ class ApexLens2 {
 
  private:
   const double* a_;
-  const double* b_;
   double len_ = 0, ux_ = 0, uy_ = 0, eps_ = 0;
   double height_ = 0;  // the arc's top over the segment
   double centre_ = 0;  // the circle's centre beyond the segment (1 % nearer)
