@@ -303,26 +303,70 @@ int surface_regions(const Delaunay3& dt, IsSurface&& is_surface, std::vector<int
   return regions;
 }
 
+// The tetrahedra at each vertex (CSR), to find the tetrahedra of a face without a hash table of
+// all faces (a few surface faces are looked up among millions of Delaunay faces).
+class VertexTets {
+ public:
+  explicit VertexTets(const Delaunay3& dt) : dt_(dt) {
+    std::size_t n = 0;
+    for (const auto& t : dt.tets)
+      for (int v : t) n = std::max(n, uz(v) + 1);
+    off_.assign(n + 1, 0);
+    for (const auto& t : dt.tets)
+      for (int v : t) ++off_[uz(v) + 1];
+    for (std::size_t v = 0; v < n; ++v) off_[v + 1] += off_[v];
+    at_.resize(uz(off_[n]));
+    std::vector<int> fill(off_.begin(), off_.end() - 1);
+    for (std::size_t t = 0; t < dt.tets.size(); ++t)
+      for (int v : dt.tets[t]) at_[uz(fill[uz(v)]++)] = static_cast<int>(t);
+  }
+  // f(t, i) for every tetrahedron t whose face opposite its vertex i is (a, b, c), any order.
+  template <class F>
+  void for_face(int a, int b, int c, F&& f) const {
+    if (a < 0 || uz(a) + 1 >= off_.size()) return;
+    for (int k = off_[uz(a)]; k < off_[uz(a) + 1]; ++k) {
+      const int t = at_[uz(k)];
+      const auto& v = dt_.tets[uz(t)];
+      int i = -1, hits = 0;
+      for (int l = 0; l < 4; ++l) {
+        if (v[uz(l)] == a || v[uz(l)] == b || v[uz(l)] == c)
+          ++hits;
+        else
+          i = l;
+      }
+      if (hits == 3) f(t, i);
+    }
+  }
+  bool is_face(int a, int b, int c) const {
+    bool any = false;
+    for_face(a, b, c, [&](int, int) { any = true; });
+    return any;
+  }
+
+ private:
+  const Delaunay3& dt_;
+  std::vector<int> off_, at_;
+};
+
 // The body of the part surfaces inside the tetrahedralization of all points: the regions of
 // tetrahedra between the surfaces, a tree rooted at the exterior; the body is the regions at odd
 // depth. False when a surface face is not a Delaunay face or the regions do not form that tree.
 bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& faces, std::vector<std::array<int, 4>>& body) {
-  std::unordered_map<FaceKey, int, FaceHash> surface;
-  surface.reserve(faces.size() * 2);
-  for (std::size_t f = 0; f < faces.size(); ++f) surface.emplace(key_of(faces[f][0], faces[f][1], faces[f][2]), static_cast<int>(f));
+  std::vector<std::array<int, 3>> keys;
+  keys.reserve(faces.size());
+  for (const auto& f : faces) keys.push_back(key_of(f[0], f[1], f[2]).v);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   const std::size_t T = dt.tets.size();
   // Which face of which tetrahedron is a surface face.
   std::vector<std::uint8_t> on_surface(T, 0);  // bit i: face opposite vertex i
   std::size_t found = 0;
-  for (std::size_t t = 0; t < T; ++t)
-    for (int i = 0; i < 4; ++i) {
-      const auto& v = dt.tets[t];
-      const auto& f = kFaceOut[i];
-      if (surface.count(key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]))) {
-        on_surface[t] |= static_cast<std::uint8_t>(1u << i);
-        ++found;
-      }
-    }
+  const VertexTets at(dt);
+  for (const auto& k : keys)
+    at.for_face(k[0], k[1], k[2], [&](int t, int i) {
+      on_surface[uz(t)] |= static_cast<std::uint8_t>(1u << i);
+      ++found;
+    });
   // Every surface face is shared by two tetrahedra, or one on the convex hull.
   std::size_t expect = 0;
   for (std::size_t t = 0; t < T; ++t)
@@ -375,28 +419,8 @@ bool assemble_body(const Delaunay3& dt, const std::vector<std::array<int, 3>>& f
 // the rest.
 // Returns the number of flips (0: faces unchanged); at most `max_flips`, in at most 4 passes.
 std::size_t flip_to_delaunay_faces(const Delaunay3& dt, std::vector<std::array<int, 3>>& faces, std::size_t max_flips) {
-  // (a, b, c) is a Delaunay face iff a tetrahedron at a holds b and c: the tetrahedra per vertex
-  // (CSR) instead of a hash set of all Delaunay faces (a few surface faces are asked about).
-  std::size_t n = 0;
-  for (const auto& t : dt.tets)
-    for (int v : t) n = std::max(n, uz(v) + 1);
-  std::vector<int> off(n + 1, 0), at;
-  for (const auto& t : dt.tets)
-    for (int v : t) ++off[uz(v) + 1];
-  for (std::size_t v = 0; v < n; ++v) off[v + 1] += off[v];
-  at.resize(uz(off[n]));
-  {
-    std::vector<int> fill(off.begin(), off.end() - 1);
-    for (std::size_t t = 0; t < dt.tets.size(); ++t)
-      for (int v : dt.tets[t]) at[uz(fill[uz(v)]++)] = static_cast<int>(t);
-  }
-  const auto is_delaunay = [&](int a, int b, int c) {
-    for (int k = off[uz(a)]; k < off[uz(a) + 1]; ++k) {
-      const auto& t = dt.tets[uz(at[uz(k)])];
-      if (std::find(t.begin(), t.end(), b) != t.end() && std::find(t.begin(), t.end(), c) != t.end()) return true;
-    }
-    return false;
-  };
+  const VertexTets at(dt);
+  const auto is_delaunay = [&](int a, int b, int c) { return at.is_face(a, b, c); };
   // Directed surface edge (a, b) -> its face (an edge is a surface edge in either direction).
   const auto ekey = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
   std::unordered_map<std::uint64_t, int> face_of_edge;
