@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/link_cycle.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -154,26 +155,7 @@ class Regions {
         link_.push_back(e);
       }
     }
-    if (link_.size() < 3) return false;
-    // Every link vertex of degree 2, and one cycle through all link edges.
-    std::size_t steps = 0, cur_e = 0;
-    int cur = link_[0][1];
-    for (;;) {
-      std::size_t next_e = SIZE_MAX;
-      int deg = 0;
-      for (std::size_t j = 0; j < link_.size(); ++j)
-        if (link_[j][0] == cur || link_[j][1] == cur) {
-          ++deg;
-          if (j != cur_e) next_e = j;
-        }
-      if (deg != 2) return false;
-      ++steps;
-      cur = link_[next_e][0] == cur ? link_[next_e][1] : link_[next_e][0];
-      cur_e = next_e;
-      if (cur_e == 0) break;
-      if (steps > link_.size()) return false;
-    }
-    return steps == link_.size();
+    return link_is_one_cycle(link_);
   }
 
   // Carve: is removing body tetrahedron t from the current valid state an edge flip of the

@@ -27,6 +27,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include "constrict/criterion.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
@@ -34,6 +35,7 @@
 #include "constrict/topology.hpp"
 #include "constrict/detail/share3.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/link_cycle.hpp"
 #include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
 #include "core/detail/union_find.hpp"
@@ -336,6 +338,16 @@ class VertexTets {
       }
       if (hits == 3) f(t, i);
     }
+  }
+  // The tetrahedra at v, ascending.
+  struct Range {
+    const int *b, *e;
+    const int* begin() const { return b; }
+    const int* end() const { return e; }
+  };
+  Range of(int v) const {
+    if (v < 0 || uz(v) + 1 >= off_.size()) return {nullptr, nullptr};
+    return {at_.data() + off_[uz(v)], at_.data() + off_[uz(v) + 1]};
   }
   bool is_face(int a, int b, int c) const {
     bool any = false;
@@ -758,7 +770,7 @@ class SurfaceRepair {
 
  public:
   SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
-      : pts_(pts), dt_(dt), in_(in_body), at_(pts.size()) {
+      : pts_(pts), dt_(dt), in_(in_body), at_(dt) {
     // Face ids through the neighbour relation (a face and its mirror in the neighbour share one).
     const std::size_t T = dt.tets.size();
     face_id_.assign(T, {{-1, -1, -1, -1}});
@@ -774,11 +786,9 @@ class SurfaceRepair {
         ++faces;
       }
     count_.assign(uz(faces), 0);
-    for (std::size_t t = 0; t < T; ++t) {
+    for (std::size_t t = 0; t < T; ++t)
       if (in_[t])
         for (int i = 0; i < 4; ++i) ++count_[uz(face_id_[t][uz(i)])];
-      for (int x : dt.tets[t]) at_[uz(x)].push_back(static_cast<int>(t));
-    }
     for (const int c : count_) nfree_ += c == 1 ? 1 : 0;
   }
 
@@ -786,7 +796,8 @@ class SurfaceRepair {
   bool run(std::size_t target_faces, std::size_t& changed) {
     std::vector<int> left;  // points the first pass could not repair
     for (std::size_t v = 0; v < pts_.size(); ++v) {
-      if (vertex_ok(static_cast<int>(v))) continue;
+      const int vi = static_cast<int>(v);
+      if (vertex_ok(vi)) continue;
       std::vector<int> best;
       double best_gain = HUGE_VAL;
       std::vector<std::array<int, 4>> best_key;
@@ -821,20 +832,20 @@ class SurfaceRepair {
           best_key = key;
         }
       };
-      for (int t : at_[v]) consider({t});
+      for (int t : at_.of(vi)) consider({t});
       // Two that share a face (a pair of the point's own tetrahedra once).
       if (best.empty())
-        for (int t : at_[v])
+        for (int t : at_.of(vi))
           for (int m : dt_.neighbors[uz(t)])
-            if (m >= 0 && in_[uz(m)] == in_[uz(t)] && (m > t || !contains(at_[v], m))) consider({t, m});
+            if (m >= 0 && in_[uz(m)] == in_[uz(t)] && (m > t || !contains(at_.of(vi), m))) consider({t, m});
       // Deeper: a channel of tetrahedra in the point's state, from one at the point to one with
       // a free face (breadth first through their faces, at most kChannel long).
       if (best.empty() && !on_surface(static_cast<int>(v))) {
         bool buried = false;
-        for (int t : at_[v]) buried = buried || in_[uz(t)];
+        for (int t : at_.of(vi)) buried = buried || in_[uz(t)];
         std::unordered_map<int, int> parent;  // tetrahedron -> the one it was reached from (-1: at v)
         std::vector<int> layer;
-        for (int t : at_[v])
+        for (int t : at_.of(vi))
           if ((in_[uz(t)] != 0) == buried) {
             parent.emplace(t, -1);
             layer.push_back(t);
@@ -870,7 +881,7 @@ class SurfaceRepair {
   }
 
  private:
-  static bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+  static bool contains(VertexTets::Range r, int x) { return std::find(r.begin(), r.end(), x) != r.end(); }
   int face(int t, int i) const { return face_id_[uz(t)][uz(i)]; }
   void toggle(int t) {
     const int d = in_[uz(t)] ? -1 : 1;
@@ -884,7 +895,7 @@ class SurfaceRepair {
   }
   bool free_face(int t, int i) const { return count_[uz(face(t, i))] == 1; }
   bool on_surface(int x) {
-    for (int t : at_[uz(x)])
+    for (int t : at_.of(x))
       for (int i = 0; i < 4; ++i)
         if (dt_.tets[uz(t)][uz(i)] != x && free_face(t, i)) return true;
     return false;
@@ -893,7 +904,7 @@ class SurfaceRepair {
   // tetrahedron in the body; a face on the convex hull has no other side).
   bool vertex_ok(int x) {
     std::vector<std::array<int, 2>> link;
-    for (int t : at_[uz(x)]) {
+    for (int t : at_.of(x)) {
       if (!in_[uz(t)]) continue;
       for (int i = 0; i < 4; ++i) {
         const auto& v = dt_.tets[uz(t)];
@@ -907,24 +918,7 @@ class SurfaceRepair {
         link.push_back(e);
       }
     }
-    if (link.size() < 3) return false;
-    std::size_t steps = 0;
-    int prev_e = 0, cur = link[0][1];
-    for (;;) {
-      int next = -1, deg = 0;
-      for (std::size_t j = 0; j < link.size(); ++j)
-        if (link[j][0] == cur || link[j][1] == cur) {
-          ++deg;
-          if (static_cast<int>(j) != prev_e) next = static_cast<int>(j);
-        }
-      if (deg != 2) return false;
-      ++steps;
-      cur = link[uz(next)][0] == cur ? link[uz(next)][1] : link[uz(next)][0];
-      prev_e = next;
-      if (next == 0) break;
-      if (steps > link.size()) return false;
-    }
-    return steps == link.size();
+    return detail::link_is_one_cycle(link);
   }
   // The points the first pass left: single toggles of a tetrahedron at a bad vertex (one not on
   // the surface or whose link is not one cycle), each time the one that leaves the smallest
@@ -955,7 +949,7 @@ class SurfaceRepair {
       std::array<int, 4> best_key{};
       const std::vector<int> now(bad.begin(), bad.end());
       for (int v : now)
-        for (int t : at_[uz(v)]) {
+        for (int t : at_.of(v)) {
           if (tabu.count(t)) continue;
           const std::set<int> saved = bad;
           toggle(t);
@@ -995,12 +989,8 @@ class SurfaceRepair {
       for (int i = 0; i < 4; ++i) {
         if (!free_face(t, i)) continue;
         const auto& v = dt_.tets[uz(t)];
-        const double* p = pts_[uz(v[uz(kFaceOut[i][0])])];
-        const double* q = pts_[uz(v[uz(kFaceOut[i][1])])];
-        const double* r = pts_[uz(v[uz(kFaceOut[i][2])])];
-        const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-        const double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
-        a += std::sqrt(cx * cx + cy * cy + cz * cz);
+        a += triangle_area3(pts_[uz(v[uz(kFaceOut[i][0])])], pts_[uz(v[uz(kFaceOut[i][1])])],
+                            pts_[uz(v[uz(kFaceOut[i][2])])]);
       }
     return a;
   }
@@ -1008,7 +998,7 @@ class SurfaceRepair {
   const PointSet& pts_;
   const Delaunay3& dt_;
   std::vector<char>& in_;
-  std::vector<std::vector<int>> at_;
+  const VertexTets at_;
   std::vector<std::array<int, 4>> face_id_;  // per tetrahedron, the id of the face opposite vertex i
   std::vector<int> count_;                   // per face id, its tetrahedra in the body
   std::size_t nfree_ = 0;                    // faces with one body tetrahedron
