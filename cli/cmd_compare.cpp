@@ -142,6 +142,24 @@ int run_compare(const CompareArgs& a) {
 
 }  // namespace
 
+Status read_rings_result(const std::string& path, const PointSet& pts, std::vector<std::vector<int>>& rings) {
+  rings.clear();
+  const std::string e = lower_ext(path);
+  if (e != "gt" && e != "rings") {
+    rings.emplace_back();
+    return read_polygon_result(path, pts, rings.back());
+  }
+  Reference2 r;
+  if (Status s = read_reference2(path, pts.size(), r); !s) return s;
+  if (!r.open.empty())
+    return {StatusCode::InvalidArgument, path + ": " + std::to_string(r.open.size()) +
+                                             " open polyline(s); a result is closed rings ('c' lines) only"};
+  for (const auto& c : r.closed)
+    if (c.size() < 3) return {StatusCode::InvalidArgument, path + ": a ring needs at least 3 indices"};
+  rings = r.closed;
+  return Status::ok();
+}
+
 // A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or
 // .csv (x,y rows, matched to --points by exact coordinates).
 Status read_polygon_result(const std::string& path, const PointSet& pts, std::vector<int>& poly) {

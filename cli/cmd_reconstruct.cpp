@@ -179,9 +179,8 @@ Status svg_layers(const ReconstructArgs& a, const PointSet& pts, const std::stri
 
 // --topology auto found several rings: write them (rings formats), report, summary.
 int finish_rings2(const ReconstructArgs& a, const PointSet& pts, const ReadReport& rep, const Rings2Result& rr,
-                  const Rings2Options& ropt, PolygonFormat fmt, Progress& progress, Clock::time_point t0, Clock::time_point t1) {
-  if (!a.render.empty())
-    return fail({StatusCode::InvalidArgument, "--render draws one polygon; for rings write -o NAME.svg"});
+                  const Rings2Options& ropt, PolygonFormat fmt, Progress& progress, Clock::time_point t0,
+                  Clock::time_point t1) {
   progress.phase("writing");
   const auto tw = Clock::now();
   PolygonSvgLayers layers;
@@ -198,6 +197,7 @@ int finish_rings2(const ReconstructArgs& a, const PointSet& pts, const ReadRepor
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"write", ms(tw, t4)}, {"total", ms(t0, Clock::now())}});
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
+  if (int rc = a.render.empty() ? 0 : render_rings2(a.render, pts, rr.rings)) return rc;
   if (!a.quiet)
     std::printf("%zu rings (%zu shell%s, %zu hole%s) through %zu/%zu points: valid (each simple, disjoint, oriented, nested; "
                 "smallest gap %.2f spacings) -> %s (%.0f ms)\n",

@@ -19,6 +19,7 @@
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/render.hpp"
+#include "constrict/topology.hpp"
 
 namespace constrict::cli {
 namespace {
@@ -152,6 +153,29 @@ Status write_picture2(const RenderArgs& a, const PointSet& pts, const std::vecto
   Image img;
   if (Status s = render_sheet2(pts, panels, o, img); !s) return s;
   return write_png(path, img);
+}
+
+// Several rings in one picture: PNG fills them even-odd; SVG is write_rings2()'s, which draws holes
+// dashed (a ring's role is read from its orientation: clockwise = hole).
+Status write_rings_picture2(const RenderArgs& a, const PointSet& pts, const std::vector<std::vector<int>>& rings,
+                            const PolygonSvgLayers& layers, const std::string& path) {
+  if (lower_ext(path) == "svg") {
+    std::vector<Ring2> rs(rings.size());
+    for (std::size_t k = 0; k < rings.size(); ++k) {
+      double area2 = 0;  // drawing style only
+      const std::vector<int>& r = rings[k];
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const auto p = static_cast<std::size_t>(r[i]), q = static_cast<std::size_t>(r[(i + 1) % r.size()]);
+        area2 += pts[p][0] * pts[q][1] - pts[q][0] * pts[p][1];
+      }
+      rs[k].role = area2 < 0 ? RingRole::Hole : RingRole::Shell;
+      rs[k].indices = r;
+    }
+    return write_rings2(path, pts, rs, PolygonFormat::Svg, &layers);
+  }
+  Panel2 p{rings[0], &layers};
+  p.rings.assign(rings.begin() + 1, rings.end());
+  return write_picture2(a, pts, {p}, path);
 }
 
 int render_points2(const RenderArgs& a, const PointSet& pts) {
@@ -305,8 +329,8 @@ int run_render(const RenderArgs& a) {
     ro.check = false;
     ro.dim = 2;
     if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
-    std::vector<int> poly;
-    if (Status s = read_polygon_result(a.in.path, pts, poly); !s) return fail(s);
+    std::vector<std::vector<int>> rings;
+    if (Status s = read_rings_result(a.in.path, pts, rings); !s) return fail(s);
     if (Status s = check_dimension_options(a, 2); !s) return fail(s);
     GammaFaces dt;
     if (!a.no_graph)
@@ -314,8 +338,15 @@ int run_render(const RenderArgs& a) {
     PolygonSvgLayers layers;
     layers.graph = a.no_graph ? nullptr : &dt;
     layers.title = "constrict: " + a.in.path;
-    if (Status s = write_picture2(a, pts, {Panel2{poly, &layers}}, a.out); !s) return fail(s);
-    if (!a.quiet) std::printf("polygon of %zu vertices -> %s\n", poly.size(), a.out.c_str());
+    std::size_t vertices = 0;
+    for (const auto& r : rings) vertices += r.size();
+    if (rings.size() == 1) {
+      if (Status s = write_picture2(a, pts, {Panel2{rings[0], &layers}}, a.out); !s) return fail(s);
+      if (!a.quiet) std::printf("polygon of %zu vertices -> %s\n", vertices, a.out.c_str());
+    } else {
+      if (Status s = write_rings_picture2(a, pts, rings, layers, a.out); !s) return fail(s);
+      if (!a.quiet) std::printf("%zu rings of %zu vertices -> %s\n", rings.size(), vertices, a.out.c_str());
+    }
     return 0;
   }
   const std::string ie = lower_ext(a.in.path);
@@ -355,6 +386,26 @@ int render_reconstruction2(const std::string& path, const PointSet& pts, const P
   return 0;
 }
 
+int render_rings2(const std::string& path, const PointSet& pts, const std::vector<Ring2>& rings) {
+  if (lower_ext(path) != "png" && lower_ext(path) != "svg")
+    return fail({StatusCode::InvalidArgument, path + ": the picture is .png or .svg"});
+  if (rings.empty()) return fail({StatusCode::InvalidArgument, "render: no ring to draw"});
+  GammaFaces dt;
+  if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
+  PolygonSvgLayers layers;
+  layers.graph = &dt;
+  if (lower_ext(path) == "svg") {
+    if (Status s = write_rings2(path, pts, rings, PolygonFormat::Svg, &layers); !s) return fail(s);
+    return 0;
+  }
+  RenderArgs a;
+  a.out = path;
+  Panel2 p{rings[0].indices, &layers};
+  for (std::size_t k = 1; k < rings.size(); ++k) p.rings.push_back(rings[k].indices);
+  if (Status s = write_picture2(a, pts, {p}, path); !s) return fail(s);
+  return 0;
+}
+
 int render_reconstruction3(const std::string& path, const PointSet& pts, const TriMesh3& mesh) {
   RenderArgs a;
   a.out = path;
@@ -368,7 +419,8 @@ Command add_render_command(CLI::App& app) {
       "render", "draw a reconstruction (from points), a 2D polygon result (--points) or a 3D mesh as PNG/SVG");
   add_input_options(cmd, a->in, false);  // --columns is the sheet's here
   cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required();
-  cmd->add_option("--points", a->points, "INPUT is a 2D polygon result (.idx .csv .gt) over these points");
+  cmd->add_option("--points", a->points,
+                  "INPUT is a 2D result over these points: a polygon (.idx .csv) or rings (.gt .rings)");
   cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)");
   cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)");
   cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "constrict/io.hpp"
@@ -82,10 +83,17 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
 Status render_mesh3(const PointSet& points, const TriMesh3& mesh, const std::vector<View>& views,
                     const RenderOptions3& options, Image& out);
 
-/// One panel of a 2D sheet: a polygon (may be empty: points only) with optional layers.
+/// One panel of a 2D sheet: a polygon (may be empty: points only) or a ring set, with optional
+/// layers.
 struct Panel2 {
+  Panel2() = default;
+  Panel2(std::vector<int> polygon, const PolygonSvgLayers* with = nullptr)
+      : boundary(std::move(polygon)), layers(with) {}
   std::vector<int> boundary;       ///< polygon as input indices (closed implicitly)
   const PolygonSvgLayers* layers = nullptr;  ///< graph dashed, stuck points, fallback edges
+  /// Further rings (input indices, closed implicitly), drawn with the boundary: the fill is
+  /// even-odd over all of them, so a hole stays empty and an island in it is filled again.
+  std::vector<std::vector<int>> rings;
 };
 
 /// Options of render_sheet2().

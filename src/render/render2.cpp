@@ -52,17 +52,21 @@ struct Canvas {
         blend(x, y, c, a);
       }
   }
-  // Even-odd fill of a polygon, sampled at pixel centres.
-  void fill(const std::vector<double>& xs, const std::vector<double>& ys, const Rgb& c, double a) {
-    const std::size_t n = xs.size();
-    if (n < 3) return;
+  // Even-odd fill of closed rings (pixel coordinates, a ring each), sampled at pixel centres.
+  void fill(const std::vector<std::vector<double>>& xs, const std::vector<std::vector<double>>& ys, const Rgb& c,
+            double a) {
     std::vector<double> cut;
     for (int y = cy0; y < cy1; ++y) {
       const double py = y + 0.5;
       cut.clear();
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t j = (i + 1) % n;
-        if ((ys[i] <= py) != (ys[j] <= py)) cut.push_back(xs[i] + (py - ys[i]) / (ys[j] - ys[i]) * (xs[j] - xs[i]));
+      for (std::size_t r = 0; r < xs.size(); ++r) {
+        const std::vector<double>&X = xs[r], &Y = ys[r];
+        const std::size_t n = X.size();
+        if (n < 3) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+          const std::size_t j = (i + 1) % n;
+          if ((Y[i] <= py) != (Y[j] <= py)) cut.push_back(X[i] + (py - Y[i]) / (Y[j] - Y[i]) * (X[j] - X[i]));
+        }
       }
       std::sort(cut.begin(), cut.end());
       for (std::size_t k = 0; k + 1 < cut.size(); k += 2)
@@ -87,6 +91,9 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
   for (const auto& p : panels) {
     for (int i : p.boundary)
       if (bad(i)) return {StatusCode::InvalidArgument, "render: polygon index " + std::to_string(i) + " out of range"};
+    for (const auto& ring : p.rings)
+      for (int i : ring)
+        if (bad(i)) return {StatusCode::InvalidArgument, "render: ring index " + std::to_string(i) + " out of range"};
     if (p.layers) {
       for (int i : p.layers->highlight_points)
         if (bad(i)) return {StatusCode::InvalidArgument, "render: point index " + std::to_string(i) + " out of range"};
@@ -126,11 +133,17 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
     const auto X = [&](std::size_t i) { return ox + s * points[i][0]; };
     const auto Y = [&](std::size_t i) { return oy - s * points[i][1]; };
     const double unit = std::min(cw, ch) / 800.0;  // the SVG writer draws on an 800-pixel canvas
-    std::vector<double> xs, ys;
-    for (int i : pan.boundary) {
-      xs.push_back(X(static_cast<std::size_t>(i)));
-      ys.push_back(Y(static_cast<std::size_t>(i)));
-    }
+    std::vector<std::vector<double>> xs, ys;       // the boundary, then the further rings
+    const auto add_ring = [&](const std::vector<int>& ring) {
+      xs.emplace_back();
+      ys.emplace_back();
+      for (int i : ring) {
+        xs.back().push_back(X(static_cast<std::size_t>(i)));
+        ys.back().push_back(Y(static_cast<std::size_t>(i)));
+      }
+    };
+    add_ring(pan.boundary);
+    for (const auto& ring : pan.rings) add_ring(ring);
     cv.fill(xs, ys, kFill, 0.6);
     if (pan.layers && pan.layers->graph && pan.layers->graph->dim == 2) {
       const GammaFaces& g = *pan.layers->graph;
@@ -140,10 +153,11 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
       }
     }
     const double lw = o.line_width * std::max(1.0, unit);
-    for (std::size_t k = 0; k < xs.size() && xs.size() >= 2; ++k) {
-      const std::size_t j = (k + 1) % xs.size();
-      cv.segment(xs[k], ys[k], xs[j], ys[j], lw, kPoly);
-    }
+    for (std::size_t r = 0; r < xs.size(); ++r)
+      for (std::size_t k = 0; k < xs[r].size() && xs[r].size() >= 2; ++k) {
+        const std::size_t j = (k + 1) % xs[r].size();
+        cv.segment(xs[r][k], ys[r][k], xs[r][j], ys[r][j], lw, kPoly);
+      }
     if (pan.layers)
       for (const auto& e : pan.layers->highlight_edges) {
         const auto a = static_cast<std::size_t>(e[0]), b = static_cast<std::size_t>(e[1]);

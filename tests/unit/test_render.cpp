@@ -201,6 +201,30 @@ TEST(Render2, SquareGolden) {
   EXPECT_EQ(img.at(64, 10), (std::array<std::uint8_t, 3>{{200, 200, 200}}));
 }
 
+// A ring set is one even-odd fill: the hole's pixels stay white, an island in the hole is filled
+// again, and the ring between them is filled; every ring's edges are drawn.
+TEST(Render2, RingsFillEvenOdd) {
+  PointSet p;
+  p.dim = 2;
+  for (const double r : {8.0, 4.0, 2.0})  // shell, hole (clockwise), island
+    for (const auto& c : {std::array<double, 2>{{-r, -r}}, {{r, -r}}, {{r, r}}, {{-r, r}}})
+      p.coords.insert(p.coords.end(), {c[0], c[1]});
+  RenderOptions2 o;
+  o.width = o.height = 100;
+  Image img;
+  Panel2 pan{{0, 1, 2, 3}};
+  pan.rings = {{4, 7, 6, 5}, {8, 9, 10, 11}};
+  ASSERT_TRUE(render_sheet2(p, {pan}, o, img));
+  const std::array<std::uint8_t, 3> fill{{234, 241, 249}}, white{{255, 255, 255}};
+  // 16 units over 94 pixels (3 % margins): x = 50 + 5.875 u.
+  EXPECT_EQ(img.at(50 + 35, 50), fill);                    // between the shell (8) and the hole (4), u ≈ 6
+  EXPECT_EQ(img.at(50 + 18, 50), white);                   // in the hole, outside the island (u ≈ 3)
+  EXPECT_EQ(img.at(50 + 4, 50 + 4), fill);                 // the island (u < 1)
+  EXPECT_GT(count_colour(img, {{31, 78, 140}}, 10), 60u);  // three rings' edges
+  pan.rings.push_back({0, 1, 12});
+  EXPECT_EQ(render_sheet2(p, {pan}, o, img).code(), StatusCode::InvalidArgument);  // ring index out of range
+}
+
 TEST(Png, RoundTripAndErrors) {
   Image img;
   img.width = 5;
