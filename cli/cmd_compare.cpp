@@ -54,12 +54,17 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
   Reference2 ref;
   if (Status s = read_reference2(a.reference, pts.size(), ref); !s) return fail(s);
-  std::vector<int> poly;
-  if (Status s = read_polygon_result(a.result, pts, poly); !s) return fail(s);
-  const PolygonComparison pc = compare_polygon2(poly, ref);
+  std::vector<std::vector<int>> rings;
+  if (Status s = read_rings_result(a.result, pts, rings); !s) return fail(s);
+  const RingsComparison rc = compare_rings2(rings, ref);
+  const PolygonComparison pc = rings.size() == 1 ? compare_polygon2(rings[0], ref) : rc.edges;
+  std::vector<Polyline2> lines;
+  for (const auto& r : rings) lines.push_back(polygon_polyline2(pts, r));
   CurveDistance2 d;
-  if (Status s = compare_curves2({polygon_polyline2(pts, poly)}, reference_polylines2(pts, ref), d, o); !s) return fail(s);
+  if (Status s = compare_curves2(lines, reference_polylines2(pts, ref), d, o); !s) return fail(s);
   j["dimension"] = 2;
+  j["rings"] = {
+      {"result", rc.result_rings}, {"reference", rc.reference_rings}, {"same_point_sets", rc.same_point_sets}};
   j["points"] = pts.size();
   j["exact_match"] = pc.exact_match;
   j["reference_edges"] = pc.reference_edges;
@@ -68,12 +73,16 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   j["edge_recall"] = pc.edge_recall;
   j["edge_precision"] = pc.edge_precision;
   put_distance(j, d);
-  if (!a.quiet)
+  if (!a.quiet) {
     std::printf("%s: edges recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox diagonal), "
                 "mean %.6g (%.4f%%)\n",
                 pc.exact_match ? "exact match" : "differs", pc.recovered_edges, pc.reference_edges,
                 100 * pc.edge_recall, 100 * pc.edge_precision, d.hausdorff, 100 * d.relative_hausdorff, d.mean,
                 100 * d.relative_mean);
+    if (rc.result_rings > 1 || rc.reference_rings > 1)
+      std::printf("rings: %zu in the result, %zu in the reference, %zu of them with the same point set\n",
+                  rc.result_rings, rc.reference_rings, rc.same_point_sets);
+  }
   return 0;
 }
 
@@ -174,7 +183,7 @@ Status read_polygon_result(const std::string& path, const PointSet& pts, std::ve
     return Status::ok();
   }
   if (e != "idx" && e != "csv")
-    return {StatusCode::InvalidArgument, path + ": unknown 2D result format (use .idx, .csv or .gt)"};
+    return {StatusCode::InvalidArgument, path + ": unknown 2D result format (use .idx, .csv, .gt or .rings)"};
   if (e == "idx") {
     std::ifstream f(path);
     if (!f) return {StatusCode::FileNotFound, path + ": cannot open"};

@@ -43,4 +43,18 @@ struct PolygonComparison {
 /// @note O((N + M) log(N + M)).
 PolygonComparison compare_polygon2(const std::vector<int>& polygon, const Reference2& reference);
 
+/// Result of compare_rings2(): the edge counts of all rings together, and the rings matched.
+struct RingsComparison {
+  PolygonComparison
+      edges;  ///< over the edges of all rings; exact_match: same edge set as a reference of closed curves only
+  std::size_t result_rings = 0;
+  std::size_t reference_rings = 0;  ///< the reference's closed curves
+  std::size_t same_point_sets = 0;  ///< reference rings whose point set is exactly one result ring's
+};
+
+/// Compares a ring set (e.g. a `--topology auto` result; input indices) with a reference of closed
+/// curves: the issue-16 measure "the rings hold the same point sets as the ground-truth rings" and
+/// the edges recovered. Purely combinatorial. @note O((N + M) log(N + M)).
+RingsComparison compare_rings2(const std::vector<std::vector<int>>& rings, const Reference2& reference);
+
 }  // namespace constrict

@@ -84,4 +84,34 @@ PolygonComparison compare_polygon2(const std::vector<int>& polygon, const Refere
   return c;
 }
 
+RingsComparison compare_rings2(const std::vector<std::vector<int>>& rings, const Reference2& reference) {
+  RingsComparison c;
+  std::vector<std::array<int, 2>> pe;
+  for (const auto& r : rings) add_path(pe, r, true);
+  std::sort(pe.begin(), pe.end());
+  pe.erase(std::unique(pe.begin(), pe.end()), pe.end());
+  const std::vector<std::array<int, 2>> re = reference.edges();
+  std::vector<std::array<int, 2>> common;
+  std::set_intersection(pe.begin(), pe.end(), re.begin(), re.end(), std::back_inserter(common));
+  PolygonComparison& e = c.edges;
+  e.reference_edges = re.size();
+  e.polygon_edges = pe.size();
+  e.recovered_edges = common.size();
+  e.edge_recall = re.empty() ? 1.0 : static_cast<double>(common.size()) / static_cast<double>(re.size());
+  e.edge_precision = pe.empty() ? 0.0 : static_cast<double>(common.size()) / static_cast<double>(pe.size());
+  e.exact_match = reference.open.empty() && !reference.closed.empty() && pe == re;
+  const auto sorted = [](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  std::vector<std::vector<int>> sets;
+  for (const auto& r : rings) sets.push_back(sorted(r));
+  std::sort(sets.begin(), sets.end());
+  c.result_rings = rings.size();
+  c.reference_rings = reference.closed.size();
+  for (const auto& g : reference.closed)
+    if (std::binary_search(sets.begin(), sets.end(), sorted(g))) ++c.same_point_sets;
+  return c;
+}
+
 }  // namespace constrict

@@ -54,3 +54,26 @@ TEST(Metrics, ExactMatchIgnoresStartAndDirection) {
   EXPECT_FALSE(swapped.exact_match);
   EXPECT_EQ(swapped.recovered_edges, 3u);  // (1,2), (3,4), (4,0)
 }
+
+// Ring sets against a reference of several closed curves: a ring matches when its point set is a
+// reference ring's, whatever its start, direction or vertex order; the edges count over all rings.
+TEST(Metrics, RingsMatchByPointSet) {
+  Reference2 r;
+  r.closed = {{0, 1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  const auto same = compare_rings2({{6, 5, 4}, {2, 3, 0, 1}, {9, 7, 8}}, r);
+  EXPECT_TRUE(same.edges.exact_match);
+  EXPECT_EQ(same.same_point_sets, 3u);
+  EXPECT_EQ(same.result_rings, 3u);
+  EXPECT_EQ(same.reference_rings, 3u);
+  // The first two rings merged through a slit, and one point moved to the third: one ring right.
+  const auto merged = compare_rings2({{0, 1, 2, 4, 5, 6, 3}, {7, 8, 9}}, r);
+  EXPECT_FALSE(merged.edges.exact_match);
+  EXPECT_EQ(merged.same_point_sets, 1u);
+  EXPECT_EQ(merged.edges.recovered_edges, 3u + 2u + 3u);  // (0,1) (1,2) (3,0), (4,5) (5,6), the third ring
+  EXPECT_EQ(merged.edges.polygon_edges, 10u);
+  const auto swapped = compare_rings2({{0, 2, 1, 3}, {4, 5, 6}, {7, 8, 9}}, r);  // same sets, other order
+  EXPECT_EQ(swapped.same_point_sets, 3u);
+  EXPECT_FALSE(swapped.edges.exact_match);
+  // A single polygon against the same reference: no ring matches.
+  EXPECT_EQ(compare_rings2({{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}}, r).same_point_sets, 0u);
+}
