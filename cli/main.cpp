@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "constrict/memory.hpp"
 #include "constrict/status.hpp"
 #include "constrict/version.hpp"
 
@@ -24,9 +25,10 @@ namespace {
 // (transparent_hugepage "madvise", Debian's default), glibc requests them when its tunable
 // glibc.malloc.hugetlb=1 is set at program start: the CLI runs itself again once with it. Outputs
 // are unchanged. Not done when the user set the tunable (any value), under valgrind (whose child
-// would run unchecked), or with CONSTRICT_NO_HUGEPAGES set.
+// would run unchecked), or when huge_pages_enabled() is false (CONSTRICT_NO_HUGEPAGES set, or a
+// VM that hands free memory back to its host, where huge pages cost more than they save).
 void reexec_with_huge_pages(char** argv) {
-  if (std::getenv("CONSTRICT_NO_HUGEPAGES")) return;
+  if (!constrict::huge_pages_enabled()) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
   if (const char* pre = std::getenv("LD_PRELOAD"); pre && std::strstr(pre, "vgpreload")) return;

@@ -2,12 +2,15 @@
 // Sizing of the large arrays of the Delaunay export and the γ loops. A fresh multi-megabyte
 // array costs one page fault per 4 KiB page when it is first written (a measurable part of the
 // export for 10^6 points); on Linux we ask for transparent huge pages on it first (a hint only:
-// no effect when THP is disabled, and no effect on any value).
+// no effect when THP is disabled, and no effect on any value), unless huge_pages_enabled() says
+// they cost more than they save on this machine.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include "constrict/memory.hpp"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -21,7 +24,7 @@ template <class T>
 void reserve_big(std::vector<T>& v, std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::size_t kHuge = std::size_t{2} << 20;
-  if (n * sizeof(T) >= 2 * kHuge && v.capacity() < n) {
+  if (n * sizeof(T) >= 2 * kHuge && v.capacity() < n && huge_pages_enabled()) {
     v.reserve(n);
     const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
     const std::uintptr_t b = (begin + kHuge - 1) & ~(kHuge - 1);
@@ -54,7 +57,7 @@ class BigArray {
     size_ = n;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     constexpr std::size_t kHuge = std::size_t{2} << 20;
-    if (n * sizeof(T) >= 2 * kHuge) {
+    if (n * sizeof(T) >= 2 * kHuge && huge_pages_enabled()) {
       const auto begin = reinterpret_cast<std::uintptr_t>(data_.get());
       const std::uintptr_t b = (begin + kHuge - 1) & ~(kHuge - 1);
       const std::uintptr_t e = (begin + n * sizeof(T)) & ~(kHuge - 1);

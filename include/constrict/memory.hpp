@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// @file memory.hpp
+/// @brief Whether the large arrays ask the kernel for transparent huge pages. A speed hint only:
+/// no result depends on it (docs/benchmarks.md, "Huge pages").
+#pragma once
+
+#include <string>
+
+namespace constrict {
+
+/// True unless the environment variable CONSTRICT_NO_HUGEPAGES is set, or the machine hands its
+/// free memory back to the hypervisor (a virtio balloon with free page reporting, as cloud VMs
+/// such as Firecracker's have): there a huge page is usually memory the host has taken back, and
+/// its first touch cost 1.03-1.23x the whole run against small pages (measured on the 10^6
+/// inputs), where elsewhere huge pages saved up to a fourth. Decided once per process.
+bool huge_pages_enabled() noexcept;
+
+namespace detail {
+/// The decision of huge_pages_enabled() from its inputs: the variable's value (null: unset) and
+/// the root of the virtio devices in sysfs (normally /sys/bus/virtio/devices).
+bool huge_pages_wanted(const char* no_hugepages_env, const std::string& virtio_devices) noexcept;
+}  // namespace detail
+
+}  // namespace constrict
