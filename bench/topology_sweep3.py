@@ -9,7 +9,7 @@ are not those files: this measures other sets of the same kinds. Each set also g
 feature (tube radius, shell thickness, smallest gap) in units of its Poisson-disk radius (the
 smallest distance between two samples before scaling), which is where the sparse cases fail.
 
-Usage: bench/topology_sweep3.py [BUILD_DIR (build-bench)] [OUT (out/topology_sweep3)] [N,N,... (all)]
+Usage: bench/topology_sweep3.py [BUILD_DIR (build-bench)] [OUT (out/topology_sweep3)] [N,N,... (all)] [SEED (31337)]
 Writes OUT/data/*.xyz, OUT/out/*.json and OUT/table.md. Needs numpy (python3-numpy)."""
 import json, math, os, subprocess, sys
 
@@ -185,7 +185,8 @@ def feature(fam, params):
 def main():
     build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
     out = sys.argv[2] if len(sys.argv) > 2 else "out/topology_sweep3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 else NS
+    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else NS
+    seed = int(sys.argv[4]) if len(sys.argv) > 4 else 31337
     cli = os.path.join(build, "cli", "constrict")
     if not os.access(cli, os.X_OK):
         sys.exit(f"missing {cli}: run make bench (or give the build directory)")
@@ -195,7 +196,7 @@ def main():
     for fi, fam in enumerate(FAMS):
         for N in ns:
             for rep in range(REPS):
-                rng = np.random.default_rng([fi, N, rep, 31337])
+                rng = np.random.default_rng([fi, N, rep, seed])
                 cand, area, _, params, truth = make_surface(fam, rng, N)
                 pts, d = blue_noise(rng, cand, area, N)
                 Q = random_rotation(rng)

@@ -402,5 +402,29 @@ TEST(Surfaces3Property, NoisyHandlesAreClosed) {
   EXPECT_GE(right, 3);  // (0 of 6 before the repair; the others miss one handle)
 }
 
+// Tubes about two spacings in radius (the dart radius h): the cut the genus-0 growth leaves across
+// such a tube has few or no faces 4 spacings long, but closing it turns a worst bridge ratio of 3
+// or more into an even sample (docs/topology.md, "Sparse samples"). Linked tori of radius 0.25
+// at h = 0.114 (2.2 h) and tori of radius 0.35 at h = 0.15 (2.3 h); before the thin-tube rule
+// 2 of these 8 had every handle.
+TEST(Surfaces3Property, ThinTubesKeepTheirHandles) {
+  int right = 0, over = 0;
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    for (const auto& [f, h] : {std::pair<Family3, double>{Family3::Links, 0.19}, {Family3::Torus, 0.15}}) {
+      const test::Sample3 s = test::make_surfaces3(f, 0, seed, h);
+      const Surfaces3Result r = run_auto(s.points);
+      const std::string what = std::string(name(f)) + " h " + std::to_string(h) + " seed " + std::to_string(seed) +
+                               " (" + std::to_string(s.points.size()) + " points)";
+      std::cout << "[ info ] " << what << ": " << r.surfaces.size() << " surface(s), genus " << r.genus << "\n";
+      expect_closed_oriented(r, what);
+      right += static_cast<int>(r.surfaces.size()) == s.surfaces && r.genus == s.genus;
+      over += r.genus > s.genus;
+    }
+  }
+  std::cout << "[ info ] thin tubes right: " << right << " of 8\n";
+  EXPECT_EQ(over, 0);
+  EXPECT_GE(right, 6);
+}
+
 }  // namespace
 }  // namespace constrict
