@@ -223,6 +223,10 @@ struct Handle3Change {
   int bridges_after = 0;               ///< ... and after (kept: fewer)
   double worst_ratio_before = 0, worst_ratio_after = 0;  ///< largest face ratio around it
   bool separates_parts = false;        ///< kept because it separates two parts of the gap rule
+  /// A sealed cavity (an inner shell closer than the gap rule's threshold): the void it encloses,
+  /// its tetrahedra, the points on it and its widest tetrahedron's bridge ratio (kept: large and wide).
+  std::size_t cavity_tetrahedra = 0, cavity_points = 0;
+  double cavity_width = 0;
 };
 /// "close-loop", "open-tunnel", "seal-cavity".
 const char* to_string(Handle3Change::Kind kind) noexcept;

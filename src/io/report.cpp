@@ -49,9 +49,16 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   if (!r.handle_changes.empty()) {  // (the auto topology's handle stage; docs/topology.md §3D)
     nlohmann::json h = nlohmann::json::array();
     for (const Handle3Change& c : r.handle_changes)
-      h.push_back({{"kind", to_string(c.kind)}, {"tetrahedra", c.tetrahedra}, {"bridges_before", c.bridges_before},
-                   {"bridges_after", c.bridges_after}, {"worst_ratio_before", c.worst_ratio_before},
-                   {"worst_ratio_after", c.worst_ratio_after}, {"separates_parts", c.separates_parts}});
+      h.push_back({{"kind", to_string(c.kind)},
+                   {"tetrahedra", c.tetrahedra},
+                   {"bridges_before", c.bridges_before},
+                   {"bridges_after", c.bridges_after},
+                   {"worst_ratio_before", c.worst_ratio_before},
+                   {"worst_ratio_after", c.worst_ratio_after},
+                   {"separates_parts", c.separates_parts},
+                   {"cavity_tetrahedra", c.cavity_tetrahedra},
+                   {"cavity_points", c.cavity_points},
+                   {"cavity_width", c.cavity_width}});
     j["handles"] = h;
     j["genus"] = r.genus;
   }

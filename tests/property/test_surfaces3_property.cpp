@@ -426,5 +426,30 @@ TEST(Surfaces3Property, ThinTubesKeepTheirHandles) {
   EXPECT_GE(right, 6);
 }
 
+// Hollow balls whose shell is 2-2.5 dart radii thick: the gap rule (2 local spacings, about
+// 2.7 radii here) keeps them one part, the engine joins the shells by a channel, and the handle
+// stage's seal of that channel encloses the cavity: one large, wide void, kept as an inner shell
+// (small voids between noisy sheets are not). Before: one surface in all 6.
+TEST(Surfaces3Property, SparseHollowBallKeepsItsCavity) {
+  int right = 0;
+  for (double gap : {2.0, 2.5})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      const test::Sample3 s = test::make_surfaces3(Family3::Hollow, gap, seed, 0.2);
+      const Surfaces3Result r = run_auto(s.points);
+      const std::string what = "hollow gap " + std::to_string(gap) + " seed " + std::to_string(seed) + " (" +
+                               std::to_string(s.points.size()) + " points)";
+      std::cout << "[ info ] " << what << ": " << r.surfaces.size() << " surface(s), genus " << r.genus << "\n";
+      expect_closed_oriented(r, what);
+      EXPECT_LE(r.surfaces.size(), 2u) << what;
+      EXPECT_EQ(r.genus, 0) << what;
+      if (r.surfaces.size() == 2) {
+        expect_topology(s, r, what);
+        ++right;
+      }
+    }
+  std::cout << "[ info ] sparse hollow balls right: " << right << " of 6\n";
+  EXPECT_GE(right, 5);
+}
+
 }  // namespace
 }  // namespace constrict
