@@ -63,48 +63,66 @@ int mixed_surfaces(const Body3& b, const std::vector<int>& part_of) {
 }
 
 // The void a seal encloses: the tetrahedra outside the body reached from the region's faces
-// without meeting the convex hull; its size, the points on its boundary, and its widest
-// tetrahedron (bridge ratio: longest edge over the largest spacing of its vertices).
+// without meeting the convex hull; its size and the points on its boundary. A search stops as
+// soon as it meets the hull, or a tetrahedron of an earlier search that did: the exterior is
+// large and only a void is measured. The widest tetrahedron (bridge ratio: longest edge over the
+// largest spacing of its vertices) is measured by cavity_width, only for a void that is large.
 struct CavityMeasure {
   std::size_t voids = 0, tets = 0, points = 0;  // enclosed components, their tetrahedra and points
+  std::vector<int> void_tets;
   double widest = 0;
 };
-CavityMeasure enclosed_cavity(const Body3& b, const std::vector<int>& changed, const std::vector<double>& spacing) {
+CavityMeasure enclosed_cavity(const Body3& b, const std::vector<int>& changed) {
   CavityMeasure m;
-  std::vector<char> seen(b.tets.size(), 0);
+  std::vector<int> search_of(b.tets.size(), -1);  // the search that met each tetrahedron
+  std::vector<char> reached_hull;                 // per search
   std::vector<char> vert(b.n, 0);
+  std::vector<int> comp, stack;
+  const auto outside = [&](int t) { return t >= 0 && b.state[uz(t)] == kOutside; };
   for (int t0 : changed)
     for (int i = 0; i < 4; ++i) {
       const int s0 = b.nbr[uz(t0)][uz(i)];
-      if (s0 < 0 || b.alive(s0) || seen[uz(s0)] || b.state[uz(s0)] != kOutside) continue;
-      std::vector<int> comp{s0}, stack{s0};
-      seen[uz(s0)] = 1;
+      if (!outside(s0) || search_of[uz(s0)] >= 0) continue;
+      const int id = static_cast<int>(reached_hull.size());
+      reached_hull.push_back(0);
+      comp.assign(1, s0);
+      stack.assign(1, s0);
+      search_of[uz(s0)] = id;
       bool hull = false;
-      while (!stack.empty()) {
+      while (!stack.empty() && !hull) {
         const int t = stack.back();
         stack.pop_back();
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < 4 && !hull; ++k) {
           const int u = b.nbr[uz(t)][uz(k)];
-          if (u < 0) {
+          if (u < 0)
             hull = true;
+          else if (!outside(u))
             continue;
+          else if (search_of[uz(u)] >= 0)
+            hull = search_of[uz(u)] != id && reached_hull[uz(search_of[uz(u)])];
+          else {
+            search_of[uz(u)] = id;
+            comp.push_back(u);
+            stack.push_back(u);
           }
-          if (b.alive(u) || seen[uz(u)] || b.state[uz(u)] != kOutside) continue;
-          seen[uz(u)] = 1;
-          comp.push_back(u);
-          stack.push_back(u);
         }
       }
+      reached_hull[uz(id)] = hull ? 1 : 0;
       if (hull) continue;
       ++m.voids;
       m.tets += comp.size();
-      for (int t : comp) {
-        m.widest = std::max(m.widest, bridge_ratio3(*b.pts, spacing, b.tets[uz(t)]));
+      for (int t : comp)
         for (int v : b.tets[uz(t)]) vert[uz(v)] = 1;
-      }
+      m.void_tets.insert(m.void_tets.end(), comp.begin(), comp.end());
     }
   for (char c : vert) m.points += static_cast<std::size_t>(c);
   return m;
+}
+
+double cavity_width(const Body3& b, const std::vector<int>& void_tets, const std::vector<double>& spacing) {
+  double w = 0;
+  for (int t : void_tets) w = std::max(w, bridge_ratio3(*b.pts, spacing, b.tets[uz(t)]));
+  return w;
 }
 
 }  // namespace
@@ -134,10 +152,13 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // voids at most 32 tetrahedra and 48 points, and those with more than 8 points no tetrahedron
     // wider than 4.55. Kept: one new surface (dF = -4) around one void that is large and wide.
     if (dF < 0) {
-      if (spacing->empty()) *spacing = nearest_spacing3(b);
-      const CavityMeasure m = enclosed_cavity(b, changed, *spacing);
-      const bool shell =
-          dF == -4 && m.voids == 1 && m.tets >= kMinCavity && m.points >= kMinCavity && m.widest >= kMinCavityWidth;
+      CavityMeasure m = enclosed_cavity(b, changed);
+      const bool large = dF == -4 && m.voids == 1 && m.tets >= kMinCavity && m.points >= kMinCavity;
+      if (large || debug) {
+        if (spacing->empty()) *spacing = nearest_spacing3(b);
+        m.widest = cavity_width(b, m.void_tets, *spacing);
+      }
+      const bool shell = large && m.widest >= kMinCavityWidth;
       if (debug)
         std::fprintf(stderr, "handle seal: %zu tets, dF %lld, %zu void(s), %zu tets, %zu points, widest %.2f: %s\n",
                      changed.size(), dF, m.voids, m.tets, m.points, m.widest, shell ? "kept" : "undone");
