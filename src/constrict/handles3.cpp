@@ -27,11 +27,11 @@ constexpr int kMinCutBridges = 4;
 // A one-loop region is kept when its surface goes from a ratio of kThinCutBefore or more to
 // kThinCutAfter or less with no bridge face left (docs/topology.md, "Sparse samples").
 constexpr double kThinCutBefore = 3.0;
-// The fewest tetrahedra, and points on its boundary, of a void a seal encloses for it to be an
-// inner shell's cavity (below).
-constexpr std::size_t kMinCavity = 64;
-constexpr double kMinCavityWidth = 5.0;  // its widest tetrahedron's bridge ratio
 constexpr double kThinCutAfter = 2.25;
+// The fewest tetrahedra, and points on its boundary, of a void a seal encloses for it to be an
+// inner shell's cavity (bridge_handle_decision), and its widest tetrahedron's bridge ratio.
+constexpr std::size_t kMinCavity = 64;
+constexpr double kMinCavityWidth = 5.0;
 
 struct BridgeCount {
   int faces = 0;
