@@ -57,7 +57,7 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   std::vector<std::vector<int>> rings;
   if (Status s = read_rings_result(a.result, pts, rings); !s) return fail(s);
   const RingsComparison rc = compare_rings2(rings, ref);
-  const PolygonComparison pc = rings.size() == 1 ? compare_polygon2(rings[0], ref) : rc.edges;
+  const PolygonComparison& pc = rc.edges;
   std::vector<Polyline2> lines;
   for (const auto& r : rings) lines.push_back(polygon_polyline2(pts, r));
   CurveDistance2 d;

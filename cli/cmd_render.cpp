@@ -155,27 +155,29 @@ Status write_picture2(const RenderArgs& a, const PointSet& pts, const std::vecto
   return write_png(path, img);
 }
 
-// Several rings in one picture: PNG fills them even-odd; SVG is write_rings2()'s, which draws holes
-// dashed (a ring's role is read from its orientation: clockwise = hole).
-Status write_rings_picture2(const RenderArgs& a, const PointSet& pts, const std::vector<std::vector<int>>& rings,
+// Several rings in one picture: PNG fills them even-odd; SVG is write_rings2()'s (holes dashed).
+Status write_rings_picture2(const RenderArgs& a, const PointSet& pts, const std::vector<Ring2>& rings,
                             const PolygonSvgLayers& layers, const std::string& path) {
-  if (lower_ext(path) == "svg") {
-    std::vector<Ring2> rs(rings.size());
-    for (std::size_t k = 0; k < rings.size(); ++k) {
-      double area2 = 0;  // drawing style only
-      const std::vector<int>& r = rings[k];
-      for (std::size_t i = 0; i < r.size(); ++i) {
-        const auto p = static_cast<std::size_t>(r[i]), q = static_cast<std::size_t>(r[(i + 1) % r.size()]);
-        area2 += pts[p][0] * pts[q][1] - pts[q][0] * pts[p][1];
-      }
-      rs[k].role = area2 < 0 ? RingRole::Hole : RingRole::Shell;
-      rs[k].indices = r;
-    }
-    return write_rings2(path, pts, rs, PolygonFormat::Svg, &layers);
-  }
-  Panel2 p{rings[0], &layers};
-  p.rings.assign(rings.begin() + 1, rings.end());
+  if (lower_ext(path) == "svg") return write_rings2(path, pts, rings, PolygonFormat::Svg, &layers);
+  Panel2 p{rings[0].indices, &layers};
+  for (std::size_t k = 1; k < rings.size(); ++k) p.rings.push_back(rings[k].indices);
   return write_picture2(a, pts, {p}, path);
+}
+
+// Rings read from a file, their roles for the drawing style only: clockwise = hole.
+std::vector<Ring2> rings_by_orientation(const PointSet& pts, const std::vector<std::vector<int>>& rings) {
+  std::vector<Ring2> rs(rings.size());
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    double area2 = 0;
+    const std::vector<int>& r = rings[k];
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const auto p = static_cast<std::size_t>(r[i]), q = static_cast<std::size_t>(r[(i + 1) % r.size()]);
+      area2 += pts[p][0] * pts[q][1] - pts[q][0] * pts[p][1];
+    }
+    rs[k].role = area2 < 0 ? RingRole::Hole : RingRole::Shell;
+    rs[k].indices = r;
+  }
+  return rs;
 }
 
 int render_points2(const RenderArgs& a, const PointSet& pts) {
@@ -344,7 +346,7 @@ int run_render(const RenderArgs& a) {
       if (Status s = write_picture2(a, pts, {Panel2{rings[0], &layers}}, a.out); !s) return fail(s);
       if (!a.quiet) std::printf("polygon of %zu vertices -> %s\n", vertices, a.out.c_str());
     } else {
-      if (Status s = write_rings_picture2(a, pts, rings, layers, a.out); !s) return fail(s);
+      if (Status s = write_rings_picture2(a, pts, rings_by_orientation(pts, rings), layers, a.out); !s) return fail(s);
       if (!a.quiet) std::printf("%zu rings of %zu vertices -> %s\n", rings.size(), vertices, a.out.c_str());
     }
     return 0;
@@ -394,15 +396,9 @@ int render_rings2(const std::string& path, const PointSet& pts, const std::vecto
   if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
   PolygonSvgLayers layers;
   layers.graph = &dt;
-  if (lower_ext(path) == "svg") {
-    if (Status s = write_rings2(path, pts, rings, PolygonFormat::Svg, &layers); !s) return fail(s);
-    return 0;
-  }
   RenderArgs a;
   a.out = path;
-  Panel2 p{rings[0].indices, &layers};
-  for (std::size_t k = 1; k < rings.size(); ++k) p.rings.push_back(rings[k].indices);
-  if (Status s = write_picture2(a, pts, {p}, path); !s) return fail(s);
+  if (Status s = write_rings_picture2(a, pts, rings, layers, path); !s) return fail(s);
   return 0;
 }
 

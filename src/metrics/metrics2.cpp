@@ -66,24 +66,6 @@ Status read_reference2(const std::string& path, std::size_t n_points, Reference2
   return Status::ok();
 }
 
-PolygonComparison compare_polygon2(const std::vector<int>& polygon, const Reference2& reference) {
-  PolygonComparison c;
-  std::vector<std::array<int, 2>> pe;
-  add_path(pe, polygon, true);
-  std::sort(pe.begin(), pe.end());
-  pe.erase(std::unique(pe.begin(), pe.end()), pe.end());
-  const std::vector<std::array<int, 2>> re = reference.edges();
-  std::vector<std::array<int, 2>> common;
-  std::set_intersection(pe.begin(), pe.end(), re.begin(), re.end(), std::back_inserter(common));
-  c.reference_edges = re.size();
-  c.polygon_edges = pe.size();
-  c.recovered_edges = common.size();
-  c.edge_recall = re.empty() ? 1.0 : static_cast<double>(common.size()) / static_cast<double>(re.size());
-  c.edge_precision = pe.empty() ? 0.0 : static_cast<double>(common.size()) / static_cast<double>(pe.size());
-  c.exact_match = reference.single_closed_curve() && pe == re;
-  return c;
-}
-
 RingsComparison compare_rings2(const std::vector<std::vector<int>>& rings, const Reference2& reference) {
   RingsComparison c;
   std::vector<std::array<int, 2>> pe;
@@ -112,6 +94,12 @@ RingsComparison compare_rings2(const std::vector<std::vector<int>>& rings, const
   for (const auto& g : reference.closed)
     if (std::binary_search(sets.begin(), sets.end(), sorted(g))) ++c.same_point_sets;
   return c;
+}
+
+// One polygon is a ring set of one ring: a single cycle's edges equal the reference's only when
+// the reference is that one closed curve.
+PolygonComparison compare_polygon2(const std::vector<int>& polygon, const Reference2& reference) {
+  return compare_rings2({polygon}, reference).edges;
 }
 
 }  // namespace constrict
