@@ -24,6 +24,11 @@ namespace {
 
 // Rounds of putting back the removals at non-manifold vertices before a region is undone.
 constexpr int kRepairRounds = 16;
+// The most tetrahedra one move at a pinched vertex toggles (star_moves).
+constexpr std::size_t kStarMoveMax = 24;
+// ... and only when a handle's region ends with at most this many non-manifold vertices.
+constexpr std::size_t kStarMoveMaxBad = 2;
+constexpr int kStarRounds = 4;
 // The fill's local repair: regions with at most this many bad vertices, at most this many single
 // toggles kept, at most this many tried per region.
 constexpr std::size_t kLocalMaxBad = 8, kLocalTrials = 4096, kLocalMaxBadHandles = 32, kLocalTrialsPerPoint = 4;
@@ -70,6 +75,7 @@ class Regions {
       if (!collect_region(static_cast<int>(s0))) continue;
       ++s_.regions;
       const std::size_t F0 = F_;
+      pinched_ = false;
       peel_region();
       if (local_repair_) local_search();
       repair_and_settle();
@@ -285,6 +291,12 @@ class Regions {
     std::set<int> tabu;
     std::vector<int> mine = pending_;  // the region's additions since the last valid state, sorted
     std::sort(mine.begin(), mine.end());
+    // The start, for the moves at pinches below.
+    const bool star = handles && nbad_ <= kStarMoveMaxBad;
+    const std::vector<int> pending0 = star ? pending_ : std::vector<int>{},
+                           dimples0 = star ? dimples_ : std::vector<int>{};
+    const std::vector<int> mine0 = star ? mine : std::vector<int>{};
+    std::vector<int> walk;
     for (int step = 0; step < max_steps && !valid_now() && trials < kLocalTrials && s_.trials < trial_budget(); ++step) {
       std::vector<int> bad;
       for (int x : pending_)
@@ -318,8 +330,9 @@ class Regions {
             best_t = t;
           }
         }
-      if (best_t < 0) return;
+      if (best_t < 0) break;
       if (handles) tabu.insert(best_t);
+      if (star) walk.push_back(best_t);
       const bool alive = b_.alive(best_t);
       toggle(best_t, !alive);
       flush();
@@ -335,6 +348,157 @@ class Regions {
         mine.clear();
       }
     }
+    // A handle whose single toggles end at a few pinched vertices (two fans of body tetrahedra
+    // around one point): moves of several tetrahedra there (star_moves), the best one while it
+    // lowers the defect. Only for a region that ends almost valid: with many bad vertices such
+    // moves let regions through that close several loops at once across a sparse spot.
+    if (!star || valid_now()) return;
+    // (from the start: the single toggles' sideways walk can leave the pinch where no move joins it)
+    for (auto it = walk.rbegin(); it != walk.rend(); ++it) toggle(*it, !b_.alive(*it));
+    flush();
+    pending_ = pending0;
+    dimples_ = dimples0;
+    mine = mine0;
+    for (int round = 0; round < kStarRounds && !valid_now() && nbad_ <= kStarMoveMaxBad; ++round) {
+      std::vector<int> bad;
+      for (int x : pending_)
+        for (int y : b_.tets[uz(x)])
+          if (bad_of_[uz(y)]) bad.push_back(y);
+      std::sort(bad.begin(), bad.end());
+      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      const std::size_t d0 = defect();
+      std::size_t best_d = d0;
+      std::vector<int> best_m;
+      for (int v : bad) {
+        star_moves(v, moves_);
+        for (const auto& m : moves_) {
+          if (s_.trials > trial_budget()) break;
+          s_.trials += m.size();
+          toggle_all(m);
+          const std::size_t d = defect();
+          toggle_all(m);
+          if (d < best_d) {
+            best_d = d;
+            best_m = m;
+          }
+        }
+      }
+      if (best_m.empty()) return;
+      pinched_ = true;
+      for (int t : best_m) {
+        const bool alive = b_.alive(t);
+        toggle(t, !alive);
+        if (!alive)
+          pending_.push_back(t);
+        else if (!std::binary_search(mine.begin(), mine.end(), t))
+          dimples_.push_back(t);
+      }
+      flush();
+      if (valid_now()) {
+        pending_.clear();
+        dimples_.clear();
+        mine.clear();
+      }
+    }
+  }
+
+  // A handle's closing region often ends with a vertex whose surface is pinched: its body
+  // tetrahedra form two fans (or one fan around a hole of outside ones), so its link is two
+  // cycles, and no single toggle joins them. The moves of several tetrahedra around such a
+  // vertex v (its star; neighbours through the faces that hold v), each evaluated whole:
+  // a component of outside tetrahedra added, a component of body tetrahedra taken out, and the
+  // shortest path of tetrahedra of one state that joins two components of the other.
+  void star_moves(int v, std::vector<std::vector<int>>& moves) {
+    moves.clear();
+    star_.clear();
+    for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) star_.push_back(vt_idx_[uz(k)]);
+    std::sort(star_.begin(), star_.end());
+    const int S = static_cast<int>(star_.size());
+    const auto at = [&](int t) {
+      const auto it = std::lower_bound(star_.begin(), star_.end(), t);
+      return it != star_.end() && *it == t ? static_cast<int>(it - star_.begin()) : -1;
+    };
+    // Star adjacency (at most 3 neighbours each: the faces through v).
+    star_nbr_.assign(uz(S) * 3, -1);
+    for (int a = 0; a < S; ++a) {
+      const int t = star_[uz(a)], li = b_.local_index(t, v);
+      int c = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != li) star_nbr_[uz(a) * 3 + uz(c++)] = b_.nbr[uz(t)][uz(i)] >= 0 ? at(b_.nbr[uz(t)][uz(i)]) : -1;
+    }
+    const auto state = [&](int a) { return b_.alive(star_[uz(a)]) ? 1 : 0; };
+    star_comp_.assign(uz(S), -1);
+    int ncomp[2] = {0, 0};
+    std::vector<int> comp_state, queue;
+    for (int a0 = 0; a0 < S; ++a0) {
+      if (star_comp_[uz(a0)] >= 0) continue;
+      const int id = static_cast<int>(comp_state.size());
+      comp_state.push_back(state(a0));
+      ++ncomp[state(a0)];
+      star_comp_[uz(a0)] = id;
+      queue.assign(1, a0);
+      for (std::size_t q = 0; q < queue.size(); ++q)
+        for (int k = 0; k < 3; ++k) {
+          const int b = star_nbr_[uz(queue[q]) * 3 + uz(k)];
+          if (b >= 0 && star_comp_[uz(b)] < 0 && state(b) == state(a0)) {
+            star_comp_[uz(b)] = id;
+            queue.push_back(b);
+          }
+        }
+    }
+    // Whole components: an outside one added, a body one taken out (small ones only).
+    for (int id = 0; id < static_cast<int>(comp_state.size()); ++id) {
+      if (ncomp[comp_state[uz(id)]] < 2 && ncomp[1 - comp_state[uz(id)]] < 2) continue;
+      std::vector<int> m;
+      for (int a = 0; a < S; ++a)
+        if (star_comp_[uz(a)] == id) m.push_back(star_[uz(a)]);
+      if (m.size() <= kStarMoveMax) moves.push_back(std::move(m));
+    }
+    // Paths: through tetrahedra of state x, from a component of the other state to another one.
+    for (int x = 0; x < 2; ++x) {
+      if (ncomp[1 - x] < 2) continue;
+      int c0 = -1;  // the component of the other state holding the smallest tetrahedron
+      for (int a = 0; a < S && c0 < 0; ++a)
+        if (state(a) != x) c0 = star_comp_[uz(a)];
+      const auto touches = [&](int a, bool same) {
+        for (int k = 0; k < 3; ++k) {
+          const int b = star_nbr_[uz(a) * 3 + uz(k)];
+          if (b >= 0 && state(b) != x && (star_comp_[uz(b)] == c0) == same) return true;
+        }
+        return false;
+      };
+      std::vector<int> from(uz(S), -2);
+      queue.clear();
+      for (int a = 0; a < S; ++a)
+        if (state(a) == x && touches(a, true)) {
+          from[uz(a)] = -1;
+          queue.push_back(a);
+        }
+      int end = -1;
+      for (std::size_t q = 0; q < queue.size() && end < 0; ++q) {
+        const int a = queue[q];
+        if (touches(a, false)) {
+          end = a;
+          break;
+        }
+        for (int k = 0; k < 3; ++k) {
+          const int b = star_nbr_[uz(a) * 3 + uz(k)];
+          if (b >= 0 && state(b) == x && from[uz(b)] == -2) {
+            from[uz(b)] = a;
+            queue.push_back(b);
+          }
+        }
+      }
+      if (end < 0) continue;
+      std::vector<int> m;
+      for (int a = end; a >= 0; a = from[uz(a)]) m.push_back(star_[uz(a)]);
+      if (m.size() <= kStarMoveMax) moves.push_back(std::move(m));
+    }
+  }
+  // Applies a move (toggles each of its tetrahedra) or takes it back.
+  void toggle_all(const std::vector<int>& m) {
+    for (int t : m) toggle(t, !b_.alive(t));
+    flush();
   }
 
   // Repair: put back toggled tetrahedra at the vertices that are not manifold, latest first, a
@@ -382,7 +546,7 @@ class Regions {
     // Carving must not split the body (F would drop); a fill that drops F seals a cavity (an inner
     // shell: the caller decides whether enclosed voids are allowed).
     const long long dF = static_cast<long long>(F_) - static_cast<long long>(F0);
-    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF)) {
+    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF, pinched_)) {
       s_.changed += changed_.size();
       return;
     }
@@ -411,6 +575,9 @@ class Regions {
   std::vector<int> dirty_list_, region_, pending_;
   std::vector<int> dimples_;  // body tetrahedra the handle's local search took out since the last valid state
   std::vector<std::array<int, 2>> link_;
+  std::vector<int> star_, star_nbr_, star_comp_;  // star_moves' scratch
+  std::vector<std::vector<int>> moves_;
+  bool pinched_ = false;  // the region used a move of star_moves
 };
 
 std::size_t count_changed(const std::vector<std::uint8_t>& before, const std::vector<std::uint8_t>& after, bool to_alive) {

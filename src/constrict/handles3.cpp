@@ -134,7 +134,8 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
-  return [spacing, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added, long long dF) {
+  return [spacing, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added,
+                                                long long dF, bool pinched) {
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
     h.tetrahedra = changed.size();
@@ -178,7 +179,9 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
         const auto& v = b.tets[uz(t)];
         const int p0 = (*part_of)[uz(v[0])];
         if ((*part_of)[uz(v[1])] != p0 || (*part_of)[uz(v[2])] != p0 || (*part_of)[uz(v[3])] != p0) {
-          if (debug) std::fprintf(stderr, "handle %s: %zu tets join two parts: undone\n", added ? "close" : "open", changed.size());
+          if (debug)
+            std::fprintf(stderr, "handle %s: %zu tets join two parts: undone\n", added ? "close" : "open",
+                         changed.size());
           return false;
         }
       }
@@ -210,7 +213,11 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     const long long loops = std::max(1LL, dF / 4);
     const bool thin_tube =
         added && dF == 4 && after.faces == 0 && before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
-    const bool keep = (after.faces < before.faces && before.faces >= kMinCutBridges * loops) || thin_tube;
+    // A region that needed a move at a pinch to become valid is forced through its end state: it
+    // must close one loop and at least halve the long faces (a true cut: 67 -> 5; false loops on
+    // very unevenly sampled tubes: 9 -> 8, and two loops at once, 67 -> 6).
+    const bool drop = pinched ? dF == 4 && 2 * after.faces <= before.faces : after.faces < before.faces;
+    const bool keep = (drop && before.faces >= kMinCutBridges * loops) || (thin_tube && !pinched);
     if (keep && log) {
       h.bridges_before = before.faces;
       h.bridges_after = after.faces;
@@ -218,9 +225,20 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       h.worst_ratio_after = after.worst;
       log->push_back(h);
     }
-    if (debug)
-      std::fprintf(stderr, "handle %s: %zu tets, dF %lld, bridges %d -> %d, worst %.2f -> %.2f: %s\n", added ? "close" : "open",
-                   changed.size(), dF, before.faces, after.faces, before.worst, after.worst, keep ? "kept" : "undone");
+    if (debug) {
+      double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+      for (int t : changed)
+        for (int v : b.tets[uz(t)])
+          for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], b.P(v)[k]);
+            hi[k] = std::max(hi[k], b.P(v)[k]);
+          }
+      std::fprintf(stderr,
+                   "handle %s: %zu tets, dF %lld%s, bridges %d -> %d, worst %.2f -> %.2f: %s (box %.3g %.3g %.3g - "
+                   "%.3g %.3g %.3g)\n",
+                   added ? "close" : "open", changed.size(), dF, pinched ? " (pinch)" : "", before.faces, after.faces,
+                   before.worst, after.worst, keep ? "kept" : "undone", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    }
     return keep;
   };
 }

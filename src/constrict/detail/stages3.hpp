@@ -178,8 +178,10 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
 
 // Whether a region's change that made a handle is kept: the tetrahedra it changed and whether they
 // were added (a loop closed) or removed (a tunnel opened); the body is in the changed state.
-// dF: the change of the surface's face count (> 0 a handle, < 0 a sealed cavity).
-using HandleDecision = std::function<bool(const Body3& body, const std::vector<int>& changed, bool added, long long dF)>;
+// dF: the change of the surface's face count (> 0 a handle, < 0 a sealed cavity). pinched: the
+// region reached its valid state only through a move of several tetrahedra at a pinched vertex.
+using HandleDecision =
+    std::function<bool(const Body3& body, const std::vector<int>& changed, bool added, long long dF, bool pinched)>;
 // The regions labelled inside that the body left out (closing loops), then the regions labelled
 // outside in the body (opening tunnels), under the manifold rule without the genus-0 condition; a
 // region's change is kept only when it adds a handle and decide agrees. Returns the tetrahedra changed.
