@@ -227,6 +227,12 @@ struct Handle3Change {
   /// its tetrahedra, the points on it and its widest tetrahedron's bridge ratio (kept: large and wide).
   std::size_t cavity_tetrahedra = 0, cavity_points = 0;
   double cavity_width = 0;
+  /// Kept by the thin-tube rule (no bridge face before or after): the shortest loop it closes, in
+  /// nearest-neighbour spacings, measured up to the rule's minimum of 16 (so 16 means 16 or more);
+  /// 0 for the other rules.
+  double loop_spacings = 0;
+  /// Its region became valid only through a move of several tetrahedra at a pinched point.
+  bool pinched = false;
 };
 /// "close-loop", "open-tunnel", "seal-cavity".
 const char* to_string(Handle3Change::Kind kind) noexcept;

@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
+#include <map>
 #include <memory>
+#include <queue>
 
 #include "constrict/detail/stages3.hpp"
 #include "core/detail/union_find.hpp"
@@ -28,6 +31,8 @@ constexpr int kMinCutBridges = 4;
 // kThinCutAfter or less with no bridge face left (docs/topology.md, "Sparse samples").
 constexpr double kThinCutBefore = 3.0;
 constexpr double kThinCutAfter = 2.25;
+// The shortest loop such a region may close, in nearest-neighbour spacings (shortest_loop).
+constexpr double kThinLoopMin = 16.0;
 // The fewest tetrahedra, and points on its boundary, of a void a seal encloses for it to be an
 // inner shell's cavity (bridge_handle_decision), and its widest tetrahedron's bridge ratio.
 constexpr std::size_t kMinCavity = 64;
@@ -125,6 +130,95 @@ double cavity_width(const Body3& b, const std::vector<int>& void_tets, const std
   return w;
 }
 
+// The shortest loop a closing region makes, in units of the local spacing: the region R touches
+// the body on faces that form one patch per end of the cut (patches: contact faces joined across
+// shared edges); the loop goes through R and through the body from one patch to another. A
+// Dijkstra over the body's tetrahedra (centroid to centroid) from every patch at once finds the
+// first meeting of two patches' fronts. Searches stop beyond max_len spacings (returns max_len).
+double shortest_loop(const Body3& b, const std::vector<int>& changed, const std::vector<double>& spacing,
+                     double max_len) {
+  std::vector<int> sorted = changed;
+  std::sort(sorted.begin(), sorted.end());
+  const auto in_r = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };
+  // Contact faces (R tet, face index) and their patches.
+  struct Contact {
+    int t, i;
+  };
+  std::vector<Contact> cf;
+  for (int t : changed)
+    for (int i = 0; i < 4; ++i) {
+      const int m = b.nbr[uz(t)][uz(i)];
+      if (m >= 0 && b.alive(m) && !in_r(m)) cf.push_back({t, i});
+    }
+  if (cf.size() < 2) return 0;
+  UnionFind uf(cf.size());
+  std::map<std::pair<int, int>, int> edge_face;
+  for (std::size_t k = 0; k < cf.size(); ++k) {
+    const auto& v = b.tets[uz(cf[k].t)];
+    int f[3], c = 0;
+    for (int l = 0; l < 4; ++l)
+      if (l != cf[k].i) f[c++] = v[uz(l)];
+    for (int e = 0; e < 3; ++e) {
+      const int a = std::min(f[e], f[(e + 1) % 3]), z = std::max(f[e], f[(e + 1) % 3]);
+      const auto [it, fresh] = edge_face.emplace(std::make_pair(a, z), static_cast<int>(k));
+      if (!fresh) uf.join(it->second, static_cast<int>(k));
+    }
+  }
+  double h = 0;
+  {
+    std::vector<double> s;
+    for (int t : changed)
+      for (int v : b.tets[uz(t)]) s.push_back(spacing[uz(v)]);
+    std::nth_element(s.begin(), s.begin() + static_cast<long>(s.size() / 2), s.end());
+    h = s[s.size() / 2];
+  }
+  if (!(h > 0)) return max_len;
+  const auto centroid = [&](int t, double* c) {
+    c[0] = c[1] = c[2] = 0;
+    for (int v : b.tets[uz(t)])
+      for (int k = 0; k < 3; ++k) c[k] += 0.25 * b.P(v)[k];
+  };
+  const auto dist = [&](int s, int t) {
+    double a[3], c[3];
+    centroid(s, a);
+    centroid(t, c);
+    return std::sqrt((a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
+  };
+  std::map<int, std::pair<double, int>> label;  // body tetrahedron -> (distance, patch)
+  using Item = std::pair<double, std::pair<int, int>>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+  for (std::size_t k = 0; k < cf.size(); ++k) {
+    const int m = b.nbr[uz(cf[k].t)][uz(cf[k].i)];
+    const int patch = uf.find(static_cast<int>(k));
+    const double d0 = dist(cf[k].t, m);
+    pq.push({d0, {m, patch}});
+  }
+  double best = max_len * h;
+  while (!pq.empty()) {
+    const auto [d, tp] = pq.top();
+    pq.pop();
+    if (2 * d >= best) break;
+    const auto [t, patch] = tp;
+    auto it = label.find(t);
+    if (it != label.end()) {
+      if (it->second.second != patch) best = std::min(best, d + it->second.first);
+      continue;
+    }
+    label[t] = {d, patch};
+    for (int m : b.nbr[uz(t)]) {
+      if (m < 0 || !b.alive(m) || in_r(m)) continue;
+      const auto jt = label.find(m);
+      const double dm = d + dist(t, m);
+      if (jt != label.end()) {
+        if (jt->second.second != patch) best = std::min(best, dm + jt->second.first);
+        continue;
+      }
+      pq.push({dm, {m, patch}});
+    }
+  }
+  return best / h;
+}
+
 }  // namespace
 
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
@@ -211,14 +305,26 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // random quarter of a genus-0 model), and a region closing two loops across 7 long faces held
     // a false one (a noisy chain).
     const long long loops = std::max(1LL, dF / 4);
-    const bool thin_tube =
+    bool thin_tube =
         added && dF == 4 && after.faces == 0 && before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
+    // ... and the loop it closes must be long: noise under a surface makes small tunnels that pass
+    // the ratio test, with loops of 3.9-11.3 spacings (noisy armadillo, igea, spot; 21.7 at a noise
+    // of 1.4 spacings), while every true thin tube measured (tori, chains and links of 600-1 500
+    // points) closed one of 83 spacings or more. A torus whose hole is as wide as its tube, two
+    // spacings thick, has a loop of about 25.
+    double loop = -1;
+    if (thin_tube && !pinched) {
+      loop = shortest_loop(b, changed, *spacing, kThinLoopMin);
+      thin_tube = loop >= kThinLoopMin;
+    }
     // A region that needed a move at a pinch to become valid is forced through its end state: it
     // must close one loop and at least halve the long faces (a true cut: 67 -> 5; false loops on
     // very unevenly sampled tubes: 9 -> 8, and two loops at once, 67 -> 6).
     const bool drop = pinched ? dF == 4 && 2 * after.faces <= before.faces : after.faces < before.faces;
     const bool keep = (drop && before.faces >= kMinCutBridges * loops) || (thin_tube && !pinched);
     if (keep && log) {
+      h.pinched = pinched;
+      if (loop >= 0 && after.faces == 0 && before.faces < kMinCutBridges * loops) h.loop_spacings = loop;
       h.bridges_before = before.faces;
       h.bridges_after = after.faces;
       h.worst_ratio_before = before.worst;
@@ -234,10 +340,10 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
             hi[k] = std::max(hi[k], b.P(v)[k]);
           }
       std::fprintf(stderr,
-                   "handle %s: %zu tets, dF %lld%s, bridges %d -> %d, worst %.2f -> %.2f: %s (box %.3g %.3g %.3g - "
-                   "%.3g %.3g %.3g)\n",
+                   "handle %s: %zu tets, dF %lld%s, bridges %d -> %d, worst %.2f -> %.2f, loop %.1f: %s (box %.3g %.3g "
+                   "%.3g - %.3g %.3g %.3g)\n",
                    added ? "close" : "open", changed.size(), dF, pinched ? " (pinch)" : "", before.faces, after.faces,
-                   before.worst, after.worst, keep ? "kept" : "undone", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+                   before.worst, after.worst, loop, keep ? "kept" : "undone", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
     }
     return keep;
   };

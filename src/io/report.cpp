@@ -58,7 +58,9 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
                    {"separates_parts", c.separates_parts},
                    {"cavity_tetrahedra", c.cavity_tetrahedra},
                    {"cavity_points", c.cavity_points},
-                   {"cavity_width", c.cavity_width}});
+                   {"cavity_width", c.cavity_width},
+                   {"loop_spacings", c.loop_spacings},
+                   {"pinched", c.pinched}});
     j["handles"] = h;
     j["genus"] = r.genus;
   }
