@@ -269,6 +269,16 @@ class Regions {
   // (noisy samples have a pocket of inside tetrahedra every few points, each of which may try up to
   // kLocalTrials toggles; measured: at most 0.6 trials per point, noisy frames and igea with noise).
   std::size_t trial_budget() const { return kLocalTrialsPerPoint * b_.n + kLocalTrials; }
+  // The non-manifold vertices of the region's pending additions, ascending.
+  std::vector<int> bad_vertices() const {
+    std::vector<int> bad;
+    for (int x : pending_)
+      for (int y : b_.tets[uz(x)])
+        if (bad_of_[uz(y)]) bad.push_back(y);
+    std::sort(bad.begin(), bad.end());
+    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+    return bad;
+  }
   // Fill and handle closing: when the region's end state is not valid only at a few vertices,
   // single toggles at those vertices (adding an outside tetrahedron of the vertex, or taking back
   // one the region added; for a handle also a dimple), each time the one that leaves the fewest
@@ -298,12 +308,7 @@ class Regions {
     const std::vector<int> mine0 = star ? mine : std::vector<int>{};
     std::vector<int> walk;
     for (int step = 0; step < max_steps && !valid_now() && trials < kLocalTrials && s_.trials < trial_budget(); ++step) {
-      std::vector<int> bad;
-      for (int x : pending_)
-        for (int y : b_.tets[uz(x)])
-          if (bad_of_[uz(y)]) bad.push_back(y);
-      std::sort(bad.begin(), bad.end());
-      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      const std::vector<int> bad = bad_vertices();
       if (bad.empty()) return;
       const std::size_t d0 = defect();
       std::size_t best_d = d0;
@@ -360,12 +365,7 @@ class Regions {
     dimples_ = dimples0;
     mine = mine0;
     for (int round = 0; round < kStarRounds && !valid_now() && nbad_ <= kStarMoveMaxBad; ++round) {
-      std::vector<int> bad;
-      for (int x : pending_)
-        for (int y : b_.tets[uz(x)])
-          if (bad_of_[uz(y)]) bad.push_back(y);
-      std::sort(bad.begin(), bad.end());
-      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      const std::vector<int> bad = bad_vertices();
       const std::size_t d0 = defect();
       std::size_t best_d = d0;
       std::vector<int> best_m;
