@@ -121,11 +121,7 @@ def main():
     build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
     out = sys.argv[2] if len(sys.argv) > 2 else "out/handles_sweep3"
     ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else [3000, 10000, 30000]
-    cli = os.path.join(build, "cli", "constrict")
-    if not os.access(cli, os.X_OK):
-        sys.exit(f"missing {cli}: run make bench (or give the build directory)")
-    os.makedirs(os.path.join(out, "data"), exist_ok=True)
-    os.makedirs(os.path.join(out, "out"), exist_ok=True)
+    cli = ts.prepare(build, out)
     rows = []
     for fi, (fam, params) in enumerate(FAMS):
         for param in params:

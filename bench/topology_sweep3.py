@@ -182,16 +182,22 @@ def feature(fam, params):
     return params["min_gap"], "smallest gap"
 
 
-def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
-    out = sys.argv[2] if len(sys.argv) > 2 else "out/topology_sweep3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else NS
-    seed = int(sys.argv[4]) if len(sys.argv) > 4 else 31337
+def prepare(build, out):
+    """The CLI of the build (exits when it is missing) and the output folders OUT/data, OUT/out."""
     cli = os.path.join(build, "cli", "constrict")
     if not os.access(cli, os.X_OK):
         sys.exit(f"missing {cli}: run make bench (or give the build directory)")
     os.makedirs(os.path.join(out, "data"), exist_ok=True)
     os.makedirs(os.path.join(out, "out"), exist_ok=True)
+    return cli
+
+
+def main():
+    build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
+    out = sys.argv[2] if len(sys.argv) > 2 else "out/topology_sweep3"
+    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else NS
+    seed = int(sys.argv[4]) if len(sys.argv) > 4 else 31337
+    cli = prepare(build, out)
     rows = []
     for fi, fam in enumerate(FAMS):
         for N in ns:
