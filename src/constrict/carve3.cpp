@@ -358,7 +358,9 @@ class Regions {
     // lowers the defect. Only for a region that ends almost valid: with many bad vertices such
     // moves let regions through that close several loops at once across a sparse spot.
     if (!star || valid_now()) return;
-    // (from the start: the single toggles' sideways walk can leave the pinch where no move joins it)
+    // (From the start: the single toggles' sideways walk can leave the pinch where no move joins
+    // it. When the moves fail as well, the region settles from that start, not from where the
+    // walk ended: on the uneven tubes the walk's end once settled into a false loop.)
     for (auto it = walk.rbegin(); it != walk.rend(); ++it) toggle(*it, !b_.alive(*it));
     flush();
     pending_ = pending0;
