@@ -130,7 +130,8 @@ double cavity_width(const Body3& b, const std::vector<int>& void_tets, const std
   return w;
 }
 
-// The shortest loop a closing region makes, in units of the local spacing: the region R touches
+// The shortest loop a closing region makes, in nearest-neighbour spacings (nearest_spacing3, the
+// median over the region's points): the region R touches
 // the body on faces that form one patch per end of the cut (patches: contact faces joined across
 // shared edges); the loop goes through R and through the body from one patch to another. A
 // Dijkstra over the body's tetrahedra (centroid to centroid) from every patch at once finds the
