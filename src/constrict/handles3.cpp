@@ -131,11 +131,11 @@ double cavity_width(const Body3& b, const std::vector<int>& void_tets, const std
 }
 
 // The shortest loop a closing region makes, in nearest-neighbour spacings (nearest_spacing3, the
-// median over the region's points): the region R touches
-// the body on faces that form one patch per end of the cut (patches: contact faces joined across
-// shared edges); the loop goes through R and through the body from one patch to another. A
-// Dijkstra over the body's tetrahedra (centroid to centroid) from every patch at once finds the
-// first meeting of two patches' fronts. Searches stop beyond max_len spacings (returns max_len).
+// median over the region's points). The region R touches the body on faces that form one patch
+// per end of the cut (patches: contact faces joined across shared edges); the loop goes through R
+// and through the body from one patch to another. A Dijkstra over the body's tetrahedra (centroid
+// to centroid) from every patch at once finds the first meeting of two patches' fronts. Searches
+// stop beyond max_len spacings (then returns max_len).
 double shortest_loop(const Body3& b, const std::vector<int>& changed, const std::vector<double>& spacing,
                      double max_len) {
   std::vector<int> sorted = changed;
