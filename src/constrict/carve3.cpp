@@ -24,9 +24,10 @@ namespace {
 
 // Rounds of putting back the removals at non-manifold vertices before a region is undone.
 constexpr int kRepairRounds = 16;
-// The most tetrahedra one move at a pinched vertex toggles (star_moves).
+// Moves at a pinched vertex (star_moves): the most tetrahedra one move toggles, the most
+// non-manifold vertices a handle's region may end its peel with for them to be tried, and the
+// most moves taken in a row.
 constexpr std::size_t kStarMoveMax = 24;
-// ... and only when a handle's region ends with at most this many non-manifold vertices.
 constexpr std::size_t kStarMoveMaxBad = 2;
 constexpr int kStarRounds = 4;
 // The fill's local repair: regions with at most this many bad vertices, at most this many single
@@ -353,10 +354,10 @@ class Regions {
         mine.clear();
       }
     }
-    // A handle whose single toggles end at a few pinched vertices (two fans of body tetrahedra
+    // A handle whose single toggles fail at a few pinched vertices (two fans of body tetrahedra
     // around one point): moves of several tetrahedra there (star_moves), the best one while it
-    // lowers the defect. Only for a region that ends almost valid: with many bad vertices such
-    // moves let regions through that close several loops at once across a sparse spot.
+    // lowers the defect. Only for a region whose peel ended almost valid (star): with many bad
+    // vertices such moves let regions through that close several loops at once across a sparse spot.
     if (!star || valid_now()) return;
     // (From the start: the single toggles' sideways walk can leave the pinch where no move joins
     // it. When the moves fail as well, the region settles from that start, not from where the

@@ -306,26 +306,23 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // random quarter of a genus-0 model), and a region closing two loops across 7 long faces held
     // a false one (a noisy chain).
     const long long loops = std::max(1LL, dF / 4);
-    bool thin_tube =
-        added && dF == 4 && after.faces == 0 && before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
-    // ... and the loop it closes must be long: noise under a surface makes small tunnels that pass
-    // the ratio test, with loops of 3.9-11.3 spacings (noisy armadillo, igea, spot; 21.7 at a noise
-    // of 1.4 spacings), while every true thin tube measured (tori, chains and links of 600-1 500
-    // points) closed one of 83 spacings or more. A torus whose hole is as wide as its tube, two
-    // spacings thick, has a loop of about 25.
-    double loop = -1;
-    if (thin_tube && !pinched) {
-      loop = shortest_loop(b, changed, *spacing, kThinLoopMin);
-      thin_tube = loop >= kThinLoopMin;
-    }
     // A region that needed a move at a pinch to become valid is forced through its end state: it
     // must close one loop and at least halve the long faces (a true cut: 67 -> 5; false loops on
     // very unevenly sampled tubes: 9 -> 8, and two loops at once, 67 -> 6).
     const bool drop = pinched ? dF == 4 && 2 * after.faces <= before.faces : after.faces < before.faces;
-    const bool keep = (drop && before.faces >= kMinCutBridges * loops) || (thin_tube && !pinched);
+    const bool by_bridges = drop && before.faces >= kMinCutBridges * loops;
+    const bool thin_tube = !by_bridges && !pinched && added && dF == 4 && after.faces == 0 &&
+                           before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
+    // ... and the loop a thin tube's region closes must be long: noise under a surface makes small
+    // tunnels that pass the ratio test, with loops of 3.9-11.3 spacings (noisy armadillo, igea,
+    // spot; 21.7 at a noise of 1.4 spacings), while every true thin tube measured (tori, chains and
+    // links of 385-1 500 points) closed one of 83 spacings or more. A torus whose hole is as wide as
+    // its tube, two spacings thick, has a loop of about 25. (Measured only here: it is a search.)
+    const double loop = thin_tube ? shortest_loop(b, changed, *spacing, kThinLoopMin) : -1;
+    const bool keep = by_bridges || (thin_tube && loop >= kThinLoopMin);
     if (keep && log) {
       h.pinched = pinched;
-      if (loop >= 0 && after.faces == 0 && before.faces < kMinCutBridges * loops) h.loop_spacings = loop;
+      if (!by_bridges) h.loop_spacings = loop;
       h.bridges_before = before.faces;
       h.bridges_after = after.faces;
       h.worst_ratio_before = before.worst;
