@@ -3,6 +3,8 @@
 #include "constrict/detail/body3.hpp"
 
 #include "constrict/predicates.hpp"
+#include "core/detail/first_index.hpp"
+#include "core/detail/ordered_pack.hpp"
 
 namespace constrict::detail {
 
@@ -126,15 +128,19 @@ void Body3::reset_to_hull(Tets& nbr_delaunay) {
 }
 
 TriMesh3 Body3::surface() const {
+  // In tetrahedron order, in parallel (ordered_pack: the sequential order at any thread count).
   TriMesh3 m;
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    if (state[t] != kAlive) continue;
-    for (int i = 0; i < 4; ++i)
-      if (boundary_face(static_cast<int>(t), i)) {
+  m.triangles = ordered_pack<std::array<int, 3>>(
+      tets.size(), [&](std::size_t t) { return state[t] == kAlive ? uz(surface_faces_of(static_cast<int>(t))) : 0; },
+      [&](std::size_t t, std::array<int, 3>* out) {
+        if (state[t] != kAlive) return std::size_t{0};
+        std::size_t k = 0;
         const auto& v = tets[t];
-        m.triangles.push_back({{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}});
-      }
-  }
+        for (int i = 0; i < 4; ++i)
+          if (boundary_face(static_cast<int>(t), i))
+            out[k++] = {{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}};
+        return k;
+      });
   return m;
 }
 
@@ -146,17 +152,19 @@ std::vector<int> Body3::inside() const {
 }
 
 void Body3::check_body() const {
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    if (state[t] != kAlive) continue;
+  // The fault of tetrahedron t (0: none); the first faulty one in index order, found in parallel.
+  enum Fault { kNone, kNotPositive, kNotSymmetric, kFaceNotShared };
+  const auto fault = [&](std::size_t t) {
+    if (state[t] != kAlive) return kNone;
     const auto& v = tets[t];
-    CONSTRICT_CHECK(orient3(P(v[0]), P(v[1]), P(v[2]), P(v[3])) > 0, "body tetrahedron not positive");
+    if (orient3(P(v[0]), P(v[1]), P(v[2]), P(v[3])) <= 0) return kNotPositive;
     for (int i = 0; i < 4; ++i) {
       const int m = nbr[t][uz(i)];
       if (!alive(m)) continue;
       int j = -1;
       for (int l = 0; l < 4; ++l)
         if (nbr[uz(m)][uz(l)] == static_cast<int>(t)) j = l;
-      CONSTRICT_CHECK(j >= 0, "body adjacency not symmetric");
+      if (j < 0) return kNotSymmetric;
       std::array<int, 3> f1{}, f2{};
       int k1 = 0, k2 = 0;
       for (int l = 0; l < 4; ++l) {
@@ -165,9 +173,16 @@ void Body3::check_body() const {
       }
       std::sort(f1.begin(), f1.end());
       std::sort(f2.begin(), f2.end());
-      CONSTRICT_CHECK(f1 == f2, "body neighbours do not share the face");
+      if (f1 != f2) return kFaceNotShared;
     }
-  }
+    return kNone;
+  };
+  const std::size_t first = first_index(tets.size(), [&](std::size_t t) { return fault(t) != kNone; });
+  if (first == tets.size()) return;
+  const Fault f = fault(first);
+  CONSTRICT_CHECK(f != kNotPositive, "body tetrahedron not positive");
+  CONSTRICT_CHECK(f != kNotSymmetric, "body adjacency not symmetric");
+  CONSTRICT_CHECK(f != kFaceNotShared, "body neighbours do not share the face");
 }
 
 }  // namespace constrict::detail

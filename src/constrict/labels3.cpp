@@ -3,7 +3,10 @@
 // propagation from the convex hull (docs/reconstruction-3d.md §4.6), and the point spacing.
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <cstdint>
+#include <cstring>
+#include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -190,19 +193,54 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
   return out;
 }
 
+// The bits of a non-negative double: ordered as the doubles are.
+static std::uint64_t bits_of(double d) {
+  std::uint64_t u;
+  std::memcpy(&u, &d, sizeof u);
+  return u;
+}
+
 std::vector<double> nearest_spacing3(const Body3& b) {
-  std::vector<double> spacing(b.n, HUGE_VAL);
-  for (std::size_t t = 0; t < b.T0; ++t) {
-    const auto& v = b.tets[t];
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const int x = v[uz(i)], y = v[uz(j)];
-        const double dx = b.P(x)[0] - b.P(y)[0], dy = b.P(x)[1] - b.P(y)[1], dz = b.P(x)[2] - b.P(y)[2];
-        const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
-        spacing[uz(x)] = std::min(spacing[uz(x)], l);
-        spacing[uz(y)] = std::min(spacing[uz(y)], l);
-      }
-  }
+  // The smallest squared length per point, then one square root: the root is monotone and
+  // correctly rounded, so this is the minimum of the edges' lengths, bit for bit. In parallel
+  // over the tetrahedra: a minimum does not depend on the order, and a non-negative double orders
+  // as its bits do, so each point's minimum is kept by a compare-and-swap on the bits.
+  std::unique_ptr<std::atomic<std::uint64_t>[]> best(new std::atomic<std::uint64_t>[b.n]);
+  const std::uint64_t inf_bits = bits_of(HUGE_VAL);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.n, std::size_t{1} << 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v != r.end(); ++v)
+                        best[v].store(inf_bits, std::memory_order_relaxed);
+                    });
+  const auto lower = [&](int x, std::uint64_t l) {
+    std::atomic<std::uint64_t>& a = best[uz(x)];
+    std::uint64_t cur = a.load(std::memory_order_relaxed);
+    while (l < cur && !a.compare_exchange_weak(cur, l, std::memory_order_relaxed)) {}
+  };
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, b.T0, std::size_t{1} << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t != r.end(); ++t) {
+          const auto& v = b.tets[t];
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+              const int x = v[uz(i)], y = v[uz(j)];
+              const double dx = b.P(x)[0] - b.P(y)[0], dy = b.P(x)[1] - b.P(y)[1], dz = b.P(x)[2] - b.P(y)[2];
+              const std::uint64_t l = bits_of(dx * dx + dy * dy + dz * dz);
+              lower(x, l);
+              lower(y, l);
+            }
+        }
+      });
+  std::vector<double> spacing(b.n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.n, std::size_t{1} << 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                        const std::uint64_t l = best[v].load(std::memory_order_relaxed);
+                        double d;
+                        std::memcpy(&d, &l, sizeof d);
+                        spacing[v] = std::sqrt(d);
+                      }
+                    });
   return spacing;
 }
 

@@ -64,11 +64,18 @@ double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
 
 double mesh_area(const PointSet& pts, const TriMesh3& mesh) {
   const int e = magnitude_exponent(pts);
+  // x · 2^-e is ldexp(x, -e) bit for bit (one correctly rounded scaling) while 2^-e is a normal
+  // double; a multiplication costs less than the library call per coordinate.
+  const bool mul = e >= -1022 && e <= 1022;
+  const double f = std::ldexp(1.0, -e);
   double area = 0;
   for (const auto& t : mesh.triangles) {
     double p[3][3];
     for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) p[k][d] = std::ldexp(pts[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])][d], -e);
+      for (int d = 0; d < 3; ++d) {
+        const double x = pts[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])][d];
+        p[k][d] = mul ? x * f : std::ldexp(x, -e);
+      }
     const double ux = p[1][0] - p[0][0], uy = p[1][1] - p[0][1], uz = p[1][2] - p[0][2];
     const double vx = p[2][0] - p[0][0], vy = p[2][1] - p[0][1], vz = p[2][2] - p[0][2];
     const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;

@@ -6,6 +6,8 @@
 // a growth that reaches every point, flips that lower the area, cavities that keep the volume).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -340,6 +342,82 @@ TEST(Stages3, PresetsAndNames) {
 
 namespace constrict {
 namespace {
+
+// The parallel gathers and scans of the engine's last steps against their sequential definitions,
+// on bodies large enough for several blocks (ordered_pack: 2^15 items, first_index: 2^14).
+
+// nearest_spacing3 (parallel, squared lengths, one root) is the shortest Delaunay edge at each
+// point, bit for bit.
+TEST(Stages3, NearestSpacingIsTheShortestDelaunayEdgeAtEveryPoint) {
+  for (const std::size_t n : {std::size_t{50}, std::size_t{20000}}) {
+    const PointSet p = cloud(n, 7);
+    const Body3 b = start_body(p);
+    std::vector<double> want(b.n, HUGE_VAL);
+    for (std::size_t t = 0; t < b.T0; ++t)
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const int x = b.tets[t][static_cast<std::size_t>(i)], y = b.tets[t][static_cast<std::size_t>(j)];
+          const double dx = b.P(x)[0] - b.P(y)[0], dy = b.P(x)[1] - b.P(y)[1], dz = b.P(x)[2] - b.P(y)[2];
+          const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+          want[static_cast<std::size_t>(x)] = std::min(want[static_cast<std::size_t>(x)], l);
+          want[static_cast<std::size_t>(y)] = std::min(want[static_cast<std::size_t>(y)], l);
+        }
+    EXPECT_EQ(detail::nearest_spacing3(b), want) << n << " points";
+  }
+}
+
+// Body3::surface (ordered_pack) gives the faces of the sequential loop in the same order.
+TEST(Stages3, SurfaceIsGatheredInTetrahedronOrder) {
+  const PointSet p = shell(20000, 3, 0.05);
+  Body3 b = start_body(p);
+  // Some tetrahedra out of the body (a surface with faces all through the index range); the
+  // gather must follow the state whatever it is.
+  for (std::size_t t = 0; t < b.T0; t += 7) b.state[t] = detail::kOutside;
+  std::vector<std::array<int, 3>> want;
+  for (std::size_t t = 0; t < b.tets.size(); ++t) {
+    if (b.state[t] != detail::kAlive) continue;
+    for (int i = 0; i < 4; ++i)
+      if (b.boundary_face(static_cast<int>(t), i)) {
+        const auto& v = b.tets[t];
+        want.push_back(
+            {{v[static_cast<std::size_t>(detail::kFaceOut[i][0])], v[static_cast<std::size_t>(detail::kFaceOut[i][1])],
+              v[static_cast<std::size_t>(detail::kFaceOut[i][2])]}});
+      }
+  }
+  ASSERT_GT(b.T0, std::size_t{1} << 16);
+  EXPECT_EQ(b.surface().triangles, want);
+}
+
+// check_body reports the first broken invariant, also when it lies in a late block of the
+// parallel scan.
+TEST(Stages3, BodyCheckFindsABrokenTetrahedronAnywhere) {
+  const PointSet p = cloud(20000, 5);
+  const Body3 good = start_body(p);
+  ASSERT_NO_THROW(good.check_body());
+  const auto message = [](const Body3& b) {
+    try {
+      b.check_body();
+    } catch (const InternalError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const std::size_t t : {std::size_t{3}, good.T0 / 2, good.T0 - 2}) {
+    Body3 flipped = good;                               // a negative tetrahedron
+    std::swap(flipped.tets[t][0], flipped.tets[t][1]);  // (with its neighbours: only the sign breaks)
+    std::swap(flipped.nbr[t][0], flipped.nbr[t][1]);
+    EXPECT_NE(message(flipped).find("not positive"), std::string::npos) << t;
+    Body3 cut = good;  // a neighbour that does not point back
+    const int m = cut.nbr[t][0] >= 0 ? cut.nbr[t][0] : cut.nbr[t][1];
+    ASSERT_GE(m, 0);
+    for (int& back : cut.nbr[static_cast<std::size_t>(m)])
+      if (back == static_cast<int>(t)) back = -1;
+    EXPECT_NE(message(cut).find("not symmetric"), std::string::npos) << t;
+    // Out of the body, a broken tetrahedron is not the body's.
+    flipped.state[t] = detail::kOutside;
+    EXPECT_EQ(message(flipped), "") << t;
+  }
+}
 
 // The bridge measure: none on an evenly sampled sphere; the paper's constriction from the hull
 // leaves the bridges the growth avoids (bunny: 1,115 against 19 faces), and the measure sees them.
