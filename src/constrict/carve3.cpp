@@ -11,6 +11,8 @@
 // of inside tetrahedra the body left out; a region whose end state is invalid at a few vertices
 // only is first repaired by single toggles at those vertices (docs/reconstruction-3d.md §4.9).
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <queue>
 #include <set>
@@ -76,10 +78,18 @@ class Regions {
       if (!collect_region(static_cast<int>(s0))) continue;
       ++s_.regions;
       const std::size_t F0 = F_;
+      regionF0_ = F0;
       pinched_ = false;
       peel_region();
+      const std::size_t bad_peel = nbad_;
       if (local_repair_) local_search();
+      const std::size_t bad_search = nbad_;
       repair_and_settle();
+      if (rule_ == Rule::Handles && debug_)
+        std::fprintf(stderr,
+                     "handle region: %zu tets (%s), bad points after the peel %zu, after the search %zu, F %+lld\n",
+                     region_.size(), add_ ? "add" : "remove", bad_peel, bad_search,
+                     static_cast<long long>(F_) - static_cast<long long>(F0));
       if (rule_ == Rule::Handles) decide_region(F0);
       for (int t : touched_) touched_at_[uz(t)] = 0;
       touched_.clear();
@@ -221,6 +231,12 @@ class Regions {
     flush();
     return nbad_ == 0;
   }
+  // The local search's goal: a valid state, and for a handle's closing region one that changed
+  // the topology. A valid state with the region's start count of faces has opened the loop again
+  // (the repair took back the tetrahedra that closed it): the search goes on from there.
+  static constexpr std::size_t kReopened = 1000;  // above any defect the search starts from
+  bool reopened() const { return rule_ == Rule::Handles && add_ && nbad_ == 0 && F_ == regionF0_; }
+  bool closed_now() { return valid_now() && !reopened(); }
 
   // The face-connected region of candidates around s0; false if it does not touch the surface.
   bool collect_region(int s0) {
@@ -285,7 +301,7 @@ class Regions {
   // one the region added; for a handle also a dimple), each time the one that leaves the fewest
   // non-manifold vertices, while that number drops (for a handle: or stays, under a tabu list).
   std::size_t defect() const {
-    if (rule_ == Rule::Handles) return nbad_;
+    if (rule_ == Rule::Handles) return reopened() ? kReopened : nbad_;
     const std::size_t dF = F_ > targetF_ ? F_ - targetF_ : targetF_ - F_;
     return 4 * nbad_ + dF;
   }
@@ -308,7 +324,8 @@ class Regions {
                            dimples0 = star ? dimples_ : std::vector<int>{};
     const std::vector<int> mine0 = star ? mine : std::vector<int>{};
     std::vector<int> walk;
-    for (int step = 0; step < max_steps && !valid_now() && trials < kLocalTrials && s_.trials < trial_budget(); ++step) {
+    for (int step = 0; step < max_steps && !closed_now() && trials < kLocalTrials && s_.trials < trial_budget();
+         ++step) {
       const std::vector<int> bad = bad_vertices();
       if (bad.empty()) return;
       const std::size_t d0 = defect();
@@ -348,7 +365,7 @@ class Regions {
       } else if (!std::binary_search(mine.begin(), mine.end(), best_t)) {
         dimples_.push_back(best_t);
       }
-      if (valid_now()) {
+      if (closed_now()) {
         pending_.clear();
         dimples_.clear();
         mine.clear();
@@ -356,18 +373,25 @@ class Regions {
     }
     // A handle whose single toggles fail at a few pinched vertices (two fans of body tetrahedra
     // around one point): moves of several tetrahedra there (star_moves), the best one while it
-    // lowers the defect. Only for a region whose peel ended almost valid (star): with many bad
-    // vertices such moves let regions through that close several loops at once across a sparse spot.
-    if (!star || valid_now()) return;
-    // (From the start: the single toggles' sideways walk can leave the pinch where no move joins
-    // it. When the moves fail as well, the region settles from that start, not from where the
-    // walk ended: on the uneven tubes the walk's end once settled into a false loop.)
-    for (auto it = walk.rbegin(); it != walk.rend(); ++it) toggle(*it, !b_.alive(*it));
-    flush();
-    pending_ = pending0;
-    dimples_ = dimples0;
-    mine = mine0;
-    for (int round = 0; round < kStarRounds && !valid_now() && nbad_ <= kStarMoveMaxBad; ++round) {
+    // lowers the defect, when at most kStarMoveMaxBad are left (with many bad vertices such moves
+    // let regions through that close several loops at once across a sparse spot). A region whose
+    // peel ended almost valid (star) tries them from where the single toggles started; one whose
+    // peel ended with more bad vertices tries them where the single toggles
+    // end, when those leave at most kStarMoveMaxBad (the toggles are kept from opening the loop
+    // again, so that end still closes it: 2 of 28 noisy tori, chains and links closed this way).
+    const bool star_end = handles && !star && nbad_ <= kStarMoveMaxBad;
+    if ((!star && !star_end) || closed_now()) return;
+    if (star) {
+      // (From the start: the single toggles' sideways walk can leave the pinch where no move
+      // joins it. When the moves fail as well, the region settles from that start, not from where
+      // the walk ended: on the uneven tubes the walk's end once settled into a false loop.)
+      for (auto it = walk.rbegin(); it != walk.rend(); ++it) toggle(*it, !b_.alive(*it));
+      flush();
+      pending_ = pending0;
+      dimples_ = dimples0;
+      mine = mine0;
+    }
+    for (int round = 0; round < kStarRounds && !closed_now() && nbad_ <= kStarMoveMaxBad; ++round) {
       const std::vector<int> bad = bad_vertices();
       const std::size_t d0 = defect();
       std::size_t best_d = d0;
@@ -397,7 +421,7 @@ class Regions {
           dimples_.push_back(t);
       }
       flush();
-      if (valid_now()) {
+      if (closed_now()) {
         pending_.clear();
         dimples_.clear();
         mine.clear();
@@ -568,9 +592,11 @@ class Regions {
   const Rule rule_;
   const HandleDecision* decide_;
   const bool local_repair_;  // fill and handle closing: single-toggle repair of an invalid end state
+  const bool debug_ = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;  // (docs/cli.md)
   std::vector<int> changed_;
   std::vector<int> vt_off_, vt_idx_;
   std::size_t F_ = 0, targetF_ = 0, nbad_ = 0;
+  std::size_t regionF0_ = 0;   // F before the current region
   std::vector<int> alive_at_;  // body tetrahedra per vertex
   std::vector<char> anchor_, seen_, bad_of_, dirty_;
   std::vector<char> touched_at_;  // 0: not toggled in this region; 1 / 2: outside / alive before

@@ -524,5 +524,30 @@ TEST(Surfaces3Property, NoisySpotGetsNoSmallTunnelHandle) {
   EXPECT_EQ(r.genus, 0);
 }
 
+// A noisy sample whose loop closing ends with a pinched point only after the single toggles: the
+// peel leaves 7 bad points, and the toggles used to settle by taking back the tetrahedra that
+// closed the loop (a valid genus-0 state, so the region was undone: genus 0). They are now kept
+// from opening the loop again and end at one pinched point, which a move of several tetrahedra
+// joins. Such a region must still close a long loop (a pocket of a noisy armadillo closed one of
+// 2.5 spacings through a pinch). Regression file: the shared t3_torus_05 (1 462 points) with
+// normal noise of 0.5 of its median nearest-neighbour distance per coordinate; genus 0 without.
+TEST(Surfaces3Property, NoisyTorusIsClosedAtAPinchAfterTheSingleToggles) {
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/torus_noisy_pinch.xyz", ro, p).is_ok());
+  const Surfaces3Result r = run_auto(p);
+  expect_closed_oriented(r, "noisy torus");
+  EXPECT_EQ(r.surfaces.size(), 1u);
+  EXPECT_EQ(r.genus, 1);
+  int pinched = 0;
+  for (const Handle3Change& c : r.mesh.handle_changes)
+    if (c.kind == Handle3Change::Kind::CloseLoop) {
+      pinched += c.pinched;
+      EXPECT_GE(c.loop_spacings, 16.0) << "a loop closed through a pinch is long";
+    }
+  EXPECT_EQ(pinched, 1);
+}
+
 }  // namespace
 }  // namespace constrict
