@@ -11,12 +11,17 @@
 // of inside tetrahedra the body left out; a region whose end state is invalid at a few vertices
 // only is first repaired by single toggles at those vertices (docs/reconstruction-3d.md §4.9).
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <queue>
 #include <set>
 #include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "constrict/detail/stages3.hpp"
 #include "core/detail/link_cycle.hpp"
@@ -26,6 +31,8 @@ namespace {
 
 // Rounds of putting back the removals at non-manifold vertices before a region is undone.
 constexpr int kRepairRounds = 16;
+// Block of the parallel set-up passes (tetrahedra or points).
+constexpr std::size_t kSetupGrain = std::size_t{1} << 14;
 // Moves at a pinched vertex (star_moves): the most tetrahedra one move toggles, the most
 // non-manifold vertices a handle's region may end its peel with for them to be tried, and the
 // most moves taken in a row.
@@ -58,13 +65,25 @@ class Regions {
   // flips (valid_flip) not even those.
   bool run() {
     index_vertex_tets();
-    F_ = 0;
+    // The surface faces, and the body tetrahedra of each point (from its list: the carve's lists
+    // hold the body's tetrahedra only, the fill's every one not replaced).
+    F_ = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, b_.tets.size(), kSetupGrain), std::size_t{0},
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t f) {
+          for (std::size_t t = r.begin(); t != r.end(); ++t)
+            if (b_.state[t] == kAlive) f += uz(b_.surface_faces_of(static_cast<int>(t)));
+          return f;
+        },
+        [](std::size_t a, std::size_t c) { return a + c; });
     alive_at_.assign(b_.n, 0);
-    for (std::size_t t = 0; t < b_.tets.size(); ++t)
-      if (b_.state[t] == kAlive) {
-        F_ += uz(b_.surface_faces_of(static_cast<int>(t)));
-        for (int x : b_.tets[t]) ++alive_at_[uz(x)];
-      }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                          int k = 0;
+                          for (int j = vt_off_[v]; j < vt_off_[v + 1]; ++j) k += b_.state[uz(vt_idx_[uz(j)])] == kAlive;
+                          alive_at_[v] = k;
+                        }
+                      });
     targetF_ = 2 * b_.n - 4;
     if (rule_ == Rule::Genus0 && F_ != targetF_) return false;
     anchor_.assign(b_.tets.size(), 0);
@@ -111,47 +130,76 @@ class Regions {
     return add_ ? !b_.alive(t) && b_.surface_faces_of(t) < 4 : b_.alive(t) && b_.surface_faces_of(t) > 0;
   }
 
-  // Tetrahedra per vertex at the start (CSR): every one that can be in the body (fill), or the
-  // body's (carve).
+  // Tetrahedra per vertex at the start (CSR), each list ascending: every one that can be in the
+  // body (fill), or the body's (carve). In parallel: counts by atomic increments, the lists
+  // filled through atomic cursors and then sorted (the same lists as a sequential fill).
   void index_vertex_tets() {
     const auto in = [&](std::size_t t) { return add_ ? b_.state[t] != kReplaced : b_.state[t] == kAlive; };
+    const std::size_t T = b_.tets.size();
+    std::vector<std::atomic<int>> cnt(b_.n + 1);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n + 1, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v) cnt[v].store(0, std::memory_order_relaxed);
+                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t t = r.begin(); t != r.end(); ++t)
+                          if (in(t))
+                            for (int x : b_.tets[t]) cnt[uz(x) + 1].fetch_add(1, std::memory_order_relaxed);
+                      });
     vt_off_.assign(b_.n + 1, 0);
-    for (std::size_t t = 0; t < b_.tets.size(); ++t)
-      if (in(t))
-        for (int x : b_.tets[t]) ++vt_off_[uz(x) + 1];
-    for (std::size_t v = 0; v < b_.n; ++v) vt_off_[v + 1] += vt_off_[v];
+    for (std::size_t v = 0; v < b_.n; ++v) vt_off_[v + 1] = vt_off_[v] + cnt[v + 1].load(std::memory_order_relaxed);
     vt_idx_.assign(uz(vt_off_[b_.n]), 0);
-    std::vector<int> fill(vt_off_.begin(), vt_off_.end() - 1);
-    for (std::size_t t = 0; t < b_.tets.size(); ++t)
-      if (in(t))
-        for (int x : b_.tets[t]) vt_idx_[uz(fill[uz(x)]++)] = static_cast<int>(t);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v)
+                          cnt[v].store(vt_off_[v], std::memory_order_relaxed);
+                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t t = r.begin(); t != r.end(); ++t)
+                          if (in(t))
+                            for (int x : b_.tets[t])
+                              vt_idx_[uz(cnt[uz(x)].fetch_add(1, std::memory_order_relaxed))] = static_cast<int>(t);
+                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v)
+                          std::sort(vt_idx_.begin() + vt_off_[v], vt_idx_.begin() + vt_off_[v + 1]);
+                      });
   }
 
   // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss) keeps
-  // one of them, its anchor: the one with the shortest longest edge.
+  // one of them, its anchor: the one with the shortest longest edge (ties: the smallest index).
+  // (The carve's lists hold the body's tetrahedra, ascending; such vertices are few.)
   void choose_anchors() {
-    std::vector<char> keep_v(b_.n, 1);
-    for (std::size_t t = 0; t < b_.tets.size(); ++t)
-      if (b_.state[t] == kAlive && !outside_label(t))
-        for (int x : b_.tets[t]) keep_v[uz(x)] = 0;
-    std::vector<double> best(b_.n, HUGE_VAL);
     std::vector<int> arg(b_.n, -1);
-    for (std::size_t t = 0; t < b_.tets.size(); ++t) {
-      if (b_.state[t] != kAlive) continue;
-      const auto& v = b_.tets[t];
-      double le = 0;
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) {
-          const double* a = b_.P(v[uz(i)]);
-          const double* c = b_.P(v[uz(j)]);
-          le = std::max(le, (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) + (a[2] - c[2]) * (a[2] - c[2]));
-        }
-      for (int x : v)
-        if (keep_v[uz(x)] && le < best[uz(x)]) {
-          best[uz(x)] = le;
-          arg[uz(x)] = static_cast<int>(t);
-        }
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                          bool keep = true;
+                          for (int j = vt_off_[v]; j < vt_off_[v + 1] && keep; ++j)
+                            keep = outside_label(uz(vt_idx_[uz(j)]));
+                          if (!keep) continue;
+                          double best = HUGE_VAL;
+                          for (int j = vt_off_[v]; j < vt_off_[v + 1]; ++j) {
+                            const int t = vt_idx_[uz(j)];
+                            const auto& q = b_.tets[uz(t)];
+                            double le = 0;
+                            for (int i = 0; i < 4; ++i)
+                              for (int k = i + 1; k < 4; ++k) {
+                                const double* a = b_.P(q[uz(i)]);
+                                const double* c = b_.P(q[uz(k)]);
+                                le = std::max(le, (a[0] - c[0]) * (a[0] - c[0]) + (a[1] - c[1]) * (a[1] - c[1]) +
+                                                      (a[2] - c[2]) * (a[2] - c[2]));
+                              }
+                            if (le < best) {
+                              best = le;
+                              arg[v] = t;
+                            }
+                          }
+                        }
+                      });
     for (std::size_t v = 0; v < b_.n; ++v)
       if (arg[v] >= 0) anchor_[uz(arg[v])] = 1;
   }
