@@ -508,19 +508,25 @@ TEST(Surfaces3Property, UnevenHandlesAreClosedAtPinches) {
   }
 }
 
+// A regression file of tests/data/topology3 in auto mode: one closed, oriented surface.
+Surfaces3Result run_regression_file(const std::string& name, const char* what) {
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  EXPECT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/" + name, ro, p).is_ok()) << name;
+  const Surfaces3Result r = run_auto(p);
+  expect_closed_oriented(r, what);
+  EXPECT_EQ(r.surfaces.size(), 1u) << what;
+  return r;
+}
+
 // Noise under a surface makes small tunnels: a region of inside labels closing a loop of a few
 // spacings around one, whose bridge ratios pass the thin-tube test (3.30 -> 1.81, no bridge face).
 // The thin-tube rule asks for a loop of at least 16 spacings (handles3.cpp shortest_loop; this
 // one is 11.3). Regression file: spot (shared data) with normal noise of 0.4 of its median
 // nearest-neighbour distance per coordinate (numpy seed [4, 4]); genus 1 without the rule.
 TEST(Surfaces3Property, NoisySpotGetsNoSmallTunnelHandle) {
-  PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/spot_noisy_tunnel.xyz", ro, p).is_ok());
-  const Surfaces3Result r = run_auto(p);
-  expect_closed_oriented(r, "noisy spot");
-  EXPECT_EQ(r.surfaces.size(), 1u);
+  const Surfaces3Result r = run_regression_file("spot_noisy_tunnel.xyz", "noisy spot");
   EXPECT_EQ(r.genus, 0);
 }
 
@@ -532,13 +538,7 @@ TEST(Surfaces3Property, NoisySpotGetsNoSmallTunnelHandle) {
 // 2.5 spacings through a pinch). Regression file: the shared t3_torus_05 (1 462 points) with
 // normal noise of 0.5 of its median nearest-neighbour distance per coordinate; genus 0 without.
 TEST(Surfaces3Property, NoisyTorusIsClosedAtAPinchAfterTheSingleToggles) {
-  PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/torus_noisy_pinch.xyz", ro, p).is_ok());
-  const Surfaces3Result r = run_auto(p);
-  expect_closed_oriented(r, "noisy torus");
-  EXPECT_EQ(r.surfaces.size(), 1u);
+  const Surfaces3Result r = run_regression_file("torus_noisy_pinch.xyz", "noisy torus");
   EXPECT_EQ(r.genus, 1);
   int pinched = 0;
   for (const Handle3Change& c : r.mesh.handle_changes)
