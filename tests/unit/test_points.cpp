@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "constrict/points.hpp"
+#include "constrict/predicates.hpp"
 #include "constrict/status.hpp"
 
 namespace constrict {
@@ -286,6 +287,53 @@ TEST(PointsDuplicates, MergeNothingIsIdentity) {
   const PointSet merged = merge_duplicates(p, &kept);
   EXPECT_EQ(merged.coords, p.coords);
   EXPECT_EQ(kept, (std::vector<std::size_t>{0, 1}));
+}
+
+// collinear3 (a filtered projection test, then CGAL's exact one) against the definition: the
+// cross product of b - a and c - a is zero, computed exactly in 128-bit integers. Integer
+// coordinates below 2^40 (the double products round: the filter must see it), scaled by powers of
+// two (exact; the filter's range changes); half of the triples collinear by construction, many
+// with an axis-parallel line (projections degenerate) and many nearly collinear (one unit off).
+TEST(Predicates, Collinear3IsTheExactCrossProductTest) {
+  const unsigned seed = 20261203;
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t{1} << 39), std::int64_t{1} << 39), small(-8, 8),
+      pick(0, 5);
+  int collinear = 0;
+  for (int it = 0; it < 60000; ++it) {
+    std::int64_t a[3], b[3], c[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = coord(rng);
+      b[k] = coord(rng);
+    }
+    const int kind = static_cast<int>(pick(rng));
+    if (kind >= 2) {  // c on the line ab (b - a small for kinds 4, 5: maybe axis-parallel), maybe one off
+      if (kind >= 4)
+        for (int k = 0; k < 3; ++k) b[k] = a[k] + (kind == 5 && k > 0 ? 0 : small(rng));
+      else
+        for (int k = 0; k < 3; ++k) b[k] = a[k] + coord(rng) / 64;
+      const std::int64_t t = small(rng);
+      for (int k = 0; k < 3; ++k) c[k] = a[k] + t * (b[k] - a[k]);
+      if (kind == 4) c[it % 3] += 1;
+    } else {
+      for (int k = 0; k < 3; ++k) c[k] = coord(rng);
+    }
+    __extension__ typedef __int128 I;  // (GCC and Clang)
+    const I u[3] = {I{b[0]} - a[0], I{b[1]} - a[1], I{b[2]} - a[2]},
+            v[3] = {I{c[0]} - a[0], I{c[1]} - a[1], I{c[2]} - a[2]};
+    const bool want =
+        u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0;
+    collinear += want;
+    const int e = static_cast<int>(it % 7) * 150 - 450;  // 2^-450 .. 2^450
+    double pa[3], pb[3], pc[3];
+    for (int k = 0; k < 3; ++k) {
+      pa[k] = std::ldexp(static_cast<double>(a[k]), e);
+      pb[k] = std::ldexp(static_cast<double>(b[k]), e);
+      pc[k] = std::ldexp(static_cast<double>(c[k]), e);
+    }
+    ASSERT_EQ(collinear3(pa, pb, pc), want) << "seed " << seed << ", triple " << it;
+  }
+  EXPECT_GT(collinear, 15000);  // both answers are tested often
 }
 
 }  // namespace
