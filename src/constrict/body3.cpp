@@ -130,17 +130,13 @@ void Body3::reset_to_hull(Tets& nbr_delaunay) {
 TriMesh3 Body3::surface() const {
   // In tetrahedron order, in parallel (ordered_pack: the sequential order at any thread count).
   TriMesh3 m;
-  m.triangles = ordered_pack<std::array<int, 3>>(
-      tets.size(), [&](std::size_t t) { return state[t] == kAlive ? uz(surface_faces_of(static_cast<int>(t))) : 0; },
-      [&](std::size_t t, std::array<int, 3>* out) {
-        if (state[t] != kAlive) return std::size_t{0};
-        std::size_t k = 0;
-        const auto& v = tets[t];
-        for (int i = 0; i < 4; ++i)
-          if (boundary_face(static_cast<int>(t), i))
-            out[k++] = {{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}};
-        return k;
-      });
+  m.triangles = ordered_pack<std::array<int, 3>>(tets.size(), [&](std::size_t t, const auto& push) {
+    if (state[t] != kAlive) return;
+    const auto& v = tets[t];
+    for (int i = 0; i < 4; ++i)
+      if (boundary_face(static_cast<int>(t), i))
+        push({{v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]}});
+  });
   return m;
 }
 

@@ -424,8 +424,7 @@ class Regions {
     // lowers the defect, when at most kStarMoveMaxBad are left (with many bad vertices such moves
     // let regions through that close several loops at once across a sparse spot). A region whose
     // peel ended almost valid (star) tries them from where the single toggles started; one whose
-    // peel ended with more bad vertices tries them where the single toggles
-    // end, when those leave at most kStarMoveMaxBad (the toggles are kept from opening the loop
+    // peel ended with more tries them where the toggles end (they are kept from opening the loop
     // again, so that end still closes it: 2 of 28 noisy tori, chains and links closed this way).
     const bool star_end = handles && !star && nbad_ <= kStarMoveMaxBad;
     if ((!star && !star_end) || closed_now()) return;

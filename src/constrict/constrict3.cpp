@@ -370,23 +370,18 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
   // The rest reads the surface and the body and writes separate fields: side by side. (Each sum
   // runs in one task in face order, as before: the same bits.)
   double volume = 0, area = 0;
-  tbb::parallel_invoke([&] { r.mesh = input_ids(surface); },
-                       [&] {
-                         r.tets = detail::ordered_pack<std::array<int, 4>>(
-                             body.tets.size(), [&](std::size_t t) { return std::size_t{body.state[t] == kAlive}; },
-                             [&](std::size_t t, std::array<int, 4>* out) {
-                               if (body.state[t] != kAlive) return std::size_t{0};
-                               *out = input_ids(body.tets[t]);
-                               return std::size_t{1};
-                             });
-                         for (std::size_t t = body.T0; t < body.tets.size(); ++t)
-                           r.non_delaunay_tets += body.state[t] == kAlive;
-                       },
-                       [&] { measure_bridges(surface, r); },
-                       // F = 2N - 4c + 4g for c closed surfaces of total genus g through all N points.
-                       [&] { r.surfaces = surface_components(surface, body.n); },
-                       [&] { volume = mesh_volume(*body.pts, surface); },
-                       [&] { area = mesh_area(*body.pts, surface); });
+  tbb::parallel_invoke(
+      [&] { r.mesh = input_ids(surface); },
+      [&] {
+        r.tets = detail::ordered_pack<std::array<int, 4>>(body.tets.size(), [&](std::size_t t, const auto& push) {
+          if (body.state[t] == kAlive) push(input_ids(body.tets[t]));
+        });
+        for (std::size_t t = body.T0; t < body.tets.size(); ++t) r.non_delaunay_tets += body.state[t] == kAlive;
+      },
+      [&] { measure_bridges(surface, r); },
+      // F = 2N - 4c + 4g for c closed surfaces of total genus g through all N points.
+      [&] { r.surfaces = surface_components(surface, body.n); }, [&] { volume = mesh_volume(*body.pts, surface); },
+      [&] { area = mesh_area(*body.pts, surface); });
   if (r.complete)
     r.genus = static_cast<int>((static_cast<long long>(surface.triangles.size()) - 2LL * static_cast<long long>(body.n) +
                                 4LL * r.surfaces) / 4);
@@ -415,13 +410,9 @@ void Constrictor3::Impl::measure_bridges(const TriMesh3& surface, Mesh3Result& r
       },
       [](double a, double b) { return std::max(a, b); });
   TriMesh3 bridges;
-  bridges.triangles = detail::ordered_pack<std::array<int, 3>>(
-      nf, [&](std::size_t f) { return std::size_t{ratio[f] >= Mesh3Result::kBridgeRatio}; },
-      [&](std::size_t f, std::array<int, 3>* out) {
-        if (!(ratio[f] >= Mesh3Result::kBridgeRatio)) return std::size_t{0};
-        *out = surface.triangles[f];
-        return std::size_t{1};
-      });
+  bridges.triangles = detail::ordered_pack<std::array<int, 3>>(nf, [&](std::size_t f, const auto& push) {
+    if (ratio[f] >= Mesh3Result::kBridgeRatio) push(surface.triangles[f]);
+  });
   // (One mesh_area call: it scans every point once for its magnitude, so not once per face.)
   r.bridge_faces = bridges.triangles.size();
   r.bridge_area = bridges.triangles.empty() ? 0.0 : std::ldexp(mesh_area(p, bridges), 2 * scale_exp);

@@ -7,10 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/ordered_pack.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -21,8 +19,6 @@ constexpr double kDegenerateEnergy = 1e300;
 constexpr double kRelativeGain = 1e-9;
 // Guard on the number of flips per tetrahedron (the energy strictly decreases anyway).
 constexpr std::size_t kFlipsPerTet = 20, kFlipsExtra = 100;
-// Tetrahedra per block of the first candidates' parallel scan.
-constexpr std::size_t kScanBlock = std::size_t{1} << 15;
 
 class Flips3 {
  public:
@@ -30,19 +26,13 @@ class Flips3 {
 
   void run() {
     // The first candidates: every tetrahedron's gain in parallel (flip_gain only reads the body),
-    // pushed in index order. (The pops do not depend on the push order anyway: the heap's order is
+    // gathered and pushed in index order. (The pops do not depend on the push order anyway: the heap's order is
     // total, by gain and then the sorted vertex ids.)
-    const std::size_t T = b_.tets.size(), nb = (T + kScanBlock - 1) / kScanBlock;
-    std::vector<std::vector<HeapEntry>> found(nb);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k)
-        for (std::size_t t = k * kScanBlock, e = std::min(T, t + kScanBlock); t < e; ++t) {
-          const double g = flip_gain(static_cast<int>(t));
-          if (g > 0) found[k].push_back({g, static_cast<int>(t), b_.ver[t]});
-        }
+    const std::vector<HeapEntry> found = ordered_pack<HeapEntry>(b_.tets.size(), [&](std::size_t t, const auto& push) {
+      const double g = flip_gain(static_cast<int>(t));
+      if (g > 0) push(HeapEntry{g, static_cast<int>(t), b_.ver[t]});
     });
-    for (const auto& f : found)
-      for (const HeapEntry& e : f) heap_.push(e, b_.tets);
+    for (const HeapEntry& e : found) heap_.push(e, b_.tets);
     std::vector<int> ring, touched;
     const std::size_t cap = kFlipsPerTet * b_.tets.size() + kFlipsExtra;
     for (std::size_t flips = 0; !heap_.empty() && flips < cap;) {

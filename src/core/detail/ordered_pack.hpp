@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// An order-preserving parallel gather: the engines collect millions of surface faces or body
-// tetrahedra from per-simplex arrays, and the result must be the sequential one (same items, same
-// order) at any thread count.
+// An order-preserving parallel gather: the engines collect millions of surface faces, body
+// tetrahedra or flip candidates from per-simplex arrays, and the result must be the sequential
+// one (same items, same order) at any thread count.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -12,38 +13,34 @@
 
 namespace constrict::detail {
 
-/// What emit(i, out) writes for each i in [0, n), in the order of i. count(i) says how many items
-/// emit(i, out) writes. Two passes over fixed blocks (the counts, then each block's items at its
-/// prefix offset), so the blocks and the result do not depend on the scheduling; below two blocks
+/// What emit(i, push) pushes (push(item) appends one) for each i in [0, n), in the order of i.
+/// One parallel pass over fixed blocks, each into its own list, then each list copied to its
+/// prefix offset: the blocks and the result do not depend on the scheduling. Below two blocks
 /// one sequential pass.
-template <class T, class Count, class Emit>
-std::vector<T> ordered_pack(std::size_t n, const Count& count, const Emit& emit,
-                            std::size_t block = std::size_t{1} << 15) {
+template <class T, class Emit>
+std::vector<T> ordered_pack(std::size_t n, const Emit& emit, std::size_t block = std::size_t{1} << 15) {
   std::vector<T> out;
   if (n < 2 * block) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t c = count(i);
-      if (c == 0) continue;
-      out.resize(out.size() + c);
-      emit(i, out.data() + out.size() - c);
-    }
+    const auto push = [&](const T& item) { out.push_back(item); };
+    for (std::size_t i = 0; i < n; ++i) emit(i, push);
     return out;
   }
   const std::size_t nb = (n + block - 1) / block;
-  std::vector<std::size_t> off(nb + 1, 0);
+  std::vector<std::vector<T>> part(nb);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
-      std::size_t c = 0;
-      for (std::size_t i = b * block, e = std::min(n, i + block); i < e; ++i) c += count(i);
-      off[b + 1] = c;
+      std::vector<T>& mine = part[b];
+      const auto push = [&](const T& item) { mine.push_back(item); };
+      for (std::size_t i = b * block, e = std::min(n, i + block); i < e; ++i) emit(i, push);
     }
   });
-  for (std::size_t b = 0; b < nb; ++b) off[b + 1] += off[b];
+  std::vector<std::size_t> off(nb + 1, 0);
+  for (std::size_t b = 0; b < nb; ++b) off[b + 1] = off[b] + part[b].size();
   out.resize(off[nb]);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
-      T* o = out.data() + off[b];
-      for (std::size_t i = b * block, e = std::min(n, i + block); i < e; ++i) o += emit(i, o);
+      std::copy(part[b].begin(), part[b].end(), out.begin() + static_cast<std::ptrdiff_t>(off[b]));
+      std::vector<T>().swap(part[b]);
     }
   });
   return out;
