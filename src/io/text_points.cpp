@@ -6,8 +6,12 @@
 // polygon through (id, x) without a word (issue 18).
 #include "io/detail/text_points.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cmath>
 #include <vector>
 
 #include "io/detail/scan.hpp"
@@ -115,10 +119,64 @@ Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
   return Status::ok();
 }
 
+// The lines of [p, end) once the first data line has fixed the layout: each must have
+// `expected_fields` fields with `dim` valid numbers first (blank and comment lines skipped). Appends
+// the values to `coords`; false at the first line that breaks the rule (the caller then reads the
+// file again in order, for the error and its line number).
+bool read_layout_lines(const char* p, const char* end, int dim, std::size_t expected_fields,
+                       std::vector<double>& coords) {
+  ParsedLine f;
+  while (p < end) {
+    const char* const next = parse_line(p, end, dim, f);
+    p = next < end ? next + 1 : end;
+    if (f.count == 0) continue;
+    if (f.count != expected_fields || (f.first_malformed >= 0 && f.first_malformed < dim)) return false;
+    for (int k = 0; k < dim; ++k)
+      if (!std::isfinite(f.value[k])) return false;
+    coords.insert(coords.end(), f.value, f.value + dim);
+  }
+  return true;
+}
+
+// Large files: the lines after the first data line are read in blocks of about kBlockBytes on
+// every core, each block from the line after a '\n' to the '\n' that ends its last line, and the
+// blocks' values joined in file order, so the points are the ones of the sequential scan.
+// False when a block holds a line the layout does not allow (nothing is written then).
+constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+bool read_layout_blocks(const char* p, const char* end, int dim, std::size_t expected_fields,
+                        std::vector<double>& coords) {
+  std::vector<const char*> cut{p};
+  while (static_cast<std::size_t>(end - cut.back()) > kBlockBytes) {
+    const char* nl = line_end(cut.back() + kBlockBytes, end);
+    if (nl == end) break;
+    cut.push_back(nl + 1);
+  }
+  cut.push_back(end);
+  const std::size_t nb = cut.size() - 1;
+  std::vector<std::vector<double>> part(nb);
+  std::atomic<bool> ok{true};
+  tbb::parallel_for(std::size_t{0}, nb, [&](std::size_t k) {
+    if (!ok.load(std::memory_order_relaxed)) return;
+    part[k].reserve(static_cast<std::size_t>(cut[k + 1] - cut[k]) / 12);
+    if (!read_layout_lines(cut[k], cut[k + 1], dim, expected_fields, part[k])) ok = false;
+  });
+  if (!ok) return false;
+  std::vector<std::size_t> at(nb + 1, coords.size());
+  for (std::size_t k = 0; k < nb; ++k) at[k + 1] = at[k] + part[k].size();
+  coords.resize(at[nb]);
+  tbb::parallel_for(std::size_t{0}, nb, [&](std::size_t k) {
+    std::copy(part[k].begin(), part[k].end(), coords.begin() + static_cast<std::ptrdiff_t>(at[k]));
+    std::vector<double>().swap(part[k]);
+  });
+  return true;
+}
+
 // The fast path: the first `dim` fields of each line (dim 0: 2 or 3, from the first data line).
 // `chosen`: the columns were selected (by the header), so more fields than 3 are fine.
-Status read_first_fields(std::string_view data, const std::string& name, int dim, bool chosen,
-                         PointSet& out) {
+// `in_blocks`: the lines after the first data line may be read in parallel blocks (a file that
+// breaks its layout there is read again with this false, for the error of its first bad line).
+Status read_first_fields(std::string_view data, const std::string& name, int dim, bool chosen, PointSet& out,
+                         bool in_blocks = true) {
   const char* p = data.data();
   const char* const end = data.data() + data.size();
   // A UTF-8 byte order mark (written by some spreadsheet exports) is not part of the data.
@@ -127,9 +185,15 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
   bool seen_content = false;
   ParsedLine f;
   std::vector<double>& coords = out.coords;
-  coords.reserve(data.size() / 16);
+  const std::size_t coords_before = coords.size();
 
   for (std::size_t line = 1; p < end; ++line) {
+    if (in_blocks && expected_fields != 0 && static_cast<std::size_t>(end - p) > 2 * kBlockBytes) {
+      if (read_layout_blocks(p, end, dim, expected_fields, coords)) break;
+      coords.resize(coords_before);
+      return read_first_fields(data, name, dim, chosen, out, false);
+    }
+    if (line == 1) coords.reserve(data.size() / 16);
     const char* const begin = p;
     const char* const next = parse_line(p, end, dim == 0 ? kMaxDim : dim, f);
     p = next < end ? next + 1 : end;

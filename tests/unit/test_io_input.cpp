@@ -5,6 +5,7 @@
 // written by write_mesh() and read back.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -32,6 +33,75 @@ ReadOptions with_columns(const std::string& spec, int dim = 0) {
 }
 
 const std::string kIdXY = "id,x,y\n7,0,0\n8,1,0\n9,0,1\n";
+
+// Large text files are read in parallel blocks after the first data line: the values must be
+// those of the text in file order whatever the line formats (signs, exponents, tabs, commas, CRLF,
+// comments, blank lines), and a bad line anywhere must give the error of that line (the file is
+// then read again in order). 3 x 120 000 lines, about 3-6 MiB, so that there are several blocks.
+TEST(IoTextBlocks, LargeFilesKeepValuesAndErrorLines) {
+  for (const int dim : {2, 3}) {
+    std::string text = dim == 2 ? "# a comment\nx,y\n" : "x y z\n";
+    std::vector<double> want;
+    std::uint64_t state = 12345 + static_cast<std::uint64_t>(dim);
+    const auto next = [&state] {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return state >> 11;
+    };
+    const char* seps[] = {" ", "\t", ",", " , ", ";"};
+    std::vector<std::size_t> line_start;  // byte offset of every data line (1-based line numbers below)
+    std::size_t line = dim == 2 ? 2 : 1;
+    std::vector<std::size_t> line_no;
+    char buf[64];
+    for (int i = 0; i < 120000; ++i) {
+      if (next() % 97 == 0) {
+        text += next() % 2 ? "\n" : "   # between\n";
+        ++line;
+      }
+      const std::string sep = seps[next() % 5];
+      line_start.push_back(text.size());
+      line_no.push_back(++line);
+      for (int k = 0; k < dim; ++k) {
+        const double v =
+            (static_cast<double>(next() % 2000001) - 1e6) * std::pow(10.0, static_cast<int>(next() % 9) - 4);
+        const unsigned style = next() % 4;
+        std::snprintf(buf, sizeof buf,
+                      style == 0   ? "%.17g"
+                      : style == 1 ? "%+.17e"
+                      : style == 2 ? "%.17E"
+                                   : "%.17g",
+                      v);
+        want.push_back(std::stod(buf));
+        if (k > 0) text += sep;
+        text += buf;
+      }
+      text += i % 5 == 0 ? "\r\n" : i % 7 == 0 ? " # note\n" : "\n";
+    }
+    PointSet p;
+    const std::string name = dim == 2 ? "big.csv" : "big.xyz";
+    ASSERT_TRUE(read_text(text, p, {}, name).is_ok());
+    EXPECT_EQ(p.dim, dim);
+    ASSERT_EQ(p.coords.size(), want.size());
+    EXPECT_TRUE(p.coords == want) << "dim " << dim;
+
+    // A bad line early, in the middle, late and last: its own error and line number.
+    for (const std::size_t at :
+         {std::size_t{3}, line_start.size() / 2, line_start.size() - 900, line_start.size() - 1}) {
+      const std::size_t b = line_start[at];
+      const std::size_t e = text.find('\n', b);
+      for (const std::string& bad :
+           {std::string(dim == 2 ? "1 2 3" : "1 2"), std::string(dim == 2 ? "1 x" : "1 2 x"),
+            std::string(dim == 2 ? "nan 1" : "1 inf 2"), std::string(dim == 2 ? "1,,2" : "1,,2,3")}) {
+        std::string t = text;
+        t.replace(b, e - b, bad);
+        PointSet q;
+        const Status st = read_text(t, q, {}, name);
+        ASSERT_FALSE(st.is_ok()) << bad << " at " << at;
+        EXPECT_NE(st.message().find(name + ":" + std::to_string(line_no[at]) + ":"), std::string::npos)
+            << st.message() << " (expected line " << line_no[at] << ")";
+      }
+    }
+  }
+}
 
 TEST(IoColumns, HeaderNamesChooseTheColumns) {
   // The issue: `id,x,y` with --dim 2 gave a polygon through (id, x).
