@@ -23,6 +23,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/check_points.hpp"
 #include "core/detail/ordered_pack.hpp"
 #include "core/detail/union_find.hpp"
 
@@ -435,7 +436,9 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
     return {StatusCode::InvalidArgument, "sculpt_threshold must be in [0, 4]"};
   if (!weights_ok(options.size_bias, options.label_weight))
     return {StatusCode::InvalidArgument, "size_bias and label_weight must be in [0, 100]"};
-  if (Status st = check_points(points); !st) return st;
+  // Duplicates are found below, next to each other in the canonical order (O(N), not check_points'
+  // sort); check_points() then names them.
+  if (Status st = detail::check_points_deferred(points); !st) return st;
   s.input = &points;
   // The engine runs on the points in a canonical order of their coordinates, so that the same
   // points in any file order give the same surface (ties everywhere are broken by engine ids);
@@ -454,6 +457,7 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   std::shared_ptr<const PointSet> work =
       s.shared_dt ? std::shared_ptr<const PointSet>(std::shared_ptr<const PointSet>(), &points)
                   : std::make_shared<const PointSet>(detail::permuted(points, *s.order));
+  if (detail::has_adjacent_duplicate(*work)) return check_points(points);
   // Far from 1 in magnitude, the double parts (γ magnitudes, circumballs, lengths) would overflow
   // or underflow: work on a copy scaled by a power of two, which changes no predicate and makes
   // every magnitude scale free (the result is then the same at any scale); areas and volumes are

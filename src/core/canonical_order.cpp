@@ -118,6 +118,18 @@ std::vector<int> canonical_order(const PointSet& p) {
   return order;
 }
 
+bool has_adjacent_duplicate(const PointSet& q) {
+  const std::size_t n = q.size(), d = static_cast<std::size_t>(q.dim);
+  if (n < 2) return false;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(1, n, 65536), false,
+      [&](const tbb::blocked_range<std::size_t>& r, bool found) {
+        for (std::size_t i = r.begin(); i != r.end() && !found; ++i) found = std::equal(q[i - 1], q[i - 1] + d, q[i]);
+        return found;
+      },
+      [](bool a, bool b) { return a || b; });
+}
+
 PointSet permuted(const PointSet& p, const std::vector<int>& order) {
   PointSet q;
   q.dim = p.dim;

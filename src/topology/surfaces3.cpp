@@ -35,6 +35,7 @@
 #include "constrict/topology.hpp"
 #include "constrict/detail/share3.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/check_points.hpp"
 #include "core/detail/link_cycle.hpp"
 #include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
@@ -1154,7 +1155,7 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct_surfaces3 needs 3D points"};
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
-  if (Status s = check_points(points); !s) return s;
+  if (Status s = detail::check_points_deferred(points); !s) return s;
   Constrict3Options eo = o.surface;
   eo.handles = o.topology == Topology3::Auto && o.handles;
   eo.validate = o.validate;
@@ -1168,6 +1169,7 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   // result is mapped back to input ids at the end.
   const std::vector<int> order = detail::canonical_order(points);
   const PointSet work = detail::permuted(points, order);
+  if (detail::has_adjacent_duplicate(work)) return check_points(points);
   const auto t0 = Clock::now();
   Delaunay3 dt;
   if (Status s = build_delaunay3(work, dt); !s) return s;

@@ -15,6 +15,8 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/mesh.hpp"
+#include "constrict/points.hpp"
+#include "constrict/topology.hpp"
 #include "test_fixtures.hpp"
 
 namespace constrict {
@@ -235,6 +237,37 @@ TEST(Constrict3Unit, BadInput) {
   o.sculpt_threshold = 5;
   EXPECT_EQ(reconstruct3(make3({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), o, r).code(),
             StatusCode::InvalidArgument);
+}
+
+// Duplicates are found next to each other in the canonical order (not by check_points' sort):
+// anywhere in a larger set, also as -0.0 against 0.0, with check_points' message naming the pair,
+// from the engine and from the auto mode.
+TEST(Constrict3Unit, DuplicatesAnywhereAreNamed) {
+  std::vector<std::array<double, 3>> c;
+  for (int i = 0; i < 400; ++i) {
+    const double t = 0.1 * i, z = std::cos(0.37 * i);
+    c.push_back({std::cos(t) * std::sqrt(1 - z * z), std::sin(t) * std::sqrt(1 - z * z), z});
+  }
+  c.push_back({0.0, 0.25, 0.5});
+  for (const std::size_t copy_at : {std::size_t{0}, std::size_t{137}, c.size()}) {
+    std::vector<std::array<double, 3>> d = c;
+    d.insert(d.begin() + static_cast<std::ptrdiff_t>(copy_at), {-0.0, 0.25, 0.5});
+    const PointSet p = make3(d);
+    PointCheck chk;
+    const Status want = check_points(p, &chk);
+    ASSERT_EQ(want.code(), StatusCode::Duplicate);
+    ASSERT_EQ(chk.duplicates.size(), 1u);
+    Mesh3Result r;
+    const Status got = reconstruct3(p, {}, r);
+    EXPECT_EQ(got.code(), StatusCode::Duplicate) << "copy at " << copy_at;
+    EXPECT_EQ(got.message(), want.message());
+    Surfaces3Options so;
+    so.topology = Topology3::Auto;
+    Surfaces3Result sr;
+    const Status got_auto = reconstruct_surfaces3(p, so, sr);
+    EXPECT_EQ(got_auto.code(), StatusCode::Duplicate) << "copy at " << copy_at;
+    EXPECT_EQ(got_auto.message(), want.message());
+  }
 }
 
 // Degenerate inputs: co-spherical and co-planar subsets (CGAL's symbolic perturbation).

@@ -13,8 +13,14 @@ namespace constrict::detail {
 // over the bounding box (neighbouring ids stay close in space, as the engines' arrays like), ties
 // broken by the exact lexicographic order of the coordinates: a strict total order on distinct
 // points, so it depends on the coordinates only. O(N log N).
-// @pre no two points equal (check_points)
+// @pre finite coordinates (check_points_deferred). Equal points (operator==, -0.0 == 0.0) come out
+// next to each other, in no defined order among them: has_adjacent_duplicate() on the permuted
+// points then finds any duplicate in O(N).
 std::vector<int> canonical_order(const PointSet& points);
+
+// True when two consecutive points of @p ordered are equal: for points in canonical order, whether
+// the set has a duplicate (the caller then gets the message naming it from check_points()).
+bool has_adjacent_duplicate(const PointSet& ordered);
 
 // The points in that order.
 PointSet permuted(const PointSet& points, const std::vector<int>& order);
