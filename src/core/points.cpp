@@ -15,6 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "constrict/predicates.hpp"
 #include "constrict/status.hpp"
 
@@ -172,34 +175,106 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
     }
   };
 
+  // The pairs of one run of equal hashes (already in index order).
+  std::vector<std::size_t> run;
+  const auto pair_run = [&](const HighIndex* b, const HighIndex* e) {
+    if (e - b == 2) {
+      // The common collision: two points, already in index order; no sort needed.
+      if (equal_coords(points[b[0].index], points[b[1].index], dim)) dups.push_back({b[0].index, b[1].index});
+    } else if (e - b > 2) {
+      run.clear();
+      for (const HighIndex* i = b; i != e; ++i) run.push_back(i->index);
+      std::sort(run.begin(), run.end(), lex_less);
+      pair_copies(run.data(), run.data() + run.size());
+    }
+  };
+  const auto pair_runs = [&](const HighIndex* b, const HighIndex* e) {
+    for (const HighIndex* r = b; r != e;) {
+      const HighIndex* r_end = r + 1;
+      while (r_end != e && r_end->high == r->high) ++r_end;
+      pair_run(r, r_end);
+      r = r_end;
+    }
+  };
+
   constexpr std::size_t kRadixMin = 2048;
+  constexpr std::size_t kParallelMin = std::size_t{1} << 17;
   if (n < kRadixMin || n > std::numeric_limits<std::uint32_t>::max()) {
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), lex_less);
     pair_copies(order.data(), order.data() + n);
-  } else {
+  } else if (n < kParallelMin) {
     std::vector<HighIndex> order(n);
     for (std::size_t i = 0; i < n; ++i)
       order[i] = {coordinate_hash(points[i], dim), static_cast<std::uint32_t>(i)};
     radix_sort(order);
-    std::vector<std::size_t> run;
-    for (std::size_t r = 0; r < n;) {
-      std::size_t r_end = r + 1;
-      while (r_end < n && order[r_end].high == order[r].high) ++r_end;
-      if (r_end - r == 2) {
-        // The common collision: two points, already in index order; no sort needed.
-        const std::size_t i0 = order[r].index;
-        const std::size_t i1 = order[r + 1].index;
-        if (equal_coords(points[i0], points[i1], dim)) dups.push_back({i0, i1});
-      } else if (r_end - r > 2) {
-        run.clear();
-        for (std::size_t i = r; i < r_end; ++i) run.push_back(order[i].index);
-        std::sort(run.begin(), run.end(), lex_less);
-        pair_copies(run.data(), run.data() + run.size());
+    pair_runs(order.data(), order.data() + n);
+  } else {
+    // On every core: the (hash, index) pairs scattered by the hash's top kTop bits (counts per
+    // fixed block, so each bucket holds its pairs in index order), each bucket sorted by (hash,
+    // index), a strict total order, and its runs of equal hashes paired; the buckets' pairs are
+    // sorted below like the others. The same pairs as the sequential radix sort.
+    constexpr int kTop = 11;
+    constexpr std::size_t kB = std::size_t{1} << kTop, kBlock = std::size_t{1} << 15;
+    const std::size_t nblocks = (n + kBlock - 1) / kBlock;
+    std::vector<HighIndex> key(n), order(n);
+    std::vector<std::size_t> count(nblocks * kB, 0);
+    tbb::parallel_for(std::size_t{0}, nblocks, [&](std::size_t blk) {
+      std::size_t* c = &count[blk * kB];
+      for (std::size_t i = blk * kBlock, e = std::min(n, i + kBlock); i < e; ++i) {
+        key[i] = {coordinate_hash(points[i], dim), static_cast<std::uint32_t>(i)};
+        ++c[key[i].high >> (32 - kTop)];
       }
-      r = r_end;
+    });
+    std::vector<std::size_t> start(kB + 1, 0);
+    for (std::size_t b = 0, sum = 0; b < kB; ++b) {  // bucket-major prefix: offsets per (bucket, block)
+      start[b] = sum;
+      for (std::size_t blk = 0; blk < nblocks; ++blk) {
+        const std::size_t c = count[blk * kB + b];
+        count[blk * kB + b] = sum;
+        sum += c;
+      }
     }
+    start[kB] = n;
+    tbb::parallel_for(std::size_t{0}, nblocks, [&](std::size_t blk) {
+      std::size_t* at = &count[blk * kB];
+      for (std::size_t i = blk * kBlock, e = std::min(n, i + kBlock); i < e; ++i)
+        order[at[key[i].high >> (32 - kTop)]++] = key[i];
+    });
+    std::vector<HighIndex>().swap(key);
+    std::vector<std::vector<DuplicatePair>> found(kB);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kB, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::vector<DuplicatePair> local;
+      std::vector<std::size_t> local_run;
+      for (std::size_t b = r.begin(); b != r.end(); ++b) {
+        HighIndex* lo = order.data() + start[b];
+        HighIndex* hi = order.data() + start[b + 1];
+        std::sort(lo, hi, [](const HighIndex& x, const HighIndex& y) {
+          return x.high != y.high ? x.high < y.high : x.index < y.index;
+        });
+        for (HighIndex* q = lo; q != hi;) {
+          HighIndex* q_end = q + 1;
+          while (q_end != hi && q_end->high == q->high) ++q_end;
+          if (q_end - q == 2) {
+            if (equal_coords(points[q[0].index], points[q[1].index], dim)) local.push_back({q[0].index, q[1].index});
+          } else if (q_end - q > 2) {
+            local_run.clear();
+            for (HighIndex* i = q; i != q_end; ++i) local_run.push_back(i->index);
+            std::sort(local_run.begin(), local_run.end(), lex_less);
+            for (std::size_t g = 0; g < local_run.size();) {
+              std::size_t g_end = g + 1;
+              while (g_end < local_run.size() && equal_coords(points[local_run[g]], points[local_run[g_end]], dim))
+                local.push_back({local_run[g], local_run[g_end++]});
+              g = g_end;
+            }
+          }
+          q = q_end;
+        }
+      }
+      found[r.begin()] = std::move(local);
+    });
+    for (auto& f : found) dups.insert(dups.end(), f.begin(), f.end());
   }
   std::sort(dups.begin(), dups.end(), [](const DuplicatePair& l, const DuplicatePair& r) {
     return l.first != r.first ? l.first < r.first : l.second < r.second;

@@ -14,6 +14,7 @@
 #include "constrict/detail/share2.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/check_points.hpp"
 #include "topology/detail/infer_rings2.hpp"
 
 namespace constrict {
@@ -68,7 +69,8 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   r.topology = o.topology;
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
-  if (Status s = check_points(points); !s) return s;
+  // Duplicates: the engine's triangulation finds them (and check_points() names them then).
+  if (Status s = detail::check_points_deferred(points); !s) return s;
   // The inference runs on the engine's own triangulation (one triangulation, not two): its
   // adjacency is taken when the triangulation is built, and the inference then runs on the other
   // core beside the constriction (deterministic: neither reads what the other writes). When Auto

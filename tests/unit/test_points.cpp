@@ -231,11 +231,11 @@ TEST(PointsDuplicates, MatchesBruteForceOnRandomRepeats) {
 }
 
 TEST(PointsDuplicates, MatchesReferenceOnLargeInputs) {
-  // Large enough for the radix sort path; both signs, -0.0 and 0.0, equal x, exact repeats.
+  // Large enough for the radix sort path (3*10^4) and the parallel one (3*10^5); both signs, -0.0
+  // and 0.0, equal x, exact repeats.
   const std::uint64_t seed = 99;
   std::mt19937_64 rng(seed);
-  for (int dim : {2, 3}) {
-    const std::size_t n = 30000;
+  for (const auto& [dim, n] : {std::pair<int, std::size_t>{2, 30000}, {3, 30000}, {2, 300000}, {3, 300000}}) {
     std::vector<double> c;
     std::uniform_int_distribution<int> pick(0, 9);
     std::uniform_real_distribution<double> any(-1e6, 1e6);
@@ -269,9 +269,9 @@ TEST(PointsDuplicates, MatchesReferenceOnLargeInputs) {
     });
     const auto got = find_duplicates(p);
     ASSERT_FALSE(want.empty());
-    ASSERT_EQ(got.size(), want.size()) << "seed " << seed << " dim " << dim;
+    ASSERT_EQ(got.size(), want.size()) << "seed " << seed << " dim " << dim << " n " << n;
     for (std::size_t k = 0; k < got.size(); ++k)
-      ASSERT_TRUE(got[k] == want[k]) << "seed " << seed << " dim " << dim << " pair " << k;
+      ASSERT_TRUE(got[k] == want[k]) << "seed " << seed << " dim " << dim << " n " << n << " pair " << k;
   }
 }
 
