@@ -270,6 +270,22 @@ TEST(Constrict3Unit, DuplicatesAnywhereAreNamed) {
   }
 }
 
+// Points on the moment curve (t, t^2, t^3) have a Delaunay tetrahedralization quadratic in size
+// (an edge in ~N/3 tetrahedra). The flip passes made 10 731 flips each way on 150 of them (88 000
+// per pass on 300, minutes on 700: a hang to a user); the passes are now bounded by the number of
+// points (flips3.cpp kFlipsPerPoint): at most 3 passes of 8N + 100. The result stays valid.
+TEST(Constrict3Unit, FlipPassesOnTheMomentCurveAreBoundedByThePoints) {
+  std::vector<std::array<double, 3>> c;
+  const int n = 150;
+  for (int t = 0; t < n; ++t) c.push_back({double(t), double(t) * t, double(t) * t * t});
+  const PointSet p = make3(c);
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, {}, r).is_ok());
+  expect_valid(p, r);
+  EXPECT_GT(r.refine_added + r.refine_removed, 0u);  // (the passes ran)
+  EXPECT_LE(r.refine_added + r.refine_removed, 3u * (8u * n + 100u));
+}
+
 // Degenerate inputs: co-spherical and co-planar subsets (CGAL's symbolic perturbation).
 TEST(Constrict3Unit, OctahedronAndCube) {
   Mesh3Result r;
