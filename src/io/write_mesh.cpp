@@ -2,9 +2,11 @@
 // Mesh writers (OFF, PLY ascii/binary, OBJ, STL binary) and the VTK body writer. Vertices are the
 // input points in input order; ASCII numbers are shortest round-trip decimals (std::to_chars).
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <type_traits>
@@ -172,16 +174,49 @@ std::string to_ply(const PointSet& pts, const TriMesh3& m, bool ascii, const Ply
   return s;
 }
 
-std::string to_stl(const PointSet& pts, const TriMesh3& m) {
-  std::string s(80, ' ');
+// STL stores 32-bit floats: a coordinate beyond their range would be written as infinity, a tiny
+// one as 0, and two corners of a triangle may round to one point (a degenerate triangle in the
+// file). Any of these refuses the file with the formats that keep doubles, rather than writing a
+// surface that is not the one computed.
+Status to_stl(const std::string& path, const PointSet& pts, const TriMesh3& m, std::string& s) {
+  const auto refuse = [&](const std::string& why) -> Status {
+    return {StatusCode::WriteFailed, path + ": " + why + " in STL's 32-bit floats; write .ply, .off or .obj (doubles)"};
+  };
+  const auto g = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return std::string(buf);
+  };
+  const auto as_float = [](const double* p) { return std::array<float, 3>{float(p[0]), float(p[1]), float(p[2])}; };
+  s.assign(80, ' ');
   const char* head = "constrict 3D reconstruction (binary STL)";
   std::memcpy(&s[0], head, std::strlen(head));
   put_le(s, static_cast<std::uint32_t>(m.triangles.size()));
   s.reserve(s.size() + m.triangles.size() * 50);
+  // The points the triangles use, in point order (so the message names the first bad one).
+  std::vector<char> used(pts.size(), 0);
+  for (const auto& t : m.triangles)
+    for (const int v : t) used[static_cast<std::size_t>(v)] = 1;
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    if (!used[v]) continue;
+    const std::array<float, 3> f = as_float(pts[v]);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(f[k]))
+        return refuse("point " + std::to_string(v) + " has a coordinate (" + g(pts[v][k]) + ") beyond the range");
+      if (f[k] == 0 && pts[v][k] != 0)
+        return refuse("point " + std::to_string(v) + " has a coordinate too close to 0 to be kept");
+    }
+  }
   for (const auto& t : m.triangles) {
     const double* a = pts[static_cast<std::size_t>(t[0])];
     const double* b = pts[static_cast<std::size_t>(t[1])];
     const double* c = pts[static_cast<std::size_t>(t[2])];
+    const std::array<float, 3> f[3] = {as_float(a), as_float(b), as_float(c)};
+    for (int j = 0; j < 3; ++j)
+      if (f[j] == f[(j + 1) % 3]) {
+        const int u = std::min(t[j], t[(j + 1) % 3]), w = std::max(t[j], t[(j + 1) % 3]);
+        return refuse("points " + std::to_string(u) + " and " + std::to_string(w) + " become one point");
+      }
     const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
     const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
     double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
@@ -190,11 +225,11 @@ std::string to_stl(const PointSet& pts, const TriMesh3& m) {
     put_le(s, static_cast<float>(nx));
     put_le(s, static_cast<float>(ny));
     put_le(s, static_cast<float>(nz));
-    for (const double* p : {a, b, c})
-      for (int k = 0; k < 3; ++k) put_le(s, static_cast<float>(p[k]));
+    for (const auto& p : f)
+      for (int k = 0; k < 3; ++k) put_le(s, p[k]);
     put_le(s, static_cast<std::uint16_t>(0));
   }
-  return s;
+  return Status::ok();
 }
 
 }  // namespace
@@ -210,7 +245,11 @@ Status write_mesh(const std::string& path, const PointSet& points, const TriMesh
     if (Status st = ply_attributes(path, points, options.attributes, attributes); !st) return st;
     return write_file(path, to_ply(points, mesh, options.ply_ascii, attributes));
   }
-  if (ext == "stl") return write_file(path, to_stl(points, mesh));
+  if (ext == "stl") {
+    std::string s;
+    if (Status st = to_stl(path, points, mesh, s); !st) return st;
+    return write_file(path, s);
+  }
   return {StatusCode::WriteFailed,
           path + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};
 }

@@ -315,6 +315,36 @@ TEST(MeshWrite, FormatsRoundTripVertices) {
   EXPECT_NE(v.find("CELL_TYPES 1\n10\n"), std::string::npos);
 }
 
+// STL keeps 32-bit floats: a surface whose coordinates leave their range, vanish in them, or whose
+// triangle corners round to one point is refused (with the formats that keep doubles), not
+// written as infinities, zeros or degenerate triangles (found by a hostile-input sweep).
+TEST(MeshWrite, StlRefusesWhatFloatsCannotHold) {
+  const TriMesh3 m = mesh(kTetFaces);
+  const std::string path = ::testing::TempDir() + "/constrict_mesh_float.stl";
+  struct Case {
+    std::vector<std::array<double, 3>> pts;
+    const char* says;
+  };
+  const Case cases[] = {
+      {{{0, 0, 0}, {1e300, 0, 0}, {0, 1e300, 0}, {0, 0, 1e300}}, "point 1 has a coordinate (1e+300) beyond the range"},
+      {{{0, 0, 0}, {1e-320, 0, 0}, {0, 1e-320, 0}, {0, 0, 1e-320}}, "too close to 0"},
+      {{{1, 1, 1}, {1 + 1e-12, 1, 1}, {1, 2, 1}, {1, 1, 2}}, "points 0 and 1 become one point"},
+  };
+  for (const Case& c : cases) {
+    std::remove(path.c_str());
+    const Status st = write_mesh(path, make3(c.pts), m);
+    EXPECT_EQ(st.code(), StatusCode::WriteFailed) << c.says;
+    EXPECT_NE(st.message().find(c.says), std::string::npos) << st.message();
+    EXPECT_NE(st.message().find("write .ply, .off or .obj"), std::string::npos) << st.message();
+    EXPECT_FALSE(std::ifstream(path).good()) << "no file is written: " << c.says;
+    // The formats with doubles keep them.
+    EXPECT_TRUE(write_mesh(::testing::TempDir() + "/constrict_mesh_float.ply", make3(c.pts), m).is_ok());
+  }
+  // Float-representable coordinates (and a shift that floats round but keep apart) are written.
+  EXPECT_TRUE(write_mesh(path, make3({{1e30, 0, 0}, {1e30, 1e25, 0}, {1e30, 0, 1e25}, {1.1e30, 0, 0}}), m).is_ok());
+  std::remove(path.c_str());
+}
+
 // The outward test is exact: a tetrahedron's surface at scales where the double volume overflows
 // (2^1000), underflows (2^-1000, and subnormal coordinates), and far from the origin (cancellation).
 TEST(MeshVolumeSign, ExactAtAnyScale) {
