@@ -12,6 +12,11 @@ int fail(const Status& s) {
   return exit_code(s.code());
 }
 
+int fail_in(const std::string& input, const Status& s) {
+  if (s.message().rfind(input + ":", 0) == 0) return fail(s);
+  return fail(Status(s.code(), input + ": " + s.message()));
+}
+
 void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
   cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")->required();
   cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")->check(CLI::IsMember({2, 3}));

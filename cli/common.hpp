@@ -27,6 +27,8 @@ inline double ms(Clock::time_point a, Clock::time_point b) {
 
 /// Prints `constrict: error [Code]: message` and returns the exit code of the status.
 int fail(const Status& s);
+/// fail() for an error of the engine about the input's points: the message names the input file.
+int fail_in(const std::string& input, const Status& s);
 
 struct InputArgs {
   std::string path;

@@ -52,10 +52,11 @@ Status exact_power_of_two_scale(const PointSet& in, PointSet& out, int& exponent
     const double x = in.coords[i];
     if (std::ldexp(std::ldexp(x, -e), e) != x) {
       const std::size_t dim = in.dim > 0 ? static_cast<std::size_t>(in.dim) : 1;
-      return {StatusCode::Unsupported,
-              "coordinates span too many orders of magnitude to rescale exactly (|x| from " +
-                  short_number(smallest) + " to " + short_number(largest) + "; point " +
-                  std::to_string(i / dim) + " would lose bits)"};
+      return {StatusCode::Unsupported, "coordinates span too many orders of magnitude to rescale exactly (|x| from " +
+                                           short_number(smallest) + " to " + short_number(largest) + "; point " +
+                                           std::to_string(i / dim) +
+                                           " would lose bits); round the coordinates that are tiny beside the "
+                                           "largest to 0, or move the data nearer the origin's scale"};
     }
   }
   out.coords.resize(in.coords.size());
