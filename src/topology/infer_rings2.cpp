@@ -187,14 +187,16 @@ class Gaps {
       }
     return k > 0 && compare_gap2(at(from), at(o), a, b, k, 2 * t_) > 0;
   }
-  // The spacing edges at p and q: their crust edges but those across a gap, or all of them when
-  // that leaves none.
+  // The spacing edges at p and q: their crust edges but those across a gap and pq itself (an edge
+  // is not measured against itself: a point at a sharp corner takes its half-neighbour across the
+  // gap, and that edge made the spacing at the gap as wide as the gap), or all of them when that
+  // leaves none.
   template <class F> void spacing_edges(int p, int q, F&& f) const {
     bool any = false;
     for (int pass = 0; pass < 2 && !any; ++pass)
       for (int end : {p, q})
         for (const int* r = crust_.begin(end); r != crust_.end(end); ++r)
-          if (pass == 1 || !across_[crust_.slot(r)]) {
+          if (pass == 1 || (!across_[crust_.slot(r)] && *r != (end == p ? q : p))) {
             f(end, *r);
             any = true;
           }

@@ -114,6 +114,45 @@ TEST(Topology2Property, GeneratedFamiliesGiveTheTrueRings) {
       }
 }
 
+// Sharp corners (a square courtyard in a square building, as GIS data have): a point at a 90°
+// corner finds no half-neighbour on its own curve and takes one across the gap; that edge must not
+// count in the spacing it is measured against. Unit spacing along the sides, the inner square 4 or
+// 6 spacings in; the samples on the lattice (corners on points, the two squares aligned) or at a
+// phase. Also a gap of 3 at a phase (the lattice's corners at gap 3 stay one ring: docs/topology.md).
+TEST(Topology2Property, SquareInSquareWithSharpCornersGivesTwoRings) {
+  const auto square = [](PointSet& p, double half, double phase) {
+    const double side = 2 * half, perimeter = 4 * side;
+    for (double s = phase; s < perimeter - 1e-9; s += 1.0) {
+      const int k = static_cast<int>(s / side);
+      const double u = s - k * side;
+      const double xy[4][2] = {{-half + u, -half}, {half, -half + u}, {half - u, half}, {-half, half - u}};
+      p.coords.push_back(xy[k][0]);
+      p.coords.push_back(xy[k][1]);
+    }
+  };
+  struct Case {
+    double gap, phase;
+  };
+  for (const Case c : {Case{4, 0.0}, Case{6, 0.0}, Case{3, 0.37}, Case{4, 0.37}, Case{6, 0.37}}) {
+    SCOPED_TRACE("gap " + std::to_string(c.gap) + " phase " + std::to_string(c.phase));
+    PointSet p;
+    p.dim = 2;
+    square(p, 10, 0.0);
+    const std::size_t outer = p.size();
+    square(p, 10 - c.gap, c.phase);
+    const Rings2Result a = run(p, Topology2::Auto);
+    ASSERT_TRUE(a.valid()) << a.check.reason;
+    ASSERT_EQ(a.rings.size(), 2u);
+    RingsCheck bc;
+    EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
+    for (const Ring2& r : a.rings) {
+      const bool is_outer = r.role == RingRole::Shell;
+      EXPECT_EQ(r.indices.size(), is_outer ? outer : p.size() - outer);
+      for (int v : r.indices) EXPECT_EQ(static_cast<std::size_t>(v) < outer, is_outer);
+    }
+  }
+}
+
 // Any gap, 1-5 spacings: whatever auto decides is a valid ring set (brute force); at 5 spacings
 // the rings are the true ones.
 TEST(Topology2Property, EveryGapGivesAValidAnswer) {
