@@ -2,7 +2,6 @@
 // The constrict command line: parse arguments, call the library, write results. No geometry here.
 #include <CLI/CLI.hpp>
 
-#include <malloc.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -43,25 +42,10 @@ void reexec_with_huge_pages(char** argv) {
   if (tunables) setenv("GLIBC_TUNABLES", tunables, 1);
 }
 
-// glibc serves a request of at least M_MMAP_THRESHOLD bytes by mmap (given back on free), smaller
-// ones from its heap, and raises the threshold to the size of every mmapped block freed (up to 32
-// MiB). A run frees large arrays between its stages, so later arrays of a few MiB landed in the
-// heap, where the holes between them were kept: the 10^6-point star-shaped surface peaked at 778
-// MiB instead of 740 (docs/benchmarks.md). A fixed threshold keeps arrays of 4 MiB and more out of
-// the heap; the run time was the same. Not when the user set the threshold.
-void fix_mmap_threshold() {
-#ifdef __GLIBC__
-  if (std::getenv("MALLOC_MMAP_THRESHOLD_")) return;
-  if (const char* t = std::getenv("GLIBC_TUNABLES"); t && std::strstr(t, "mmap_threshold")) return;
-  (void)mallopt(M_MMAP_THRESHOLD, 4 << 20);
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   reexec_with_huge_pages(argv);
-  fix_mmap_threshold();
   using namespace constrict;
   CLI::App app{"constrict " CONSTRICT_VERSION_STRING
                " - object reconstruction with the gamma-neighborhood graph (Veltkamp)"};
