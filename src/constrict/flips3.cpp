@@ -5,7 +5,6 @@
 // with two faces on the surface (its exact reverse).
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <vector>
 
 #include "constrict/detail/stages3.hpp"
@@ -39,10 +38,6 @@ class Flips3 {
     });
     for (const HeapEntry& e : found) heap_.push(e, b_.tets);
     std::vector<int> ring, touched;
-    // The candidates around a flip, each once: a stamp per tetrahedron (not a sort; the heap's
-    // order is total, so the order of the pushes does not matter).
-    std::vector<std::uint32_t> stamp(b_.tets.size(), 0);
-    std::uint32_t now = 0;
     const std::size_t cap = kFlipsPerPoint * b_.n + kFlipsExtra;
     for (std::size_t flips = 0; !heap_.empty() && flips < cap;) {
       const HeapEntry e = heap_.pop(b_.tets);
@@ -61,18 +56,14 @@ class Flips3 {
       // Candidates change only around t's edges: face neighbours change sides, and the surface
       // loses one edge and gains one (the removability of the tets around them changes).
       touched.clear();
-      ++now;
-      const auto touch = [&](int x) {
-        if (stamp[uz(x)] == now) return;
-        stamp[uz(x)] = now;
-        touched.push_back(x);
-      };
-      touch(t);
+      touched.push_back(t);
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
           b_.edge_ring(t, i, j, ring);
-          for (int x : ring) touch(x);
+          touched.insert(touched.end(), ring.begin(), ring.end());
         }
+      std::sort(touched.begin(), touched.end());
+      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
       for (int x : touched) {
         ++b_.ver[uz(x)];
         const double gx = flip_gain(x);
