@@ -231,7 +231,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     if (Status s = voronoi_skeleton2(pts, vo, v); !s) return fail_in(a.in.path, s);
     skel = v.stats;
     r = as_reconstruction(std::move(v));
-  } else if (Status s = reconstruct_rings2(pts, ropt, rr, &visitor); !s) {
+  } else if (Status s = reconstruct_rings2(pts, ropt, rr, progress.enabled() ? &visitor : nullptr); !s) {
     return fail_in(a.in.path, s);
   } else if (!rr.from_polygon) {
     return finish_rings2(a, pts, rep, rr, ropt, fmt, progress, t0, t1);
@@ -402,7 +402,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   } else if (a.topology == "auto") {
     if (Status s = run_surfaces3(a, pts, opt, false, sr); !s) return fail_in(a.in.path, s);
     r = sr.mesh;
-  } else if (Status s = reconstruct3(pts, opt, r, &visitor); !s) {
+  } else if (Status s = reconstruct3(pts, opt, r, progress.enabled() ? &visitor : nullptr); !s) {
     return fail_in(a.in.path, s);
   }
   const bool surfaces = a.topology == "auto" && !is_skeleton(a);

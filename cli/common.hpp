@@ -74,6 +74,8 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
   void phase(const std::string& name);
   void count(std::size_t done, std::size_t total);
+  /// False with -q: nothing is shown, so the engines need not report their steps.
+  bool enabled() const { return enabled_; }
 
  private:
   void run();
