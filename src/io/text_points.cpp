@@ -186,12 +186,13 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
   ParsedLine f;
   std::vector<double>& coords = out.coords;
   const std::size_t coords_before = coords.size();
+  const int dim_asked = dim;  // (dim 0 becomes the first data line's field count below)
 
   for (std::size_t line = 1; p < end; ++line) {
     if (in_blocks && expected_fields != 0 && static_cast<std::size_t>(end - p) > 2 * kBlockBytes) {
       if (read_layout_blocks(p, end, dim, expected_fields, coords)) break;
       coords.resize(coords_before);
-      return read_first_fields(data, name, dim, chosen, out, false);
+      return read_first_fields(data, name, dim_asked, chosen, out, false);
     }
     if (line == 1) coords.reserve(data.size() / 16);
     const char* const begin = p;

@@ -39,8 +39,11 @@ const std::string kIdXY = "id,x,y\n7,0,0\n8,1,0\n9,0,1\n";
 // comments, blank lines), and a bad line anywhere must give the error of that line (the file is
 // then read again in order). 3 x 120 000 lines, about 3-6 MiB, so that there are several blocks.
 TEST(IoTextBlocks, LargeFilesKeepValuesAndErrorLines) {
-  for (const int dim : {2, 3}) {
-    std::string text = dim == 2 ? "# a comment\nx,y\n" : "x y z\n";
+  for (const int variant : {0, 1, 2, 3}) {
+    // 2D with a comment and a header, 3D with a header, then both without (dimension from the data).
+    const int dim = 2 + variant % 2;
+    const bool header = variant < 2;
+    std::string text = !header ? "" : dim == 2 ? "# a comment\nx,y\n" : "x y z\n";
     std::vector<double> want;
     std::uint64_t state = 12345 + static_cast<std::uint64_t>(dim);
     const auto next = [&state] {
@@ -49,7 +52,7 @@ TEST(IoTextBlocks, LargeFilesKeepValuesAndErrorLines) {
     };
     const char* seps[] = {" ", "\t", ",", " , ", ";"};
     std::vector<std::size_t> line_start;  // byte offset of every data line (1-based line numbers below)
-    std::size_t line = dim == 2 ? 2 : 1;
+    std::size_t line = !header ? 0 : dim == 2 ? 2 : 1;
     std::vector<std::size_t> line_no;
     char buf[64];
     for (int i = 0; i < 120000; ++i) {
@@ -81,7 +84,7 @@ TEST(IoTextBlocks, LargeFilesKeepValuesAndErrorLines) {
     ASSERT_TRUE(read_text(text, p, {}, name).is_ok());
     EXPECT_EQ(p.dim, dim);
     ASSERT_EQ(p.coords.size(), want.size());
-    EXPECT_TRUE(p.coords == want) << "dim " << dim;
+    EXPECT_TRUE(p.coords == want) << "dim " << dim << " header " << header;
 
     // A bad line early, in the middle, late and last: its own error and line number.
     for (const std::size_t at :
