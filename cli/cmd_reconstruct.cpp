@@ -408,7 +408,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   const bool surfaces = a.topology == "auto" && !is_skeleton(a);
   // Single mode, small inputs: what auto would give, for the note and the report.
   Surfaces3Result inferred;
-  const bool infer = !surfaces && !is_skeleton(a) && pts.size() <= kNoteMaxPoints3 && r.complete;
+  const bool infer =
+      !surfaces && !is_skeleton(a) && pts.size() <= kNoteMaxPoints3 && r.delaunay_tets <= kNoteMaxTets3 && r.complete;
   if (infer) note_surfaces3(a, pts, opt, inferred);
 
   progress.phase("validating");

@@ -243,6 +243,10 @@ constexpr std::size_t kMinPartPoints3 = 10;
 /// The CLI's 3D single mode also runs the auto topology (for its note) up to this many points:
 /// about 0.1 s there.
 constexpr std::size_t kNoteMaxPoints3 = 5000;
+/// ... and only when the Delaunay tetrahedralization has at most this many tetrahedra (surface and
+/// volume samples: about 6.5 per point; points along curves in 3D: quadratic, 6 M for 5 000 points
+/// on two skew lines, where the note doubled a 9 s run).
+constexpr std::size_t kNoteMaxTets3 = 40 * kNoteMaxPoints3;
 
 /// Options of reconstruct_surfaces3().
 struct Surfaces3Options {
