@@ -164,35 +164,32 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
     return l < r;
   };
   // Pairs every later copy in a lexicographically sorted range with its first occurrence.
-  const auto pair_copies = [&](const std::size_t* b, const std::size_t* e) {
+  const auto pair_copies = [&](const std::size_t* b, const std::size_t* e, std::vector<DuplicatePair>& out) {
     for (const std::size_t* g = b; g != e;) {
       const std::size_t* g_end = g + 1;
       while (g_end != e && equal_coords(points[*g], points[*g_end], dim)) {
-        dups.push_back({*g, *g_end});
+        out.push_back({*g, *g_end});
         ++g_end;
       }
       g = g_end;
     }
   };
-
-  // The pairs of one run of equal hashes (already in index order).
-  std::vector<std::size_t> run;
-  const auto pair_run = [&](const HighIndex* b, const HighIndex* e) {
-    if (e - b == 2) {
-      // The common collision: two points, already in index order; no sort needed.
-      if (equal_coords(points[b[0].index], points[b[1].index], dim)) dups.push_back({b[0].index, b[1].index});
-    } else if (e - b > 2) {
-      run.clear();
-      for (const HighIndex* i = b; i != e; ++i) run.push_back(i->index);
-      std::sort(run.begin(), run.end(), lex_less);
-      pair_copies(run.data(), run.data() + run.size());
-    }
-  };
-  const auto pair_runs = [&](const HighIndex* b, const HighIndex* e) {
+  // The pairs of a range sorted by hash (equal hashes in index order), run by run of equal hashes;
+  // `run`: scratch of the caller (one per thread).
+  const auto pair_runs = [&](const HighIndex* b, const HighIndex* e, std::vector<DuplicatePair>& out,
+                             std::vector<std::size_t>& run) {
     for (const HighIndex* r = b; r != e;) {
       const HighIndex* r_end = r + 1;
       while (r_end != e && r_end->high == r->high) ++r_end;
-      pair_run(r, r_end);
+      if (r_end - r == 2) {
+        // The common collision: two points, already in index order; no sort needed.
+        if (equal_coords(points[r[0].index], points[r[1].index], dim)) out.push_back({r[0].index, r[1].index});
+      } else if (r_end - r > 2) {
+        run.clear();
+        for (const HighIndex* i = r; i != r_end; ++i) run.push_back(i->index);
+        std::sort(run.begin(), run.end(), lex_less);
+        pair_copies(run.data(), run.data() + run.size(), out);
+      }
       r = r_end;
     }
   };
@@ -203,13 +200,14 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), lex_less);
-    pair_copies(order.data(), order.data() + n);
+    pair_copies(order.data(), order.data() + n, dups);
   } else if (n < kParallelMin) {
     std::vector<HighIndex> order(n);
     for (std::size_t i = 0; i < n; ++i)
       order[i] = {coordinate_hash(points[i], dim), static_cast<std::uint32_t>(i)};
     radix_sort(order);
-    pair_runs(order.data(), order.data() + n);
+    std::vector<std::size_t> run;
+    pair_runs(order.data(), order.data() + n, dups, run);
   } else {
     // On every core: the (hash, index) pairs scattered by the hash's top kTop bits (counts per
     // fixed block, so each bucket holds its pairs in index order), each bucket sorted by (hash,
@@ -253,24 +251,7 @@ std::vector<DuplicatePair> find_duplicates(const PointSet& points) {
         std::sort(lo, hi, [](const HighIndex& x, const HighIndex& y) {
           return x.high != y.high ? x.high < y.high : x.index < y.index;
         });
-        for (HighIndex* q = lo; q != hi;) {
-          HighIndex* q_end = q + 1;
-          while (q_end != hi && q_end->high == q->high) ++q_end;
-          if (q_end - q == 2) {
-            if (equal_coords(points[q[0].index], points[q[1].index], dim)) local.push_back({q[0].index, q[1].index});
-          } else if (q_end - q > 2) {
-            local_run.clear();
-            for (HighIndex* i = q; i != q_end; ++i) local_run.push_back(i->index);
-            std::sort(local_run.begin(), local_run.end(), lex_less);
-            for (std::size_t g = 0; g < local_run.size();) {
-              std::size_t g_end = g + 1;
-              while (g_end < local_run.size() && equal_coords(points[local_run[g]], points[local_run[g_end]], dim))
-                local.push_back({local_run[g], local_run[g_end++]});
-              g = g_end;
-            }
-          }
-          q = q_end;
-        }
+        pair_runs(lo, hi, local, local_run);
       }
       found[r.begin()] = std::move(local);
     });

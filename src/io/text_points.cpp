@@ -6,14 +6,13 @@
 // polygon through (id, x) without a word (issue 18).
 #include "io/detail/text_points.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <cmath>
 #include <vector>
 
+#include "core/detail/ordered_pack.hpp"
 #include "io/detail/scan.hpp"
 
 namespace constrict {
@@ -120,11 +119,11 @@ Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
 }
 
 // The lines of [p, end) once the first data line has fixed the layout: each must have
-// `expected_fields` fields with `dim` valid numbers first (blank and comment lines skipped). Appends
-// the values to `coords`; false at the first line that breaks the rule (the caller then reads the
-// file again in order, for the error and its line number).
-bool read_layout_lines(const char* p, const char* end, int dim, std::size_t expected_fields,
-                       std::vector<double>& coords) {
+// `expected_fields` fields with `dim` valid numbers first (blank and comment lines skipped). Pushes
+// the values; false at the first line that breaks the rule (the caller then reads the file again
+// in order, for the error and its line number).
+template <class Push>
+bool read_layout_lines(const char* p, const char* end, int dim, std::size_t expected_fields, const Push& push) {
   ParsedLine f;
   while (p < end) {
     const char* const next = parse_line(p, end, dim, f);
@@ -133,15 +132,15 @@ bool read_layout_lines(const char* p, const char* end, int dim, std::size_t expe
     if (f.count != expected_fields || (f.first_malformed >= 0 && f.first_malformed < dim)) return false;
     for (int k = 0; k < dim; ++k)
       if (!std::isfinite(f.value[k])) return false;
-    coords.insert(coords.end(), f.value, f.value + dim);
+    for (int k = 0; k < dim; ++k) push(f.value[k]);
   }
   return true;
 }
 
 // Large files: the lines after the first data line are read in blocks of about kBlockBytes on
 // every core, each block from the line after a '\n' to the '\n' that ends its last line, and the
-// blocks' values joined in file order, so the points are the ones of the sequential scan.
-// False when a block holds a line the layout does not allow (nothing is written then).
+// blocks' values joined in file order (ordered_pack), so the points are the ones of the sequential
+// scan. False when a block holds a line the layout does not allow (nothing is appended then).
 constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
 bool read_layout_blocks(const char* p, const char* end, int dim, std::size_t expected_fields,
                         std::vector<double>& coords) {
@@ -152,22 +151,16 @@ bool read_layout_blocks(const char* p, const char* end, int dim, std::size_t exp
     cut.push_back(nl + 1);
   }
   cut.push_back(end);
-  const std::size_t nb = cut.size() - 1;
-  std::vector<std::vector<double>> part(nb);
   std::atomic<bool> ok{true};
-  tbb::parallel_for(std::size_t{0}, nb, [&](std::size_t k) {
-    if (!ok.load(std::memory_order_relaxed)) return;
-    part[k].reserve(static_cast<std::size_t>(cut[k + 1] - cut[k]) / 12);
-    if (!read_layout_lines(cut[k], cut[k + 1], dim, expected_fields, part[k])) ok = false;
-  });
+  const std::vector<double> values = ordered_pack<double>(
+      cut.size() - 1,
+      [&](std::size_t k, const auto& push) {
+        if (ok.load(std::memory_order_relaxed) && !read_layout_lines(cut[k], cut[k + 1], dim, expected_fields, push))
+          ok = false;
+      },
+      1);
   if (!ok) return false;
-  std::vector<std::size_t> at(nb + 1, coords.size());
-  for (std::size_t k = 0; k < nb; ++k) at[k + 1] = at[k] + part[k].size();
-  coords.resize(at[nb]);
-  tbb::parallel_for(std::size_t{0}, nb, [&](std::size_t k) {
-    std::copy(part[k].begin(), part[k].end(), coords.begin() + static_cast<std::ptrdiff_t>(at[k]));
-    std::vector<double>().swap(part[k]);
-  });
+  coords.insert(coords.end(), values.begin(), values.end());
   return true;
 }
 
