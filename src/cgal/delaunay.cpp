@@ -26,6 +26,7 @@
 #include <CGAL/Hilbert_sort_median_2.h>
 #include <CGAL/Hilbert_sort_median_3.h>
 #include <CGAL/algorithm.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/spatial_sort.h>
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -36,7 +37,9 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <atomic>
+#include <unordered_map>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -438,12 +441,14 @@ void multiscale(It begin, It end, std::ptrdiff_t threshold, double ratio, const 
 // Spatially sorted (point, input index) pairs, in the order of CGAL's insert_with_info:
 // spatial_sort's random_shuffle is applied to an index array (same swaps, less memory), then
 // the pairs are gathered in that order.
+// With @p subset: those points only (pairs carry their index in @p points), in the order the
+// same sort gives the subset as a point set of its own.
 template <int D, class Point>
-std::vector<std::pair<Point, int>> sorted_input(const PointSet& points) {
-  const std::size_t n = points.size();
+std::vector<std::pair<Point, int>> sorted_input(const PointSet& points, const std::vector<int>* subset = nullptr) {
+  const std::size_t n = subset ? subset->size() : points.size();
   std::vector<int> perm;
   detail::resize_big(perm, n);
-  for (std::size_t i = 0; i < n; ++i) perm[i] = static_cast<int>(i);
+  for (std::size_t i = 0; i < n; ++i) perm[i] = subset ? (*subset)[i] : static_cast<int>(i);
   {
     boost::rand48 random;
     boost::random_number_generator<boost::rand48, std::ptrdiff_t> rng(random);
@@ -491,9 +496,8 @@ void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMe
 }
 
 // CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
-void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
+void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items, int rank = 0) {
   DT2::Face_handle hint;
-  int rank = 0;
   for (const auto& it : items) {
     const DT2::Vertex_handle v = dt.insert(it.first, hint);
     if (v != DT2::Vertex_handle()) {
@@ -504,7 +508,376 @@ void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items
   }
 }
 
+// ---- 2D on both cores: two halves triangulated side by side, then joined -----------------------
+// The points are split at the median x (L: x <= m, R: x > m) and the Delaunay triangulations of
+// the two halves are built concurrently. A triangle of DT(L) whose closed circumdisk misses R's
+// bounding box holds no point of R, so it is a triangle of the Delaunay triangulation of all
+// points: it is *certified* (so is a hull edge of L whose outer closed half-plane misses R's box:
+// a hull edge of all points). The test is a sound interval computation (CGAL's Interval_nt in the
+// upward rounding mode) or an exact orientation; a triangle it cannot decide is not certified.
+// The whole triangulation is the certified triangles of both halves plus the Delaunay triangles of
+// S, the vertices of the uncertified faces: at a point all of whose faces are certified, its star
+// is the certified one, so every other triangle has its three vertices in S and is a triangle of
+// DT(S). The region the certified triangles leave is tiled by the triangles of DT(S) that a flood
+// fill reaches from the certified region's boundary edges without crossing one. Every edge is then
+// locally Delaunay (a certified triangle's open disk is empty of both halves). The join is checked
+// (each boundary edge met exactly once from the other side, the count 2n - 2 - h of a
+// triangulation with h hull edges, the neighbours symmetric); if the check fails, or a half has
+// no area, the sequential insertion runs instead. So does a curve-like input: on a curve the
+// circumdisks of the interior and exterior triangles reach across the split and S holds a third
+// of the points (measured on the bench's five-petal curve), so the halves are first tried on a
+// sample (every kSplitStride-th point) and the split is made only when the sample's S is small.
+// The split does not depend on the thread count, so neither does the result; its triangles are
+// those of the sequential triangulation wherever the Delaunay triangulation is unique, and only
+// their order and the vertex ranks differ.
+constexpr std::size_t kSplitFrom2 = std::size_t{1} << 17;
+constexpr std::size_t kSplitStride = 64;
+constexpr double kSplitMaxSampleShare = 0.08;
+
+using IV = CGAL::Interval_nt<false>;
+
+struct Box2 {
+  double xmin, ymin, xmax, ymax;
+};
+
+Box2 box_of(const std::vector<std::pair<K::Point_2, int>>& items) {
+  Box2 b{items[0].first.x(), items[0].first.y(), items[0].first.x(), items[0].first.y()};
+  for (const auto& it : items) {
+    b.xmin = std::min(b.xmin, it.first.x());
+    b.xmax = std::max(b.xmax, it.first.x());
+    b.ymin = std::min(b.ymin, it.first.y());
+    b.ymax = std::max(b.ymax, it.first.y());
+  }
+  return b;
+}
+
+// The closed circumdisk of the counter-clockwise triangle abc misses the box. Needs the upward
+// rounding mode (CGAL::Protect_FPU_rounding); false when the intervals cannot tell.
+bool disk_misses_box(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c, const Box2& o) {
+  const IV bx = IV(b.x()) - a.x(), by = IV(b.y()) - a.y(), cx = IV(c.x()) - a.x(), cy = IV(c.y()) - a.y();
+  const IV d = (bx * cy - by * cx) * 2;
+  if (!(d.inf() > 0)) return false;
+  const IV b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const IV ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+  const IV r2 = ux * ux + uy * uy;
+  const IV ox = ux + a.x(), oy = uy + a.y();
+  const double lx = std::max({0.0, (IV(o.xmin) - ox).inf(), (ox - o.xmax).inf()});
+  const double ly = std::max({0.0, (IV(o.ymin) - oy).inf(), (oy - o.ymax).inf()});
+  const IV dist2 = IV(lx) * lx + IV(ly) * ly;
+  return dist2.inf() > r2.sup();
+}
+
+// The outer closed half-plane of the hull edge p -> q (the infinite vertex on its left) misses
+// the box: every corner strictly on its right (exact orientation).
+bool halfplane_misses_box(const K::Point_2& p, const K::Point_2& q, const Box2& o) {
+  for (int k = 0; k < 4; ++k) {
+    const K::Point_2 c((k & 1) ? o.xmax : o.xmin, (k & 2) ? o.ymax : o.ymin);
+    if (CGAL::orientation(p, q, c) != CGAL::RIGHT_TURN) return false;
+  }
+  return true;
+}
+
+// Face info in the halves: >= 0 a certified triangle (its output index once numbered), kHull a
+// certified infinite face (a hull edge of all points), kOpen an uncertified face.
+constexpr int kHull = -1, kOpen = -2;
+
+struct Half2 {
+  DT2 dt;
+  Box2 box{};
+  std::vector<DT2::Face_handle> open;  // the uncertified faces, container order
+  std::size_t n_cert = 0;              // certified triangles
+  std::size_t n_hull = 0;              // certified hull edges whose triangle is certified
+};
+
+// Inserts the points of ranks [first, first + count) (coordinates in @p ranked) in rank order,
+// with hints; vertex info = the rank.
+void insert_ranked(DT2& dt, const PointSet& ranked, std::size_t first, std::size_t count) {
+  DT2::Face_handle hint;
+  for (std::size_t k = first; k < first + count; ++k) {
+    const DT2::Vertex_handle v = dt.insert(K::Point_2(ranked.coords[2 * k], ranked.coords[2 * k + 1]), hint);
+    if (v != DT2::Vertex_handle()) {
+      v->info() = static_cast<int>(k);
+      hint = v->face();
+    }
+  }
+}
+
+// The halves of @p subset (indices into @p points, ascending) at the median x: each sorted in
+// CGAL's spatial order and written to @p ranked / @p id (L's ranks first), then both triangulated
+// side by side (vertex info = rank). False when a half is empty or has no area; @p duplicates when
+// a half has coinciding points.
+bool build_halves(const PointSet& points, const std::vector<int>& subset, Half2& l, Half2& r, PointSet& ranked,
+                  std::vector<int>& id, bool& duplicates) {
+  const std::size_t m = subset.size();
+  std::vector<double> xs(m);
+  for (std::size_t i = 0; i < m; ++i) xs[i] = points[static_cast<std::size_t>(subset[i])][0];
+  std::nth_element(xs.begin(), xs.begin() + static_cast<std::ptrdiff_t>(m / 2), xs.end());
+  const double mx = xs[m / 2];
+  std::vector<double>().swap(xs);
+  std::vector<int> left, right;
+  left.reserve(m / 2 + 1);
+  right.reserve(m / 2 + 1);
+  for (const int i : subset) (points[static_cast<std::size_t>(i)][0] <= mx ? left : right).push_back(i);
+  if (left.size() < 3 || right.size() < 3) return false;
+  const std::size_t nl = left.size();
+  ranked.dim = 2;
+  detail::resize_big(ranked.coords, 2 * m);
+  detail::resize_big(id, m);
+  const auto rank_half = [&](const std::vector<int>& half, std::size_t first, Box2& box) {
+    const auto items = sorted_input<2, K::Point_2>(points, &half);
+    box = box_of(items);
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      ranked.coords[2 * (first + k)] = items[k].first.x();
+      ranked.coords[2 * (first + k) + 1] = items[k].first.y();
+      id[first + k] = items[k].second;
+    }
+  };
+  tbb::parallel_invoke([&] { rank_half(left, 0, l.box); }, [&] { rank_half(right, nl, r.box); });
+  std::vector<int>().swap(left);
+  std::vector<int>().swap(right);
+  tbb::parallel_invoke([&] { insert_ranked(l.dt, ranked, 0, nl); }, [&] { insert_ranked(r.dt, ranked, nl, m - nl); });
+  duplicates = l.dt.number_of_vertices() + r.dt.number_of_vertices() != m;
+  return !duplicates && l.dt.dimension() == 2 && r.dt.dimension() == 2;
+}
+
+// Runs f(handle) on every face of @p dt in container order, in chunks of kExportChunk handles
+// processed on both cores (a list of all of them would be 8 bytes per face at the peak).
+// With @p upwards, each range runs in the upward rounding mode.
+template <class F>
+void for_faces_chunked(DT2& dt, bool upwards, const F& f) {
+  std::vector<DT2::Face_handle> hs;
+  hs.reserve(kExportChunk);
+  const auto run = [&] {
+    par_for(hs.size(), [&](const tbb::blocked_range<std::size_t>& r) {
+      if (upwards) {
+        CGAL::Protect_FPU_rounding<true> up;
+        for (std::size_t i = r.begin(); i != r.end(); ++i) f(hs[i]);
+      } else {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) f(hs[i]);
+      }
+    });
+    hs.clear();
+  };
+  for (auto it = dt.all_faces_begin(); it != dt.all_faces_end(); ++it) {
+    hs.push_back(it);
+    if (hs.size() == kExportChunk) run();
+  }
+  run();
+}
+
+// Certifies the faces of one half against the other half's box (face info, n_cert, n_hull, the
+// open faces) and marks the vertices of the uncertified ones in @p in_s (by rank).
+void certify_half(Half2& h, const Box2& other, unsigned char* in_s) {
+  const DT2::Vertex_handle inf = h.dt.infinite_vertex();
+  std::atomic<std::size_t> n_cert{0};
+  for_faces_chunked(h.dt, true, [&](DT2::Face_handle f) {
+    const int k = f->has_vertex(inf) ? f->index(inf) : -1;
+    const bool ok = k >= 0
+                        ? halfplane_misses_box(f->vertex(DT2::ccw(k))->point(), f->vertex(DT2::cw(k))->point(), other)
+                        : disk_misses_box(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(), other);
+    if (ok) {
+      f->info() = k >= 0 ? kHull : 0;
+      if (k < 0) n_cert.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    f->info() = kOpen;
+    for (int j = 0; j < 3; ++j)
+      if (j != k) __atomic_store_n(&in_s[static_cast<std::size_t>(f->vertex(j)->info())], 1, __ATOMIC_RELAXED);
+  });
+  h.n_cert = n_cert;
+  DT2::Face_circulator f = h.dt.incident_faces(inf), end = f;
+  do {
+    if (f->info() == kHull && f->neighbor(f->index(inf))->info() >= 0) ++h.n_hull;
+  } while (++f != end);
+}
+
+std::uint64_t edge_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// The share of a sample's points (every kSplitStride-th) that the split would leave to DT(S).
+double split_sample_share(const PointSet& points) {
+  std::vector<int> sample;
+  for (std::size_t i = 0; i < points.size(); i += kSplitStride) sample.push_back(static_cast<int>(i));
+  Half2 l, r;
+  PointSet ranked;
+  std::vector<int> id;
+  bool dup = false;
+  if (!build_halves(points, sample, l, r, ranked, id, dup)) return 1;
+  std::vector<unsigned char> in_s(sample.size(), 0);
+  certify_half(l, r.box, in_s.data());
+  certify_half(r, l.box, in_s.data());
+  return static_cast<double>(std::count(in_s.begin(), in_s.end(), 1)) / static_cast<double>(sample.size());
+}
+
 }  // namespace
+
+namespace detail {
+
+bool build_delaunay2_split(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id,
+                           Status& status, bool sample_first) {
+  const std::size_t n = points.size();
+  if (points.dim != 2 || n < 8) return false;
+  if (sample_first && split_sample_share(points) > kSplitMaxSampleShare) return false;
+  Half2 hl, hr;
+  {
+    std::vector<int> all(n);
+    for (std::size_t i = 0; i < n; ++i) all[i] = static_cast<int>(i);
+    bool dup = false;
+    const bool ok = build_halves(points, all, hl, hr, ranked, id, dup);
+    if (dup) {
+      status = {StatusCode::Duplicate, duplicate_message(n, hl.dt.number_of_vertices() + hr.dt.number_of_vertices())};
+      return true;
+    }
+    if (!ok) return false;
+  }
+  std::vector<unsigned char> in_s(n, 0);
+  tbb::parallel_invoke([&] { certify_half(hl, hr.box, in_s.data()); }, [&] { certify_half(hr, hl.box, in_s.data()); });
+  if (hl.n_cert + hr.n_cert == 0) return false;
+
+  // DT(S), the vertices of the uncertified faces, with their ranks.
+  std::vector<std::pair<K::Point_2, int>> is;
+  for (std::size_t k = 0; k < n; ++k)
+    if (in_s[k]) is.push_back({K::Point_2(ranked.coords[2 * k], ranked.coords[2 * k + 1]), static_cast<int>(k)});
+  std::vector<unsigned char>().swap(in_s);
+  {
+    using Pmap = CGAL::First_of_pair_property_map<std::pair<K::Point_2, int>>;
+    CGAL::spatial_sort(is.begin(), is.end(), CGAL::Spatial_sort_traits_adapter_2<K, Pmap>(Pmap(), K()));
+  }
+  DT2 ds;
+  insert_sorted(ds, is);
+  for (auto v = ds.finite_vertices_begin(); v != ds.finite_vertices_end(); ++v)
+    v->info() = is[static_cast<std::size_t>(v->info())].second;
+  if (ds.dimension() < 2) return false;
+
+  // Output indices of the certified triangles: L's, then R's, in container order.
+  int next = 0;
+  for (Half2* h : {&hl, &hr})
+    for (auto f = h->dt.all_faces_begin(); f != h->dt.all_faces_end(); ++f) {
+      if (f->info() >= 0)
+        f->info() = next++;
+      else if (f->info() == kOpen)
+        h->open.push_back(f);
+    }
+  const std::size_t n_cert = static_cast<std::size_t>(next);
+
+  // The certified region's boundary: each edge of a certified triangle whose neighbour is open,
+  // keyed as the tile beyond it sees it (the reversed direction), valued 3 * triangle + slot.
+  std::unordered_map<std::uint64_t, int> boundary;
+  for (Half2* h : {&hl, &hr})
+    for (const DT2::Face_handle g : h->open) {
+      for (int j = 0; j < 3; ++j) {
+        const DT2::Face_handle f = g->neighbor(j);
+        if (f->info() < 0) continue;
+        const int s = f->index(g);
+        boundary.emplace(edge_key(f->vertex(DT2::cw(s))->info(), f->vertex(DT2::ccw(s))->info()), 3 * f->info() + s);
+      }
+    }
+
+  // The tiles: DT(S)'s finite faces reached from the boundary without crossing it.
+  std::vector<DT2::Face_handle> sf;
+  for (auto f = ds.all_faces_begin(); f != ds.all_faces_end(); ++f) {
+    f->info() = ds.is_infinite(f) ? -1 : static_cast<int>(sf.size());
+    if (!ds.is_infinite(f)) sf.push_back(f);
+  }
+  const auto key_of = [](DT2::Face_handle f, int j) {
+    return edge_key(f->vertex(DT2::ccw(j))->info(), f->vertex(DT2::cw(j))->info());
+  };
+  std::vector<int> tile(sf.size(), -1);
+  std::vector<std::size_t> stack;
+  for (std::size_t t = 0; t < sf.size(); ++t)
+    for (int j = 0; j < 3 && tile[t] < 0; ++j)
+      if (boundary.count(key_of(sf[t], j))) {
+        tile[t] = 0;
+        stack.push_back(t);
+      }
+  while (!stack.empty()) {
+    const std::size_t t = stack.back();
+    stack.pop_back();
+    for (int j = 0; j < 3; ++j) {
+      if (boundary.count(key_of(sf[t], j))) continue;
+      const int g = sf[t]->neighbor(j)->info();
+      if (g >= 0 && tile[static_cast<std::size_t>(g)] < 0) {
+        tile[static_cast<std::size_t>(g)] = 0;
+        stack.push_back(static_cast<std::size_t>(g));
+      }
+    }
+  }
+  std::size_t n_tiles = 0;
+  for (int& t : tile)
+    if (t == 0) t = static_cast<int>(n_cert + n_tiles++);
+
+  // The check of the join: every boundary edge met once, from a tile or from beyond DT(S)'s hull
+  // (a hull edge the box test could not tell), and the count of a triangulation.
+  std::size_t met = 0, hull = hl.n_hull + hr.n_hull;
+  for (auto f = ds.all_faces_begin(); f != ds.all_faces_end(); ++f)
+    if (ds.is_infinite(f) && boundary.count(key_of(f, f->index(ds.infinite_vertex())))) {
+      ++met;
+      ++hull;
+    }
+  for (std::size_t t = 0; t < sf.size(); ++t) {
+    if (tile[t] < 0) continue;
+    for (int j = 0; j < 3; ++j) {
+      if (boundary.count(key_of(sf[t], j)))
+        ++met;
+      else if (sf[t]->neighbor(j)->info() < 0)
+        ++hull;
+    }
+  }
+  const std::size_t T = n_cert + n_tiles;
+  if (met != boundary.size() || T + 2 + hull != 2 * n) return false;
+
+  // The export: certified triangles (an open neighbour is a tile or the hull, set from the tile's
+  // side), then the tiles.
+  out.n_vertices = n;
+  tbb::parallel_invoke([&] { detail::resize_big(out.triangles, T); }, [&] { detail::resize_big(out.neighbors, T); });
+  for (Half2* h : {&hl, &hr})
+    for_faces_chunked(h->dt, false, [&](DT2::Face_handle f) {
+      const int t = f->info();
+      if (t < 0) return;
+      std::array<int, 3> tri{}, nb{};
+      for (int k = 0; k < 3; ++k) {
+        tri[static_cast<std::size_t>(k)] = f->vertex(k)->info();
+        nb[static_cast<std::size_t>(k)] = std::max(f->neighbor(k)->info(), -1);
+      }
+      out.triangles[static_cast<std::size_t>(t)] = tri;
+      out.neighbors[static_cast<std::size_t>(t)] = nb;
+    });
+  for (std::size_t t = 0; t < sf.size(); ++t) {
+    if (tile[t] < 0) continue;
+    const std::size_t o = static_cast<std::size_t>(tile[t]);
+    for (int k = 0; k < 3; ++k) {
+      out.triangles[o][static_cast<std::size_t>(k)] = sf[t]->vertex(k)->info();
+      int nb = -1;
+      if (const auto b = boundary.find(key_of(sf[t], k)); b != boundary.end()) {
+        nb = b->second / 3;
+        out.neighbors[static_cast<std::size_t>(nb)][static_cast<std::size_t>(b->second % 3)] = static_cast<int>(o);
+      } else if (const int g = sf[t]->neighbor(k)->info(); g >= 0) {
+        nb = tile[static_cast<std::size_t>(g)];
+      }
+      out.neighbors[o][static_cast<std::size_t>(k)] = nb;
+    }
+  }
+  // The tiles' neighbours name them back (a last guard of the join; between certified triangles
+  // they are CGAL's own).
+  bool symmetric = true;
+  for (std::size_t t = 0; t < sf.size() && symmetric; ++t) {
+    if (tile[t] < 0) continue;
+    const int o = tile[t];
+    for (const int g : out.neighbors[static_cast<std::size_t>(o)]) {
+      if (g < 0) continue;
+      const auto& back = out.neighbors[static_cast<std::size_t>(g)];
+      symmetric = symmetric && (back[0] == o || back[1] == o || back[2] == o);
+    }
+  }
+  if (!symmetric) return false;
+  status = Status::ok();
+  return true;
+}
+
+}  // namespace detail
+
+namespace {}  // namespace
 
 namespace detail {
 
@@ -533,6 +906,10 @@ Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2
 Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};
   const std::size_t n = points.size();
+  if (n >= kSplitFrom2) {
+    Status st;
+    if (build_delaunay2_split(points, out, ranked, id, st, true)) return st;
+  }
   auto items = sorted_input<2, K::Point_2>(points);
   // CGAL's insertion is sequential: the second core meanwhile writes the ranked points.
   tbb::task_group side;

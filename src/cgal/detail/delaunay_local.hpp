@@ -61,6 +61,18 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
 /// insertion order (its spatial sort), ranked.coords holds its coordinates (the input doubles)
 /// and id[k] its input index. Same triangles, same order and same neighbours as build_delaunay2,
 /// only relabelled, so that loops over triangles and along a curve touch nearby memory.
+/// From 2^17 points on, an input that is not curve-like is triangulated in two halves on both cores
+/// and joined (build_delaunay2_split): the same triangles wherever the Delaunay triangulation is
+/// unique, in another order and with other ranks (L's points first, each half in its own spatial
+/// order).
 Status build_delaunay2_ranked(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id);
+
+/// The two-halves construction of build_delaunay2_ranked (src/cgal/delaunay.cpp explains it).
+/// False, with nothing to use in the outputs, where the sequential construction must run: a half
+/// without area, a join that fails its check, or (with @p sample_first) a sample of the points
+/// whose join would leave more than a small share of them to the sequential part (curves). True
+/// with @p status Duplicate when points coincide, else true with @p status ok and the result.
+bool build_delaunay2_split(const PointSet& points, Delaunay2& out, PointSet& ranked, std::vector<int>& id,
+                           Status& status, bool sample_first);
 
 }  // namespace constrict::detail
