@@ -257,6 +257,7 @@ struct Mesh3Result {
   std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
   std::size_t carved = 0;                 ///< tetrahedra removed by the carve pass (kept)
   std::size_t carve_undone = 0;           ///< carve removals undone (no valid end state)
+  bool carve_capped = false;              ///< the carve stopped at its work bound (points along curves in space)
   std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
@@ -271,6 +272,7 @@ struct Mesh3Result {
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
   std::size_t refine_removed = 0;         ///< tetrahedra removed by the Refine3 post-pass
+  bool refine_capped = false;             ///< a Refine3 pass stopped at its work bound (points along curves in space)
   std::size_t non_delaunay_tets = 0;      ///< body tetrahedra made by the fallback
   /// Bridge measure (docs/reconstruction-3d.md §4.8): surface triangles whose longest edge is at
   /// least kBridgeRatio times the larger nearest-neighbour distance of its end points — sheets

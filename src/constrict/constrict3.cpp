@@ -303,6 +303,7 @@ void Constrictor3::Impl::carve_stage(Mesh3Result& r) {
   r.ms_carve = ms_since(t0);
   r.carved = carve.changed;
   r.carve_undone = carve.undone;
+  r.carve_capped = carve.capped;
   r.stages.push_back({Stage3::Carve, 0, carve.changed});
 }
 
@@ -358,6 +359,7 @@ void Constrictor3::Impl::bridge_stage(Mesh3Result& r) {
 void Constrictor3::Impl::collect(Mesh3Result& r) const {
   r.refine_added = flips.added;
   r.refine_removed = flips.removed;
+  r.refine_capped = flips.capped;
   r.removed_one_face = hull.removed1;
   r.removed_two_face = hull.removed2;
   r.removed_sculpt = removed_sculpt;

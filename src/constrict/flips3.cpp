@@ -23,6 +23,12 @@ constexpr double kRelativeGain = 1e-9;
 // Delaunay tetrahedralization is quadratic in size (edges in ~100 tetrahedra), one pass made
 // 88 000 flips of ~600 candidates each (a guard of 20 per tetrahedron let it run for minutes).
 constexpr std::size_t kFlipsPerPoint = 8, kFlipsExtra = 100;
+// Guard on a pass's work: each flip re-evaluates the tetrahedra around t's six edges, and each of
+// those may walk around an edge of its own, so a flip costs about the sum of its rings' squared
+// sizes. At most kRingWorkPerTet of it per tetrahedron, plus kRingWorkFloor. The shared, topology,
+// noisy and handle sets use at most 40 per tetrahedron; 1 000 points on a helix, whose edges lie in
+// hundreds of tetrahedra, used 20 000 (4 s; 2 000 points: 22 s).
+constexpr std::size_t kRingWorkPerTet = 256, kRingWorkFloor = std::size_t{1} << 22;
 
 class Flips3 {
  public:
@@ -39,7 +45,13 @@ class Flips3 {
     for (const HeapEntry& e : found) heap_.push(e, b_.tets);
     std::vector<int> ring, touched;
     const std::size_t cap = kFlipsPerPoint * b_.n + kFlipsExtra;
+    const std::size_t work_cap = kRingWorkPerTet * b_.tets.size() + kRingWorkFloor;
+    std::size_t work = 0;
     for (std::size_t flips = 0; !heap_.empty() && flips < cap;) {
+      if (work > work_cap) {
+        s_.capped = true;
+        break;
+      }
       const HeapEntry e = heap_.pop(b_.tets);
       if (e.version != b_.ver[uz(e.tet)]) continue;
       if (flip_gain(e.tet) <= 0) continue;
@@ -61,6 +73,7 @@ class Flips3 {
         for (int j = i + 1; j < 4; ++j) {
           b_.edge_ring(t, i, j, ring);
           touched.insert(touched.end(), ring.begin(), ring.end());
+          work += ring.size() * ring.size();
         }
       std::sort(touched.begin(), touched.end());
       touched.erase(std::unique(touched.begin(), touched.end()), touched.end());

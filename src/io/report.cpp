@@ -74,8 +74,11 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   j["surface_area"] = r.surface_area;
   j["bridges"] = {{"faces", r.bridge_faces}, {"area", r.bridge_area}, {"max_ratio", r.max_bridge_ratio},
                   {"min_ratio", Mesh3Result::kBridgeRatio}};
-  j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"}, {"added", r.refine_added}, {"removed", r.refine_removed}};
-  j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}};
+  j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"},
+                 {"added", r.refine_added},
+                 {"removed", r.refine_removed},
+                 {"capped", r.refine_capped}};
+  j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}, {"capped", r.carve_capped}};
   j["grow"] = {{"enabled", opt.grow},           {"tetrahedra", r.grown},        {"labelled_outside", r.grown_outside},
                {"filled", r.filled},            {"cavities", r.grow_cavities}, {"unreached", r.grow_unreached}};
   j["size_bias"] = r.size_bias;

@@ -651,10 +651,12 @@ void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
   sum.cavity_attempts += r.cavity_attempts;
   sum.carved += r.carved;
   sum.carve_undone += r.carve_undone;
+  sum.carve_capped = sum.carve_capped || r.carve_capped;
   sum.removed_one_face += r.removed_one_face;
   sum.removed_two_face += r.removed_two_face;
   sum.refine_added += r.refine_added;
   sum.refine_removed += r.refine_removed;
+  sum.refine_capped = sum.refine_capped || r.refine_capped;
   sum.non_delaunay_tets += r.non_delaunay_tets;
   sum.bridge_faces += r.bridge_faces;
   sum.bridge_area += r.bridge_area;

@@ -165,6 +165,7 @@ bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt
 struct Carve3Stats {
   std::size_t changed = 0, regions = 0, undone = 0;  // tetrahedra kept removed / added; ...
   std::size_t trials = 0;  // single toggles the local repair tried (all regions of the pass)
+  bool capped = false;     // the pass stopped at its bound of link evaluations (carve3.cpp)
 };
 // Removes the surface-connected regions of body tetrahedra labelled outside (confidence >=
 // min_conf), keeping each region's removals up to its last valid state (closed 2-manifold of
@@ -201,6 +202,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
 
 struct Flips3Stats {
   std::size_t added = 0, removed = 0;
+  bool capped = false;  // a pass stopped at its work bound (flips3.cpp)
 };
 // Energy-decreasing surface edge flips through Delaunay tetrahedra, best first, for one energy
 // (Refine3::Area or Refine3::Circumradius).
