@@ -672,9 +672,15 @@ void certify_half(Half2& h, const Box2& other, unsigned char* in_s) {
   std::atomic<std::size_t> n_cert{0};
   for_faces_chunked(h.dt, true, [&](DT2::Face_handle f) {
     const int k = f->has_vertex(inf) ? f->index(inf) : -1;
-    const bool ok = k >= 0
-                        ? halfplane_misses_box(f->vertex(DT2::ccw(k))->point(), f->vertex(DT2::cw(k))->point(), other)
-                        : disk_misses_box(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(), other);
+    bool ok = false;
+    if (k >= 0) {
+      // (CGAL's static filters assume rounding to nearest: the range runs upwards for the
+      // intervals, the few hull edges go back to nearest for the exact orientations.)
+      const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
+      ok = halfplane_misses_box(f->vertex(DT2::ccw(k))->point(), f->vertex(DT2::cw(k))->point(), other);
+    } else {
+      ok = disk_misses_box(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(), other);
+    }
     if (ok) {
       f->info() = k >= 0 ? kHull : 0;
       if (k < 0) n_cert.fetch_add(1, std::memory_order_relaxed);
