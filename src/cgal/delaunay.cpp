@@ -697,7 +697,9 @@ void certify_half(Half2& h, const Box2& other, unsigned char* in_s) {
   } while (++f != end);
 }
 
-std::uint64_t edge_key(int a, int b) {
+// The directed edge a -> b as one word (core/detail/edge_key.hpp's key is undirected; the join
+// needs the direction, which tells the two sides of an edge apart).
+std::uint64_t directed_edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
@@ -776,7 +778,7 @@ bool build_delaunay2_split(const PointSet& points, Delaunay2& out, PointSet& ran
         const DT2::Face_handle f = g->neighbor(j);
         if (f->info() < 0) continue;
         const int s = f->index(g);
-        boundary.emplace(edge_key(f->vertex(DT2::cw(s))->info(), f->vertex(DT2::ccw(s))->info()), 3 * f->info() + s);
+        boundary.emplace(directed_edge_key(f->vertex(DT2::cw(s))->info(), f->vertex(DT2::ccw(s))->info()), 3 * f->info() + s);
       }
     }
 
@@ -787,7 +789,7 @@ bool build_delaunay2_split(const PointSet& points, Delaunay2& out, PointSet& ran
     if (!ds.is_infinite(f)) sf.push_back(f);
   }
   const auto key_of = [](DT2::Face_handle f, int j) {
-    return edge_key(f->vertex(DT2::ccw(j))->info(), f->vertex(DT2::cw(j))->info());
+    return directed_edge_key(f->vertex(DT2::ccw(j))->info(), f->vertex(DT2::cw(j))->info());
   };
   std::vector<int> tile(sf.size(), -1);
   std::vector<std::size_t> stack;
