@@ -414,6 +414,15 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 
   progress.phase("validating");
   const auto tv = Clock::now();
+  // The files are written beside the validation (mostly the kernel's copy into the page cache);
+  // a complete result that fails validation takes them back below.
+  std::chrono::steady_clock::time_point tw0, tw1;
+  std::future<Status> written = std::async(std::launch::async, [&] {
+    tw0 = Clock::now();
+    Status ws = write_surface_rows(a, pts, rep, r);
+    tw1 = Clock::now();
+    return ws;
+  });
   MeshCheck chk;
   MeshCheckOptions copt;
   copt.require_all_points = true;
@@ -430,22 +439,28 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     valid = valid && bs.is_ok();
   }
   // An incomplete skeleton must still be a closed genus-0 surface over the points it reaches.
+  bool part_valid = true;
+  MeshCheck part;
   if (is_skeleton(a) && !r.complete) {
-    MeshCheck part;
     copt.require_all_points = false;
-    if (!validate_mesh3(pts, r.mesh, &part, copt).is_ok())
-      return fail({StatusCode::Internal, "the voronoi skeleton surface failed validation (please report): " + part.reason});
+    part_valid = validate_mesh3(pts, r.mesh, &part, copt).is_ok();
   }
   const double ms_validate = ms(tv, Clock::now());
-  if (r.complete && !valid)
+  progress.phase("writing");
+  const Status write_status = written.get();
+  if ((r.complete && !valid) || !part_valid) {
+    (void)std::remove(a.out.c_str());
+    if (!a.body.empty()) (void)std::remove(a.body.c_str());
+    if (!part_valid)
+      return fail(
+          {StatusCode::Internal, "the voronoi skeleton surface failed validation (please report): " + part.reason});
     return fail({StatusCode::Internal, "the reconstructed surface failed validation (please report): " + chk.reason +
                                            body_reason});
-
-  progress.phase("writing");
-  const auto tw = Clock::now();
-  if (Status s = write_surface_rows(a, pts, rep, r); !s) return fail(s);
+  }
+  if (!write_status) return fail(write_status);
+  const auto tr = Clock::now();
   if (int rc = a.render.empty() ? 0 : render_reconstruction3(a.render, pts, r.mesh)) return rc;
-  const double ms_write = ms(tw, Clock::now());
+  const double ms_write = ms(tw0, tw1) + ms(tr, Clock::now());
 
   const std::size_t n = pts.size(), nb = n - r.unplaced_points.size();
   if (!a.report.empty()) {
