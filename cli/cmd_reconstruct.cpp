@@ -416,7 +416,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   const auto tv = Clock::now();
   // The files are written beside the validation (mostly the kernel's copy into the page cache);
   // a complete result that fails validation takes them back below.
-  std::chrono::steady_clock::time_point tw0, tw1;
+  Clock::time_point tw0, tw1;
   std::future<Status> written = std::async(std::launch::async, [&] {
     tw0 = Clock::now();
     Status ws = write_surface_rows(a, pts, rep, r);

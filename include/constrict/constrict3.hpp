@@ -257,7 +257,8 @@ struct Mesh3Result {
   std::size_t removed_sculpt = 0;         ///< two-face removals of the sculpting post-pass
   std::size_t carved = 0;                 ///< tetrahedra removed by the carve pass (kept)
   std::size_t carve_undone = 0;           ///< carve removals undone (no valid end state)
-  bool carve_capped = false;              ///< the carve stopped at its work bound (points along curves in space)
+  bool carve_capped =
+      false;  ///< the carve, fill or handle pass stopped at its work bound (points along curves in space)
   std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth

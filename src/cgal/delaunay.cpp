@@ -496,8 +496,9 @@ void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMe
 }
 
 // CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
-void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items, int rank = 0) {
+void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
   DT2::Face_handle hint;
+  int rank = 0;
   for (const auto& it : items) {
     const DT2::Vertex_handle v = dt.insert(it.first, hint);
     if (v != DT2::Vertex_handle()) {
@@ -882,12 +883,6 @@ bool build_delaunay2_split(const PointSet& points, Delaunay2& out, PointSet& ran
   status = Status::ok();
   return true;
 }
-
-}  // namespace detail
-
-namespace {}  // namespace
-
-namespace detail {
 
 Status build_delaunay2_local(const PointSet& points, Delaunay2& out, LocalMesh<2>* local) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, "build_delaunay2: points are not 2D"};

@@ -214,6 +214,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
     t0 = Clock::now();
     detail::Carve3Stats fs;
     filled = detail::fill_inside3(body, *keys.labels, opt.carve_confidence <= 1 ? opt.carve_confidence : kFillConfidence, fs);
+    fill_capped = fs.capped;
     r.ms_fill = ms_since(t0);
   }
   if (!grew) return Growth::NotRun;
@@ -221,6 +222,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   r.grow_cavities = growth.cavities;
   r.grown_outside = growth.grown_outside;
   r.filled = filled;
+  r.carve_capped = r.carve_capped || fill_capped;
   r.stages.push_back({Stage3::Grow, body.n - n_hull, 0});
   r.stages.push_back({Stage3::Fill, 0, 0});
   handles_stage(r);
@@ -249,6 +251,7 @@ void Constrictor3::Impl::handles_stage(Mesh3Result& r) {
   }
   r.handle_changes = std::move(*log);
   r.handle_added = handles_closed.changed;
+  r.carve_capped = r.carve_capped || handles_closed.capped || handles_opened.capped;
   r.handle_removed = handles_opened.changed;
   r.stages.push_back({Stage3::Handles, 0, handles_opened.changed});
   r.ms_fill += ms_since(t0);
@@ -303,7 +306,7 @@ void Constrictor3::Impl::carve_stage(Mesh3Result& r) {
   r.ms_carve = ms_since(t0);
   r.carved = carve.changed;
   r.carve_undone = carve.undone;
-  r.carve_capped = carve.capped;
+  r.carve_capped = r.carve_capped || carve.capped;
   r.stages.push_back({Stage3::Carve, 0, carve.changed});
 }
 

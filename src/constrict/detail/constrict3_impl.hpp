@@ -69,6 +69,7 @@ struct Constrictor3::Impl {
   detail::Carve3Stats handles_closed, handles_opened;
   detail::Flips3Stats flips;
   std::size_t filled = 0, removed_sculpt = 0, n_hull = 0;
+  bool fill_capped = false;  // the fill stopped at its work bound (carve3.cpp)
   double ms_delaunay = 0, ms_setup = 0;
   bool ready = false;
   bool need_size = false;   // size bias or bridge sculpting: spacing and bridge ratios
