@@ -511,7 +511,10 @@ int run_reconstruct(const ReconstructArgs& a) {
   progress.phase("reading");
   PointSet pts;
   ReadReport rep;
-  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
+  // Every engine checks its points (reconstruct_rings2, reconstruct3 and the surfaces find
+  // duplicates in their canonical order or triangulation; the skeletons call check_points), with
+  // the same statuses and messages as the reader's check.
+  if (Status s = read_input(a.in, pts, rep, /*check=*/false); !s) return fail(s);
   const auto t1 = Clock::now();
   if (Status s = check_dimension_options(a, pts.dim); !s) return fail(s);
   if (pts.dim == 2) return run_reconstruct2(a, pts, rep, progress, t0, t1);

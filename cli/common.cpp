@@ -30,9 +30,10 @@ void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
 }
 
 // Warnings (e.g. merged duplicates) are printed even with --quiet: dropping data is never silent.
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep) {
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool check) {
   ReadOptions opt;
   opt.dim = in.dim;
+  opt.check = check;
   opt.merge_duplicates = in.merge_duplicates;
   if (Status s = point_format_from_name(in.format, opt.format); !s) return s;
   if (!in.columns.empty())

@@ -41,7 +41,10 @@ struct InputArgs {
 /// INPUT, --dim, --merge-duplicates, --format and (unless @p columns is false: `render` has its own
 /// --columns, the sheet's) --columns.
 void add_input_options(CLI::App* cmd, InputArgs& in, bool columns = true);
-Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep);
+// check = false: the points as parsed (parse-level defects are still errors); for commands whose
+// library call checks its input itself (duplicates, too few, collinear, coplanar), so the O(N log N)
+// duplicate search does not run twice.
+Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool check = true);
 
 /// Output indices are the file's rows (docs/cli.md "Duplicates"): result point @p i is file row
 /// rep.original_index[i]; the identity when nothing was merged.

@@ -161,7 +161,7 @@ void Constrictor3::Impl::ensure_hull_start() {
   }
   if (!keys.terms) keys.terms = detail::compute_face_terms3(body, *keys.dg);
   if (need_size && !keys.face_log) {
-    keys.spacing = std::make_shared<const std::vector<double>>(detail::nearest_spacing3(body));
+    if (!keys.spacing) keys.spacing = std::make_shared<const std::vector<double>>(detail::nearest_spacing3(body));
     keys.face_log = detail::compute_face_log3(body, *keys.dg, *keys.spacing);
   }
   constriction().start_heap();
@@ -201,7 +201,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   if (!grew && can_grow() && !stepped) {
     auto t0 = Clock::now();
     stage_event(Stage3::Grow);
-    const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay);
+    const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay, keys.spacing.get());
     stepped = true;
     r.ms_grow = ms_since(t0);
     if (!ok) {
@@ -518,7 +518,13 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
   }
-  if (need_label) keys.labels = detail::compute_labels3(body);
+  if (need_label) {
+    // The spacing (the bridge measure of every complete result, the growth's outside steps) reads
+    // only the tetrahedralization: it is computed on the other core while the labels propagate.
+    auto spacing = std::make_shared<std::vector<double>>();
+    keys.labels = detail::compute_labels3(body, [&] { *spacing = detail::nearest_spacing3(body); });
+    keys.spacing = std::move(spacing);
+  }
   ms_setup = ms_since(t_setup);
   body.ver.assign(body.T0, 0);
   body.mark.assign(body.T0, 0);

@@ -27,7 +27,8 @@ constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
 
 class Growth3 {
  public:
-  Growth3(Body3& b, const Labels3& l, Growth3Stats& st) : b_(b), l_(l), s_(st) {}
+  Growth3(Body3& b, const Labels3& l, Growth3Stats& st, const std::vector<double>* spacing)
+      : b_(b), l_(l), s_(st), given_spacing_(spacing) {}
 
   // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids.
   int seed() const {
@@ -126,7 +127,7 @@ class Growth3 {
       waiting_.clear();
       return;
     }
-    spacing_ = nearest_spacing3(b_);
+    spacing_ = given_spacing_ ? *given_spacing_ : nearest_spacing3(b_);
     for (int m : waiting_)
       if (!cell_[uz(m)].alive) out_heap_.push({key(m), m, 0}, b_.tets);
       else cell_[uz(m)].queued = 0;
@@ -199,6 +200,7 @@ class Growth3 {
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
   std::vector<double> spacing_;
+  const std::vector<double>* given_spacing_;
   // What the growth reads of each Delaunay tetrahedron, in one record (one cache line holds four;
   // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
   // (its key is static: one entry is enough), labelled inside, and then its key.
@@ -248,8 +250,8 @@ void place_unreached(Body3& b, const Constrict3Options& opt, Constrict3Visitor* 
 }  // namespace
 
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
-                Growth3Stats& stats, Tets& nbr_delaunay) {
-  Growth3 g(body, labels, stats);
+                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing) {
+  Growth3 g(body, labels, stats, spacing);
   const int seed = g.seed();
   if (seed < 0) return false;
   g.run(seed);

@@ -6,11 +6,13 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include "constrict/detail/stages3.hpp"
 
@@ -134,7 +136,7 @@ class LabelQueue {
 // (2 r1 r2). A deep intersection (cos > 0) passes the label on, a shallow one (cos < 0) the
 // opposite label, with confidence |cos|; the most confident assignments are made first, each
 // tetrahedron once.
-std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
+std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::function<void()>& beside) {
   const std::size_t T0 = b.T0;
   auto out = std::make_shared<Labels3>();
   LabelQueue q(T0);
@@ -170,6 +172,11 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
     for (int i = 0; i < 4; ++i)
       if (b.nbr[t][uz(i)] < 0) q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
   out->label.assign(T0, 0.0f);
+  // The propagation below runs on one core: the caller's work that does not read the labels runs
+  // on the other one meanwhile (its results cannot depend on the order: it shares nothing with
+  // this loop).
+  tbb::task_group beside_task;
+  if (beside) beside_task.run([&beside] { beside(); });
   LabelQueue::Item it{};
   while (q.pop(it)) {
     // The pops read the tetrahedra in label order, at random: the likely next one is fetched
@@ -190,6 +197,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b) {
       if (m >= 0 && uz(m) < T0) q.push_coded(m, code[uz(i)], lab);
     }
   }
+  beside_task.wait();
   return out;
 }
 

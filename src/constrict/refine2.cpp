@@ -20,6 +20,7 @@
 #include "constrict/predicates.hpp"
 #include "core/detail/edge_key.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/big_vector.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/dense_segments.hpp"
 #include "core/detail/sparse_segments.hpp"
@@ -960,12 +961,14 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
     const double dx = xy[2 * i] - xy[2 * j], dy = xy[2 * i + 1] - xy[2 * j + 1];
     return std::sqrt(dx * dx + dy * dy);
   };
-  std::vector<double> el(n);  // el[i] = |poly[i] poly[i+1]|
+  // (Both arrays are written in full by the parallel loops: not zero-filled first.)
+  BigArray<double> el;  // el[i] = |poly[i] poly[i+1]|
+  el.allocate(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) el[i] = dpos(i, (i + 1) % n);
   });
   perimeter = 0;
-  for (double l : el) perimeter += l;
+  for (std::size_t i = 0; i < n; ++i) perimeter += el[i];
   // Or-opt: the largest saving el(p,s0) + el(sL,q) - d(p,q) over the segments of 1..kMaxSegment
   // points that start (g_start) or end (g_end) at a position; 2-opt: the longer polygon edge.
   // Per vertex id, packed so that the triangle pass below loads one cache line per vertex.
@@ -973,19 +976,29 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
     double x, y, two, gain;  // coordinates, longer polygon edge, largest Or-opt saving
     int succ, pred;
   };
-  std::vector<VInfo> vi(n);
+  BigArray<VInfo> vi;  // (poly is a permutation of 0..n-1: each record written once)
+  vi.allocate(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    // The chord that closes a removed segment, d(j, j + L + 1), is the same for the segment of L
+    // points that starts at j + 1 and the one that ends at j + L: each is computed once per block
+    // (chord[(L - 1) * w + k] for j = r.begin() - kMaxSegment + k, mod n), half the square roots.
+    const std::size_t K = U(kMaxSegment), w = r.size() + K, base = (r.begin() + n - K % n) % n;
+    const std::size_t max_len = n >= 3 ? std::min(K, n - 3) : 0;
+    std::vector<double> chord(max_len * w);
+    for (std::size_t L = 1; L <= max_len; ++L)
+      for (std::size_t k = 0, j = base; k < w; ++k, j = j + 1 == n ? 0 : j + 1)
+        chord[(L - 1) * w + k] = dpos(j, (j + L + 1) % n);
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::size_t ip = (i + n - 1) % n;
+      const std::size_t ip = (i + n - 1) % n, m = i - r.begin();
       double gs = 0, ge = 0;
-      for (int len = 1; len <= kMaxSegment && n >= static_cast<std::size_t>(len) + 3; ++len) {
-        const std::size_t L = U(len);
-        // segment i .. i+L-1 (starts here)
-        const std::size_t last = (i + L - 1) % n, q = (i + L) % n;
-        gs = std::max(gs, el[ip] + el[last] - dpos(ip, q));
-        // segment i-L+1 .. i (ends here)
-        const std::size_t st = (i + n - L + 1) % n, pp = (st + n - 1) % n;
-        ge = std::max(ge, el[pp] + el[i] - dpos(pp, (i + 1) % n));
+      for (std::size_t L = 1; L <= max_len; ++L) {
+        const double* c = &chord[(L - 1) * w];
+        // segment i .. i+L-1 (starts here): the chord d(i-1, i+L)
+        const std::size_t last = (i + L - 1) % n;
+        gs = std::max(gs, el[ip] + el[last] - c[m + K - 1]);
+        // segment i-L+1 .. i (ends here): the chord d(i-L, i+1)
+        const std::size_t pp = (i + n - L) % n;
+        ge = std::max(ge, el[pp] + el[i] - c[m + K - L]);
       }
       vi[U(poly[i])] = {xy[2 * i], xy[2 * i + 1], std::max(el[ip], el[i]), std::max(gs, ge),
                         poly[(i + 1) % n], poly[ip]};

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "constrict/constrict.hpp"
+#include "constrict/delaunay.hpp"
+#include "constrict/detail/refine2.hpp"
 #include "constrict/validate.hpp"
 #include "test_fixtures.hpp"
 
@@ -145,6 +147,45 @@ TEST(Refine2, ThreadCountIndependent) {
     }
     ASSERT_TRUE(refine_polygon2(s.points, many).is_ok());
     EXPECT_EQ(one, many) << "seed " << seed;
+  }
+}
+
+// The pretest (an O(N) pass that skips the search when no move can apply) must never hide a move:
+// with and without it the same polygon. A circle of points in order is optimal; one more point q
+// just inside the circle, near point 0, is spliced in far from there (at position `at`: a spike
+// across the disc), which an Or-opt move repairs. The pretest sees that
+// move through the chord that closes q's removal; it computes the chords block by block (8 192
+// positions) and around the polygon's wrap, so `at` runs over the block edges and both ends, and
+// the small circles (4 to 9 points) test the segment lengths a short polygon allows.
+TEST(Refine2, PretestNeverHidesAMove) {
+  for (const int n : {4, 5, 6, 9, 20000}) {
+    std::vector<std::array<double, 2>> xy;
+    const double step = 2 * M_PI / n;
+    for (int i = 0; i < n; ++i) xy.push_back({{std::cos(step * i), std::sin(step * i)}});
+    const double depth = n > 100 ? 1e-5 : 0.3;  // inside the chords next to point 0
+    xy.push_back({{(1 - depth) * std::cos(0.3 * step), (1 - depth) * std::sin(0.3 * step)}});
+    const PointSet p = make2(xy);
+    Delaunay2 dt;
+    ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
+    std::vector<int> ats = {n / 2, n - 1, n};
+    if (n > 8192) ats = {5, 8190, 8191, 8192, 8193, n - 1, n, n / 2 + 3};
+    for (const int at : ats) {
+      std::vector<int> poly;
+      for (int i = 0; i < n; ++i) {
+        if (i == at) poly.push_back(n);
+        poly.push_back(i);
+      }
+      if (at == n) poly.push_back(n);
+      if (!validate_polygon(p, poly).is_ok()) continue;  // (tiny circles: q's spike may cross)
+      std::vector<int> with = poly, without = poly;
+      Refine2Stats s1, s2;
+      const bool ran = detail::refine_polygon2(p, dt, with, 1000 * p.size(), s1, nullptr, {}, true);
+      detail::refine_polygon2(p, dt, without, 1000 * p.size(), s2, nullptr, {}, false);
+      EXPECT_EQ(with, without) << "n " << n << ", q at " << at;
+      EXPECT_TRUE(ran) << "n " << n << ", q at " << at;
+      EXPECT_GT(s2.moves_oropt + s2.moves_2opt + s2.moves_deep, 0u) << "n " << n << ", q at " << at;
+      EXPECT_LT(s1.length_after, s1.length_before) << "n " << n << ", q at " << at;
+    }
   }
 }
 

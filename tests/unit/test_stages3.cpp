@@ -125,6 +125,13 @@ TEST(Stages3, LabelsReachEveryTetrahedronAndMostOfAShellIsInside) {
   EXPECT_GT(inside, b.T0 * 2 / 3) << inside << " of " << b.T0;
   // Deterministic: the same labels again.
   EXPECT_EQ(detail::compute_labels3(b)->label, labels->label);
+  // Work run beside the propagation (the engine's spacing) has finished when the labels return,
+  // and changes neither the labels nor its own result.
+  std::vector<double> spacing;
+  const auto beside = detail::compute_labels3(b, [&] { spacing = detail::nearest_spacing3(b); });
+  EXPECT_EQ(beside->label, labels->label);
+  EXPECT_EQ(beside->lrad, labels->lrad);
+  EXPECT_EQ(spacing, detail::nearest_spacing3(b));
 }
 
 TEST(Stages3, EveryRemovalOfTheConstrictionKeepsAValidBody) {

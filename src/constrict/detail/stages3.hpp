@@ -33,8 +33,10 @@ struct Labels3 {
   std::vector<double> lrad;  // ln circumradius (kFlatLogRadius if flat)
 };
 // Circumball propagation from the convex hull (power-crust style). Deterministic: sequential
-// bucket queue. Reads the Delaunay tetrahedra of the body (tets[0, T0), nbr).
-std::shared_ptr<const Labels3> compute_labels3(const Body3& body);
+// bucket queue. Reads the Delaunay tetrahedra of the body (tets[0, T0), nbr). `beside`, if given,
+// runs on another thread during the sequential propagation (work that reads neither the labels
+// nor anything the propagation writes), and has returned when this does.
+std::shared_ptr<const Labels3> compute_labels3(const Body3& body, const std::function<void()>& beside = {});
 // Nearest-neighbour distance per point along the Delaunay edges.
 std::vector<double> nearest_spacing3(const Body3& body);
 
@@ -156,9 +158,10 @@ struct Growth3Stats {
 // the removal rules; points it cannot reach get a mirrored star cavity (unless Fallback3::None).
 // Starts from any state (it sets the body to empty). True when every point is on the surface;
 // otherwise the caller restores the start (Body3::reset_to_hull with nbr_delaunay, the
-// adjacency before the first cavity, saved here).
+// adjacency before the first cavity, saved here). `spacing`: nearest_spacing3(body) if the caller
+// has it (else computed when the first outside step needs it).
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
-                Growth3Stats& stats, Tets& nbr_delaunay);
+                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing = nullptr);
 
 // ---- carve and fill (carve3.cpp; docs/reconstruction-3d.md §4.6, §4.7) -------------------------
 
