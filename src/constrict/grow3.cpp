@@ -120,7 +120,8 @@ class Growth3 {
     return -bridge_ratio3(*b_.pts, spacing_, b_.tets[uz(t)]);
   }
   // The outside tetrahedra met so far go to their own heap once no inside one is left (their keys
-  // need the spacing, computed only then). With every point in the body none of them can join.
+  // need the spacing: the engine's, computed beside the labels, or computed here). With every
+  // point in the body none of them can join.
   void ready_outside() {
     outside_ready_ = true;
     if (waiting_.empty() || b_.n_onb == b_.n) {
