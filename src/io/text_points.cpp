@@ -152,15 +152,18 @@ bool read_layout_blocks(const char* p, const char* end, int dim, std::size_t exp
   }
   cut.push_back(end);
   std::atomic<bool> ok{true};
-  const std::vector<double> values = ordered_pack<double>(
-      cut.size() - 1,
+  const std::size_t before = coords.size();
+  ordered_pack_append<double>(
+      coords, cut.size() - 1,
       [&](std::size_t k, const auto& push) {
         if (ok.load(std::memory_order_relaxed) && !read_layout_lines(cut[k], cut[k + 1], dim, expected_fields, push))
           ok = false;
       },
       1);
-  if (!ok) return false;
-  coords.insert(coords.end(), values.begin(), values.end());
+  if (!ok) {
+    coords.resize(before);
+    return false;
+  }
   return true;
 }
 
