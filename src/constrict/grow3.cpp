@@ -117,7 +117,7 @@ class Growth3 {
     // largest nearest-neighbour distance of its vertices). Measured against "least confident
     // first" on the shared models and their random halves and quarters (docs/reconstruction-3d.md
     // §4.9): the labels are near 1 on both a thin part's own tetrahedra and those across a gap.
-    return -bridge_ratio3(*b_.pts, spacing_, b_.tets[uz(t)]);
+    return -bridge_ratio3(*b_.pts, *spacing_, b_.tets[uz(t)]);
   }
   // The outside tetrahedra met so far go to their own heap once no inside one is left (their keys
   // need the spacing: the engine's, computed beside the labels, or computed here). With every
@@ -128,7 +128,8 @@ class Growth3 {
       waiting_.clear();
       return;
     }
-    spacing_ = given_spacing_ ? *given_spacing_ : nearest_spacing3(b_);
+    if (given_spacing_ == nullptr) own_spacing_ = nearest_spacing3(b_);
+    spacing_ = given_spacing_ ? given_spacing_ : &own_spacing_;
     for (int m : waiting_)
       if (!cell_[uz(m)].alive) out_heap_.push({key(m), m, 0}, b_.tets);
       else cell_[uz(m)].queued = 0;
@@ -146,7 +147,7 @@ class Growth3 {
       if (m >= 0 && uz(m) < b_.T0 && !cell_[uz(m)].alive && !cell_[uz(m)].queued) {
         cell_[uz(m)].queued = 1;
         if (cell_[uz(m)].inside) heap_.push({cell_[uz(m)].inside_key, m, 0}, b_.tets);
-        else if (!spacing_.empty()) out_heap_.push({key(m), m, 0}, b_.tets);
+        else if (spacing_ != nullptr) out_heap_.push({key(m), m, 0}, b_.tets);
         else if (!outside_ready_) waiting_.push_back(m);
         // (else: every point was in the body when the inside heap ran dry; none can join.)
       }
@@ -200,8 +201,9 @@ class Growth3 {
   TetHeap heap_, out_heap_;  // inside tetrahedra; outside ones (only when no inside one is left)
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
-  std::vector<double> spacing_;
-  const std::vector<double>* given_spacing_;
+  const std::vector<double>* given_spacing_;  // the engine's spacing, or null
+  std::vector<double> own_spacing_;           // else computed at the first outside step
+  const std::vector<double>* spacing_ = nullptr;  // the one in use, once outside steps began
   // What the growth reads of each Delaunay tetrahedron, in one record (one cache line holds four;
   // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
   // (its key is static: one entry is enough), labelled inside, and then its key.

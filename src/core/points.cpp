@@ -291,20 +291,10 @@ const char* non_finite_name(double v) { return std::isnan(v) ? "nan" : v > 0 ? "
 // Message naming the point of the first non-finite coordinate, or empty when all are finite.
 std::string non_finite_message(const PointSet& points) {
   const std::size_t dim = points.dim > 0 ? static_cast<std::size_t>(points.dim) : 1;
-  const std::size_t m = points.coords.size();
-  const double* c = points.coords.data();
-  // Blocks without an early exit (the compiler vectorises the test); the first bad value is
-  // looked for only in a block that has one. Every engine calls this, at 10^6 points it was a
-  // scalar loop of several milliseconds.
-  constexpr std::size_t kBlock = 4096;
-  for (std::size_t b = 0; b < m; b += kBlock) {
-    const std::size_t e = std::min(m, b + kBlock);
-    bool bad = false;
-    for (std::size_t k = b; k < e; ++k) bad |= !(std::abs(c[k]) <= std::numeric_limits<double>::max());
-    if (!bad) continue;
-    for (std::size_t k = b; k < e; ++k)
-      if (!std::isfinite(c[k]))
-        return "point " + std::to_string(k / dim) + " has a non-finite coordinate (" + non_finite_name(c[k]) + ")";
+  for (std::size_t k = 0; k < points.coords.size(); ++k) {
+    const double v = points.coords[k];
+    if (!std::isfinite(v))
+      return "point " + std::to_string(k / dim) + " has a non-finite coordinate (" + non_finite_name(v) + ")";
   }
   return {};
 }
