@@ -314,6 +314,7 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
                    {"part_sizes", sr.part_sizes},
                    {"small_parts_merged", sr.small_parts_merged},
                    {"repaired_tetrahedra", sr.repaired_tetrahedra},
+                   {"repair_capped", sr.repair_capped},
                    {"gap_threshold", sr.gap_threshold},
                    {"min_gap_spacings",
                     std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},

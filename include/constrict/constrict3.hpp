@@ -271,6 +271,7 @@ struct Mesh3Result {
   std::size_t grow_unreached = 0;         ///< growth tried and failed: points it left (then the constriction ran)
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations
   std::size_t cavity_attempts = 0;        ///< fallback attempts (successful or not)
+  bool cavity_capped = false;  ///< the star cavities (growth or lock fallback) stopped at their work bound (thin rods)
   std::size_t refine_added = 0;           ///< tetrahedra added back by the Refine3 post-pass
   std::size_t refine_removed = 0;         ///< tetrahedra removed by the Refine3 post-pass
   bool refine_capped = false;             ///< a Refine3 pass stopped at its work bound (points along curves in space)

@@ -291,6 +291,9 @@ struct Surfaces3Result {
   /// Tetrahedra toggled to repair the parts' common body where their own surfaces were not
   /// Delaunay faces of all points (noisy nested parts; docs/topology.md §"3D", step 3).
   std::size_t repaired_tetrahedra = 0;
+  /// That repair stopped at its work bound (points along curves in space, with thousands of
+  /// tetrahedra at every point); the decision is then NotDelaunay (one part).
+  bool repair_capped = false;
   double gap_threshold = kDefaultTopologyGap3;
   /// The smallest gap between two parts in local spacings (double; infinity with one part).
   double min_gap_spacings = std::numeric_limits<double>::infinity();

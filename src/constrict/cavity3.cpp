@@ -18,6 +18,12 @@ constexpr std::size_t kMaxStar = 100000;
 // Target search rounds: face-hop depth around the star, and how many ranked targets each tries.
 constexpr int kDepths[3] = {3, 8, 24};
 constexpr std::size_t kTriesFirst = 6, kTriesLater = 24;
+// Work bound of all placements of one pass (tetrahedra visited by the star, target and visibility
+// searches): per tetrahedron of the triangulation, plus a floor. Points along a thin rod have
+// stars of thousands of tetrahedra at every point and no cavity that works; unbounded, 2 000 of
+// them took 10 s and 4 000 took 70 s (docs/reconstruction-3d.md §4.10). The largest use measured
+// over the shared 3D and topology sets is far below (ibid.).
+constexpr std::size_t kWorkPerTet = 64, kWorkFloor = std::size_t(1) << 20;
 
 // A face of the cavity's boundary, outward from it, and the tetrahedron behind it (-1: hull).
 struct BFace {
@@ -31,6 +37,9 @@ bool Cavity3::in_side(int m) const {
 }
 
 void Cavity3::index_vertices() {
+  s_.work = 0;
+  s_.capped = false;
+  s_.work_limit = kWorkPerTet * b_.tets.size() + kWorkFloor;
   s_.vert_tet.assign(b_.n, -1);
   const std::uint8_t want = side_ == CavitySide::Outside ? kOutside : kAlive;
   for (std::size_t t = 0; t < b_.tets.size(); ++t)
@@ -53,14 +62,19 @@ bool Cavity3::star_of(int p, std::vector<int>& out) {
       if (b_.tets[uz(t)][uz(i)] == p) continue;
       const int m = b_.nbr[uz(t)][uz(i)];
       if (mirror && m < 0) continue;  // p on the convex hull: this hull face stays
-      if (!in_side(m)) return false;  // p would be on the surface
+      if (!in_side(m)) {              // p would be on the surface
+        s_.work += out.size();
+        return false;
+      }
       if (b_.mark[uz(m)] != b_.epoch) {
         b_.mark[uz(m)] = b_.epoch;
         out.push_back(m);
       }
     }
-    if (out.size() > kMaxStar) return false;
+    if (out.size() > kMaxStar) break;
   }
+  s_.work += out.size();
+  if (out.size() > kMaxStar) return false;
   return true;
 }
 
@@ -82,6 +96,7 @@ void Cavity3::targets_of(int p, const std::vector<int>& star, int depth, std::ve
   for (int t : cur) b_.mark[uz(t)] = b_.epoch;
   for (int d = 0; d <= depth && !cur.empty(); ++d) {
     next.clear();
+    s_.work += cur.size();
     for (int t : cur) {
       for (int i = 0; i < 4; ++i) {
         const int m = b_.nbr[uz(t)][uz(i)];
@@ -126,6 +141,7 @@ bool Cavity3::grow_visible(int p, std::vector<int>& U, std::uint32_t in_u) {
       if (orient3(b_.P(a), b_.P(b), b_.P(c), b_.P(p)) < 0) continue;  // visible
       if (!in_side(m)) return false;                                  // would cross the surface
       if (U.size() >= opt_.max_cavity_tets) return false;
+      ++s_.work;
       b_.mark[uz(m)] = in_u;
       U.push_back(m);
       work.push_back(m);
@@ -141,6 +157,7 @@ bool Cavity3::grow_visible(int p, std::vector<int>& U, std::uint32_t in_u) {
 bool Cavity3::try_cavity(int p, const std::vector<int>& star, const Target& tg, CavityMade& made) {
   const bool mirror = side_ == CavitySide::Outside;
   ++s_.attempts;
+  s_.work += star.size();
   ++b_.epoch;
   const std::uint32_t in_u = b_.epoch;
   std::vector<int> U;
@@ -259,14 +276,20 @@ bool Cavity3::try_cavity(int p, const std::vector<int>& star, const Target& tg, 
   return true;
 }
 
+bool Cavity3::over_budget() {
+  if (s_.work > s_.work_limit) s_.capped = true;
+  return s_.capped;
+}
+
 bool Cavity3::place(int p, CavityMade& made) {
   std::vector<int> star;
-  if (!star_of(p, star)) return false;
+  if (over_budget() || !star_of(p, star)) return false;
   std::vector<Target> tg;
   for (int depth : kDepths) {
+    if (over_budget()) return false;
     targets_of(p, star, depth, tg);
     const std::size_t tries = std::min<std::size_t>(tg.size(), depth == kDepths[0] ? kTriesFirst : kTriesLater);
-    for (std::size_t k = 0; k < tries; ++k)
+    for (std::size_t k = 0; k < tries && !over_budget(); ++k)
       if (try_cavity(p, star, tg[k], made)) return true;
   }
   return false;

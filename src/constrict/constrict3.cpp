@@ -204,6 +204,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
     const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay, keys.spacing.get());
     stepped = true;
     r.ms_grow = ms_since(t0);
+    r.cavity_capped = growth.cavity_capped;
     if (!ok) {
       r.grow_unreached = body.n - body.n_onb;
       reset_to_hull();
@@ -292,6 +293,7 @@ void Constrictor3::Impl::lock_fallback_stage(Mesh3Result& r) {
     }
   }
   r.ms_fallback = ms_since(t0);
+  r.cavity_capped = r.cavity_capped || cavity.capped;
   r.stages.push_back({Stage3::Cavity, body.n_onb - onb0, hull.removed - rem0});
   if (body.n_onb > onb0) r.method = Method3::Cavity;
 }

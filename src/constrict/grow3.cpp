@@ -248,6 +248,7 @@ void place_unreached(Body3& b, const Constrict3Options& opt, Constrict3Visitor* 
       progress = true;
     }
   }
+  st.cavity_capped = cs.capped;
 }
 
 }  // namespace

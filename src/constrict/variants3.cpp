@@ -29,6 +29,8 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     return s;
   };
   std::size_t grow_unreached = 0;
+  bool grow_capped = false;
+  double ms_grow = 0;  // a failed growth's time (its result is not kept)
   if (base.can_grow()) {
     Mesh3Result rg;
     if (Status sg = single(true, rg); !sg) return sg;
@@ -39,9 +41,14 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     }
     base.opt.grow = false;  // the variants below start from the hull (reset by the growth stage)
     grow_unreached = rg.grow_unreached;
+    grow_capped = rg.cavity_capped;
+    ms_grow = rg.ms_grow;
   }
   if (!base.keys.dg && base.body.n_onb == base.body.n) {
     if (Status sh = single(false, result); !sh) return sh;
+    result.grow_unreached = grow_unreached;
+    result.cavity_capped = result.cavity_capped || grow_capped;
+    result.ms_grow = ms_grow;
     if (options.validate) validate_result(base, result);
     return Status::ok();
   }
@@ -76,6 +83,8 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   const double ms_runs = ms_since(tv);
   result = std::move(res[best]);
   result.grow_unreached = grow_unreached;
+  result.cavity_capped = result.cavity_capped || grow_capped;
+  result.ms_grow = ms_grow;
   result.candidates = std::move(summary);
   result.ms_variants = ms_runs;
   result.ms_setup = base.ms_setup;

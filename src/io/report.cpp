@@ -67,6 +67,7 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   j["removed_one_face"] = r.removed_one_face;
   j["removed_two_face"] = r.removed_two_face;
   j["cavities"] = r.cavities;
+  j["cavity_capped"] = r.cavity_capped;
   j["body_tetrahedra"] = r.tets.size();
   j["non_delaunay_tetrahedra"] = r.non_delaunay_tets;
   j["faces"] = r.mesh.triangles.size();

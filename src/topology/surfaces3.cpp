@@ -345,6 +345,7 @@ class VertexTets {
     const int *b, *e;
     const int* begin() const { return b; }
     const int* end() const { return e; }
+    std::size_t size() const { return static_cast<std::size_t>(e - b); }
   };
   Range of(int v) const {
     if (v < 0 || uz(v) + 1 >= off_.size()) return {nullptr, nullptr};
@@ -766,10 +767,15 @@ std::vector<char> parts_body(const PointSet& pts, const Delaunay3& dt, const Par
 // ties by the smaller sorted vertex ids. Points in ascending order (canonical ids: the same for
 // any file order). The points left then go to a local search (local_search). in_body: per
 // tetrahedron of dt, updated; run() adds the toggles to changed and is false when a defect is
-// left (in_body is then not a body to use).
+// left (in_body is then not a body to use) or the work bound was reached.
+// Work bound: the tetrahedra read by the link and surface tests, at most kWorkPerIncidence per
+// tetrahedron-vertex incidence plus kWorkFloor (as the carve's, carve3.cpp). Points along curves
+// in space have thousands of tetrahedra at every point: 1 500 points on a circle and 1 500 on its
+// axis (two parts) ran here for more than 10 minutes without it.
 class SurfaceRepair {
   static constexpr int kChannel = 4;
   static constexpr std::size_t kSearchSteps = 16;
+  static constexpr std::size_t kWorkPerIncidence = 64, kWorkFloor = std::size_t(1) << 24;
 
  public:
   SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
@@ -788,6 +794,7 @@ class SurfaceRepair {
             if (dt.neighbors[uz(m)][uz(j)] == static_cast<int>(t)) face_id_[uz(m)][uz(j)] = faces;
         ++faces;
       }
+    work_limit_ = kWorkPerIncidence * 4 * T + kWorkFloor;
     count_.assign(uz(faces), 0);
     for (std::size_t t = 0; t < T; ++t)
       if (in_[t])
@@ -795,10 +802,12 @@ class SurfaceRepair {
     for (const int c : count_) nfree_ += c == 1 ? 1 : 0;
   }
 
+  bool capped() const { return work_ > work_limit_; }
   // target_faces: the face count of the parts' own surfaces (the same Euler characteristic).
   bool run(std::size_t target_faces, std::size_t& changed) {
     std::vector<int> left;  // points the first pass could not repair
     for (std::size_t v = 0; v < pts_.size(); ++v) {
+      if (work_ > work_limit_) return false;
       const int vi = static_cast<int>(v);
       if (vertex_ok(vi)) continue;
       std::vector<int> best;
@@ -898,6 +907,7 @@ class SurfaceRepair {
   }
   bool free_face(int t, int i) const { return count_[uz(face(t, i))] == 1; }
   bool on_surface(int x) {
+    work_ += at_.of(x).size();
     for (int t : at_.of(x))
       for (int i = 0; i < 4; ++i)
         if (dt_.tets[uz(t)][uz(i)] != x && free_face(t, i)) return true;
@@ -906,6 +916,7 @@ class SurfaceRepair {
   // The free faces at x: their edges opposite x form one cycle (each free face once: from the
   // tetrahedron in the body; a face on the convex hull has no other side).
   bool vertex_ok(int x) {
+    work_ += at_.of(x).size();
     std::vector<std::array<int, 2>> link;
     for (int t : at_.of(x)) {
       if (!in_[uz(t)]) continue;
@@ -947,6 +958,7 @@ class SurfaceRepair {
     std::size_t steps = 0;
     const std::size_t max_steps = kSearchSteps * left.size();
     while (defect() > 0 && steps++ < max_steps) {
+      if (work_ > work_limit_) return false;
       long long best_d = 0;
       int best_t = -1;
       std::array<int, 4> best_key{};
@@ -954,6 +966,7 @@ class SurfaceRepair {
       for (int v : now)
         for (int t : at_.of(v)) {
           if (tabu.count(t)) continue;
+          work_ += bad.size();
           const std::set<int> saved = bad;
           toggle(t);
           update(t);
@@ -1005,6 +1018,7 @@ class SurfaceRepair {
   std::vector<std::array<int, 4>> face_id_;  // per tetrahedron, the id of the face opposite vertex i
   std::vector<int> count_;                   // per face id, its tetrahedra in the body
   std::size_t nfree_ = 0;                    // faces with one body tetrahedron
+  std::size_t work_ = 0, work_limit_ = 0;    // the work bound (class comment)
 };
 
 // Several parts: one engine run each; their body from the tetrahedralization of all points when
@@ -1053,7 +1067,10 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
     // run(): every point on the surface with a disk link (a closed 2-manifold through all points,
     // oriented out of the body) and the parts' face count; kept with as many surfaces as parts
     // (then the same Euler characteristic: the parts' topology). validate_surfaces3() checks all.
-    if (SurfaceRepair(pts, dt, in_body).run(faces.size(), freed)) {
+    SurfaceRepair repair(pts, dt, in_body);
+    const bool repaired = repair.run(faces.size(), freed);
+    r.repair_capped = repair.capped();
+    if (repaired) {
       body.clear();
       for (std::size_t t = 0; t < dt.tets.size(); ++t)
         if (in_body[t]) body.push_back(dt.tets[t]);

@@ -223,6 +223,31 @@ TEST(Surfaces3Property, NoisyRandomHollowBallIsTwoSurfaces) {
   EXPECT_GE(right, 5) << "of " << seeds.size();
 }
 
+// A circle and its axis, 800 points each (two parts 1 apart, spacings 0.008 and 0.0025), with a
+// little noise: a Delaunay tetrahedralization with hundreds of tetrahedra at every point, where
+// the parts' surfaces are not Delaunay faces of all points. The point-by-point repair of their
+// common body ran for more than 5 minutes (each link test reads every tetrahedron at its point);
+// it now stops at its work bound and the single surface is used.
+TEST(Surfaces3Property, CircleAndItsAxisStopTheRepairAtItsBound) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g(0, 1e-4);
+  PointSet p;
+  p.dim = 3;
+  const int n = 800;
+  for (int i = 0; i < 2 * n; ++i) {
+    const double t = 2 * M_PI * (i % n) / n + 0.1234;
+    const std::array<double, 3> v = i < n ? std::array<double, 3>{std::cos(t), std::sin(t), 0}
+                                          : std::array<double, 3>{0, 0, -1 + 2.0 * (i - n) / (n - 1)};
+    for (int c = 0; c < 3; ++c) p.coords.push_back(v[static_cast<std::size_t>(c)] + g(rng));
+  }
+  const Surfaces3Result r = run_auto(p);
+  ASSERT_TRUE(r.valid()) << r.check;
+  expect_closed_oriented(r, "circle and axis");
+  EXPECT_EQ(r.parts, 2u);
+  EXPECT_TRUE(r.repair_capped);
+  EXPECT_EQ(r.decision, SurfacesDecision::NotDelaunay);
+}
+
 TEST(Surfaces3Property, GenusZeroControlsKeepTheSingleSurface) {
   for (Family3 f : {Family3::Sphere, Family3::Ellipsoid, Family3::Peanut})
     for (unsigned seed : {1u, 2u, 3u}) {

@@ -110,6 +110,10 @@ enum class CavitySide { Body, Outside };
 struct CavityState3 {
   std::vector<int> vert_tet;  // a tetrahedron of the side incident to each point
   std::size_t made = 0, attempts = 0;
+  // Work bound (tetrahedra visited by the searches; cavity3.cpp): index_vertices() sets the limit
+  // from the triangulation's size; past it place() tries nothing more and sets capped.
+  std::size_t work = 0, work_limit = 0;
+  bool capped = false;
 };
 // What a successful cavity made.
 struct CavityMade {
@@ -127,9 +131,11 @@ class Cavity3 {
   // Re-tetrahedralizes a star-shaped region around p (exact orient3 tests) so that a cone
   // tetrahedron over a surface face p sees brings p to the surface side; false (nothing changed)
   // when no ranked target face works.
+  // (Past the work bound: false without trying; CavityState3::capped.)
   bool place(int p, CavityMade& made);
 
  private:
+  bool over_budget();
   struct Target {
     double key;
     int t, i;
@@ -153,6 +159,7 @@ class Cavity3 {
 
 struct Growth3Stats {
   std::size_t grown = 0, grown_outside = 0, cavities = 0;
+  bool cavity_capped = false;  // the mirrored cavities stopped at their work bound
 };
 // Grows the body from the inside tetrahedron of the largest circumradius by the mirror images of
 // the removal rules; points it cannot reach get a mirrored star cavity (unless Fallback3::None).
