@@ -274,6 +274,26 @@ Status read_columns(std::string_view data, const std::string& name, std::size_t 
 
 Status read_text_points(std::string_view data, const std::string& name, int forced_dim,
                         const ColumnSelection& columns, PointSet& out) {
+  // UTF-16 text (a byte order mark, or a NUL in every other byte of the start: Windows tools
+  // save "Unicode" text so) is not read as ASCII: one line saying what the file is.
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(data[i]); };
+  std::size_t nuls = 0;
+  const std::size_t head = std::min<std::size_t>(data.size(), 64);
+  for (std::size_t i = 0; i < head; ++i) nuls += byte(i) == 0 ? 1 : 0;
+  if (data.size() >= 2 && ((byte(0) == 0xFF && byte(1) == 0xFE) || (byte(0) == 0xFE && byte(1) == 0xFF)))
+    return error_in(StatusCode::ParseError, name,
+                    "the file is UTF-16 text (it starts with a UTF-16 byte order mark): save it as UTF-8 or "
+                    "plain text (e.g. iconv -f UTF-16 -t UTF-8 IN > OUT)");
+  if (head >= 8 && 4 * nuls >= head)
+    return error_in(StatusCode::ParseError, name,
+                    "a quarter or more of the first bytes are NUL: the file is UTF-16 or UTF-32 text or binary "
+                    "data, not ASCII or UTF-8 text; save it as UTF-8 or plain text");
+  // Lines ended by CR alone (classic Mac OS): read as if they ended by LF.
+  if (data.find('\n') == std::string_view::npos && data.find('\r') != std::string_view::npos) {
+    std::string lf(data);
+    std::replace(lf.begin(), lf.end(), '\r', '\n');
+    return read_text_points(lf, name, forced_dim, columns, out);
+  }
   const Header header = find_header(data);
   std::vector<std::size_t> index;
   Status st = select_columns(header, columns, forced_dim, name, index);

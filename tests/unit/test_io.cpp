@@ -151,6 +151,35 @@ TEST_F(IoText, ByteOrderMarkAndLeadingPlus) {
   EXPECT_EQ(p.coords, kTetraCoords);
 }
 
+// Found by a hostile-input sweep (2026-12-04): CR-only lines were read as one line of 8 fields
+// ("more than x, y, z"), a second byte order mark was printed raw (invisible) in the message, and
+// UTF-16 text had its first line taken as a header, then a run of \x00 in the message.
+TEST_F(IoText, CrOnlyLinesUtf16AndInvisibleCharacters) {
+  PointSet p;
+  Status st = read("cr.xyz", "0 0 0\r1 0 0\r0 1 0\r0 0 1\r", p);
+  ASSERT_TRUE(st) << st.message();
+  EXPECT_EQ(p.coords, kTetraCoords);
+  st = read("cr.csv", "x,y,z\r0,0,0\r1,0,0\r0,1,0\r0,0,1", p);
+  ASSERT_TRUE(st) << st.message();
+  EXPECT_EQ(p.coords, kTetraCoords);
+
+  st = read("bom2.xy", "\xEF\xBB\xBF\xEF\xBB\xBF" "0 0\n1 0\n0 1\n", p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_TRUE(Contains(st.message(), "bom2.xy:1: malformed number '<U+FEFF byte order mark>0'")) << st.message();
+  st = read("nbsp.xy", "0 0\n1\xC2\xA0" "0 0\n0 1\n", p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_TRUE(Contains(st.message(), "<U+00A0 no-break space>")) << st.message();
+
+  std::string utf16 = "\xFF\xFE";
+  for (const char c : std::string("0 0\n1 0\n0 1\n")) utf16 += std::string(1, c) + std::string(1, '\0');
+  st = read("u16.xy", utf16, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_TRUE(Contains(st.message(), "u16.xy: the file is UTF-16 text")) << st.message();
+  st = read("u16nobom.xy", utf16.substr(2), p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_TRUE(Contains(st.message(), "UTF-16 or UTF-32 text or binary")) << st.message();
+}
+
 #if defined(__unix__) || defined(__APPLE__)
 TEST_F(IoText, ReadsFromPipe) {
   // A FIFO is not a regular file: it cannot be mapped and has no size, so it is read in chunks.

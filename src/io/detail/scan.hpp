@@ -35,13 +35,22 @@ inline bool is_space(char c) noexcept {
 }
 inline bool is_delimiter(char c) noexcept { return c == ',' || c == ';'; }
 
-// A token as it appears in a message: quoted, shortened, control bytes escaped (one-line messages).
+// A token as it appears in a message: quoted, shortened, control bytes escaped (one-line
+// messages), and the two invisible characters spreadsheets leave in numbers named (a byte order
+// mark U+FEFF, a no-break space U+00A0).
 inline std::string quote(const char* b, const char* e) {
   std::string s = "'";
   const char* stop = (static_cast<std::size_t>(e - b) > kMaxQuoted) ? b + kMaxQuoted : e;
   for (const char* p = b; p != stop; ++p) {
     const auto u = static_cast<unsigned char>(*p);
-    if (u < 0x20 || u == 0x7f) {
+    if (u == 0xEF && stop - p >= 3 && static_cast<unsigned char>(p[1]) == 0xBB &&
+        static_cast<unsigned char>(p[2]) == 0xBF) {
+      s += "<U+FEFF byte order mark>";
+      p += 2;
+    } else if (u == 0xC2 && stop - p >= 2 && static_cast<unsigned char>(p[1]) == 0xA0) {
+      s += "<U+00A0 no-break space>";
+      p += 1;
+    } else if (u < 0x20 || u == 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned>(u));
       s += hex;
