@@ -469,11 +469,14 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     add_common_json(a, rep, 3, n, nb, j);
     if (!a.body.empty()) j["body"] = a.body;
     j["valid"] = valid && r.complete;
-    j["closed"] = chk.closed;
-    j["manifold"] = chk.edge_manifold && chk.vertex_manifold;
-    j["oriented"] = chk.oriented && chk.outward;
-    j["genus"] = chk.genus;
-    j["components"] = chk.components;
+    // The surface's shape: of the points it reaches when incomplete (the check that requires
+    // every point stops before it counts components and genus).
+    const MeshCheck& shape = is_skeleton(a) && !r.complete ? part : chk;
+    j["closed"] = shape.closed;
+    j["manifold"] = shape.edge_manifold && shape.vertex_manifold;
+    j["oriented"] = shape.oriented && shape.outward;
+    j["genus"] = shape.genus;
+    j["components"] = shape.components;
     j["validation"] = {{"reason", chk.reason}, {"euler", chk.euler}, {"face_count_ok", chk.face_count_ok}};
     if (surfaces) add_surfaces_json(sr, j);
     if (infer && inferred.valid())

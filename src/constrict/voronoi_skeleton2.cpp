@@ -10,6 +10,7 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/voronoi_skeleton.hpp"
 #include "constrict/detail/skeleton_growth.hpp"
+#include "core/detail/canonical_order.hpp"
 
 namespace constrict {
 namespace {
@@ -28,13 +29,8 @@ std::array<double, 2> circumcentre2(const double* a, const double* b, const doub
   return {{a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d}};
 }
 
-}  // namespace
-
-Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& options,
-                         VoronoiSkeleton2Result& result) {
-  result = VoronoiSkeleton2Result{};
-  if (points.dim != 2) return {StatusCode::InvalidArgument, "voronoi_skeleton2: points must be 2D"};
-  if (Status st = check_points(points); !st) return st;
+// The search on points already checked and in canonical order (ids = engine ids).
+Status skeleton2(const PointSet& points, const VoronoiSkeletonOptions& options, VoronoiSkeleton2Result& result) {
   const auto t0 = Clock::now();
   Delaunay2 dt;
   if (Status st = build_delaunay2(points, dt); !st) return st;
@@ -103,6 +99,31 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
     st.ms_validate = ms_since(tv);
     CONSTRICT_CHECK(vs.is_ok(), "voronoi_skeleton2 produced an invalid polygon: " + vs.message());
   }
+  return Status::ok();
+}
+
+}  // namespace
+
+// The search runs on the points in a canonical order of their coordinates
+// (core/detail/canonical_order.hpp): its ties (growth fronts of equal dual length, the seed order)
+// are broken by ids, and on lattices and co-circular points they decide the polygon, even whether
+// it is complete; in input ids the same points in another file order gave another one.
+Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& options,
+                         VoronoiSkeleton2Result& result) {
+  result = VoronoiSkeleton2Result{};
+  if (points.dim != 2) return {StatusCode::InvalidArgument, "voronoi_skeleton2: points must be 2D"};
+  if (Status st = check_points(points); !st) return st;
+  const std::vector<int> order = detail::canonical_order(points);
+  if (Status st = skeleton2(detail::permuted(points, order), options, result); !st) return st;
+  const auto in = [&](int& v) { v = order[U(v)]; };
+  for (int& v : result.boundary) in(v);
+  if (!result.boundary.empty())
+    std::rotate(result.boundary.begin(), std::min_element(result.boundary.begin(), result.boundary.end()),
+                result.boundary.end());
+  for (auto& t : result.triangles)
+    for (int& v : t) in(v);
+  for (int& v : result.unplaced_points) in(v);
+  std::sort(result.unplaced_points.begin(), result.unplaced_points.end());
   return Status::ok();
 }
 
