@@ -324,7 +324,14 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // uneven eight). (The search stops at 16; under CONSTRICT_DEBUG_HANDLES it measures in full.)
     const bool need_loop = thin_tube || (by_bridges && pinched);
     const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : kThinLoopMin) : -1;
-    const bool keep = need_loop ? loop >= kThinLoopMin : by_bridges;
+    bool keep = need_loop ? loop >= kThinLoopMin : by_bridges;
+    // A closing region must not enclose a void: dF counts a new cavity surface as -4, so a region
+    // that closed two loops and sealed a void (dF = 8 - 4) passed as one loop, and a noisy chain
+    // of four rings got genus 5 and an inner surface of 4 points. Seals are decided above.
+    if (keep && added && enclosed_cavity(b, changed).voids > 0) {
+      if (debug) std::fprintf(stderr, "handle close: %zu tets enclose a void: undone\n", changed.size());
+      keep = false;
+    }
     if (keep && log) {
       h.pinched = pinched;
       if (need_loop) h.loop_spacings = loop;

@@ -574,5 +574,17 @@ TEST(Surfaces3Property, NoisyTorusIsClosedAtAPinchAfterTheSingleToggles) {
   EXPECT_EQ(pinched, 1);
 }
 
+// A closing region must not enclose a void. Regression file: a chain of four overlapping rings
+// (tori of radius 0.5, tube 0.1, centres 0.9 apart: genus 4), 7 977 points pulled onto the union
+// by Newton steps, thinned on a grid and moved by normal noise of 0.3 of the grid cell (rounded to
+// 4 decimals). The last ring's closing region closed two loops and sealed a one-tetrahedron void
+// at once (dF = 8 - 4 passed as one loop): genus 5 and an inner surface of 4 points. Now that
+// region is undone: genus 3, one surface, no invented topology.
+TEST(Surfaces3Property, ClosingRegionsDoNotSealVoids) {
+  const Surfaces3Result r = run_regression_file("ring_chain_noisy_void.xyz", "noisy chain of four rings");
+  EXPECT_LE(r.genus, 4) << "more handles than the truth";
+  EXPECT_GE(r.genus, 3);
+}
+
 }  // namespace
 }  // namespace constrict
