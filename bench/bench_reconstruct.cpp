@@ -8,6 +8,9 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <cmath>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "bench_data.hpp"
@@ -115,4 +118,50 @@ void BM_Surfaces3Auto(benchmark::State& state) {
 BENCHMARK(BM_CgalDelaunay3Same)->Apply(sizes3);
 BENCHMARK(BM_Reconstruct3)->Apply(sizes3);
 BENCHMARK(BM_Surfaces3Auto)->Apply(sizes3);
+
+// Hostile 3D inputs whose Delaunay tetrahedra meet by the thousand at some points (found by
+// sweeps of 2026-12-04; docs/reconstruction-3d.md §4.10): the passes stop at their work bounds.
+// Before the bounds: thin rod 2 000 points 10 s, circle and axis (auto) more than 10 minutes,
+// circle and axis point 77 s (auto). Kinds: 0 thin rod, 1 circle and its axis (800 + 800),
+// 2 circle and one point on its axis (4 000); range(1): 0 single, 1 auto.
+PointSet hostile3(int kind) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+  std::normal_distribution<double> g(0, kind == 2 ? 1e-6 : 1e-4);
+  PointSet p;
+  p.dim = 3;
+  const auto add = [&](double x, double y, double z) { p.coords.insert(p.coords.end(), {x, y, z}); };
+  if (kind == 0)
+    for (int i = 0; i < 2000; ++i) add(i / 1999.0, u(rng), u(rng));
+  if (kind == 1)
+    for (int i = 0; i < 1600; ++i) {
+      const double t = 2 * M_PI * (i % 800) / 800 + 0.1234;
+      if (i < 800) add(std::cos(t) + g(rng), std::sin(t) + g(rng), g(rng));
+      else add(g(rng), g(rng), -1 + 2.0 * (i - 800) / 799 + g(rng));
+    }
+  if (kind == 2) {
+    for (int i = 0; i < 3999; ++i) {
+      const double t = 2 * M_PI * i / 3999;
+      add(std::cos(t) + g(rng), std::sin(t) + g(rng), g(rng));
+    }
+    add(g(rng), g(rng), 0.7 + g(rng));
+  }
+  return p;
+}
+
+void BM_Hostile3(benchmark::State& state) {
+  const PointSet pts = hostile3(static_cast<int>(state.range(0)));
+  Surfaces3Options o;
+  o.topology = state.range(1) ? Topology3::Auto : Topology3::Single;
+  for (auto _ : state) {
+    Surfaces3Result r;
+    if (!reconstruct_surfaces3(pts, o, r) || !r.valid()) state.SkipWithError("reconstruct_surfaces3 failed");
+    state.counters["cavity_capped"] = r.mesh.cavity_capped;
+    state.counters["carve_capped"] = r.mesh.carve_capped;
+    state.counters["repair_capped"] = r.repair_capped;
+  }
+  static const char* const names[] = {"thin rod", "circle and axis", "circle and axis point"};
+  state.SetLabel(std::string(names[state.range(0)]) + (state.range(1) ? ", auto" : ", single"));
+}
+BENCHMARK(BM_Hostile3)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->Iterations(1);
 }  // namespace

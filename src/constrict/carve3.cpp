@@ -378,7 +378,10 @@ class Regions {
                            dimples0 = star ? dimples_ : std::vector<int>{};
     const std::vector<int> mine0 = star ? mine : std::vector<int>{};
     std::vector<int> walk;
-    for (int step = 0; step < max_steps && !closed_now() && trials < kLocalTrials && s_.trials < trial_budget();
+    // (The pass's work bound too: on points along curves in space every trial evaluates links of
+    // thousands of tetrahedra; a circle and a point on its axis, 4 000 points, took 77 s here.)
+    for (int step = 0; step < max_steps && !closed_now() && trials < kLocalTrials && s_.trials < trial_budget() &&
+                       !over_budget();
          ++step) {
       const std::vector<int> bad = bad_vertices();
       if (bad.empty()) return;
@@ -394,7 +397,7 @@ class Regions {
           if (alive && !std::binary_search(mine.begin(), mine.end(), t) && (!handles || b_.surface_faces_of(t) == 0))
             continue;
           if (handles && tabu.count(t)) continue;
-          if (++trials > kLocalTrials || ++s_.trials > trial_budget()) break;
+          if (++trials > kLocalTrials || ++s_.trials > trial_budget() || over_budget()) break;
           toggle(t, !alive);
           flush();
           const std::size_t d = defect();
@@ -444,7 +447,7 @@ class Regions {
       dimples_ = dimples0;
       mine = mine0;
     }
-    for (int round = 0; round < kStarRounds && !closed_now() && nbad_ <= kStarMoveMaxBad; ++round) {
+    for (int round = 0; round < kStarRounds && !closed_now() && nbad_ <= kStarMoveMaxBad && !over_budget(); ++round) {
       const std::vector<int> bad = bad_vertices();
       const std::size_t d0 = defect();
       std::size_t best_d = d0;
@@ -452,7 +455,7 @@ class Regions {
       for (int v : bad) {
         star_moves(v, moves_);
         for (const auto& m : moves_) {
-          if (s_.trials > trial_budget()) break;
+          if (s_.trials > trial_budget() || over_budget()) break;
           s_.trials += m.size();
           toggle_all(m);
           const std::size_t d = defect();
@@ -653,8 +656,11 @@ class Regions {
   // Delaunay tetrahedra are quadratic in number and meet at every vertex by the thousand, used
   // hundreds (500 points on a helix: 770, 2.2 s; 2 000 points: 207 s). Past the bound the pass
   // stops at its last valid state: the current region's repair is skipped and the region undone.
+  // The floor was 2^24 until the fill's local search on a circle and a point on its axis (4 000
+  // points, 12 000 tetrahedra, one vertex at thousands of them) spent 4 s within it; the largest
+  // use measured stays under 5 per incidence, far below either term.
   static constexpr std::size_t kWorkPerIncidence = 64;
-  static constexpr std::size_t kWorkFloor = std::size_t{1} << 24;
+  static constexpr std::size_t kWorkFloor = std::size_t{1} << 20;
   bool over_budget() const { return work_ > work_budget_; }
   std::size_t work_ = 0, work_budget_ = 0;
   std::vector<int> vt_off_, vt_idx_;
