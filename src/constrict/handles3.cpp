@@ -322,7 +322,11 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // a pocket of a noisy genus-0 scan closed one of 2.5 spacings through a pinch (9 -> 0 long
     // faces), while the true pinched closings measured 107-381 (a noisy torus and chain, an
     // uneven eight). (The search stops at 16; under CONSTRICT_DEBUG_HANDLES it measures in full.)
-    const bool need_loop = thin_tube || (by_bridges && pinched);
+    // So must a region that closes several loops at once (dF >= 8): on very unevenly sampled tubes
+    // (bench/handles_sweep3.py, eightn) such regions held a false loop of 2.8-2.9 spacings (genus 3
+    // for a figure eight); the rule changes no result of bench/topology_sweep3.py (90 sets), the
+    // shared topology sets or 28 noisy copies of the handle sets.
+    const bool need_loop = thin_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : kThinLoopMin) : -1;
     bool keep = need_loop ? loop >= kThinLoopMin : by_bridges;
     // A closing region must not enclose a void: dF counts a new cavity surface as -4, so a region
