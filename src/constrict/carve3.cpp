@@ -118,6 +118,7 @@ class Regions {
       for (int t : touched_) touched_at_[uz(t)] = 0;
       touched_.clear();
     }
+    s_.capped = s_.capped || over_budget();  // (also when the last region's search reached it)
     return true;
   }
 

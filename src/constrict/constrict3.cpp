@@ -204,7 +204,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
     const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay, keys.spacing.get());
     stepped = true;
     r.ms_grow = ms_since(t0);
-    r.cavity_capped = growth.cavity_capped;
+    r.cavity_capped = growth.cavity_capped;  // (a failed growth's result is not kept: here)
     if (!ok) {
       r.grow_unreached = body.n - body.n_onb;
       reset_to_hull();
@@ -220,6 +220,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   }
   if (!grew) return Growth::NotRun;
   r.grown = growth.grown;
+  r.cavity_capped = r.cavity_capped || growth.cavity_capped;
   r.grow_cavities = growth.cavities;
   r.grown_outside = growth.grown_outside;
   r.filled = filled;

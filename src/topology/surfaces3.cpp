@@ -775,7 +775,7 @@ std::vector<char> parts_body(const PointSet& pts, const Delaunay3& dt, const Par
 class SurfaceRepair {
   static constexpr int kChannel = 4;
   static constexpr std::size_t kSearchSteps = 16;
-  static constexpr std::size_t kWorkPerIncidence = 64, kWorkFloor = std::size_t(1) << 24;
+  static constexpr std::size_t kWorkPerIncidence = 64, kWorkFloor = std::size_t(1) << 20;
 
  public:
   SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
@@ -802,12 +802,15 @@ class SurfaceRepair {
     for (const int c : count_) nfree_ += c == 1 ? 1 : 0;
   }
 
-  bool capped() const { return work_ > work_limit_; }
+  bool capped() const { return capped_; }
   // target_faces: the face count of the parts' own surfaces (the same Euler characteristic).
   bool run(std::size_t target_faces, std::size_t& changed) {
     std::vector<int> left;  // points the first pass could not repair
     for (std::size_t v = 0; v < pts_.size(); ++v) {
-      if (work_ > work_limit_) return false;
+      if (work_ > work_limit_) {
+        capped_ = true;
+        return false;
+      }
       const int vi = static_cast<int>(v);
       if (vertex_ok(vi)) continue;
       std::vector<int> best;
@@ -958,7 +961,10 @@ class SurfaceRepair {
     std::size_t steps = 0;
     const std::size_t max_steps = kSearchSteps * left.size();
     while (defect() > 0 && steps++ < max_steps) {
-      if (work_ > work_limit_) return false;
+      if (work_ > work_limit_) {
+        capped_ = true;
+        return false;
+      }
       long long best_d = 0;
       int best_t = -1;
       std::array<int, 4> best_key{};
@@ -1019,6 +1025,7 @@ class SurfaceRepair {
   std::vector<int> count_;                   // per face id, its tetrahedra in the body
   std::size_t nfree_ = 0;                    // faces with one body tetrahedron
   std::size_t work_ = 0, work_limit_ = 0;    // the work bound (class comment)
+  bool capped_ = false;                       // run() gave up at the bound
 };
 
 // Several parts: one engine run each; their body from the tetrahedralization of all points when
