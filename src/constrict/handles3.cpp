@@ -33,6 +33,8 @@ constexpr double kThinCutBefore = 3.0;
 constexpr double kThinCutAfter = 2.25;
 // The shortest loop such a region may close, in nearest-neighbour spacings (shortest_loop).
 constexpr double kThinLoopMin = 16.0;
+// ... and of a noisy tube's region that passes neither ratio test (bridge_handle_decision).
+constexpr double kNoisyLoopMin = 48.0;
 // The fewest tetrahedra, and points on its boundary, of a void a seal encloses for it to be an
 // inner shell's cavity (bridge_handle_decision), and its widest tetrahedron's bridge ratio.
 constexpr std::size_t kMinCavity = 64;
@@ -326,9 +328,17 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // (bench/handles_sweep3.py, eightn) such regions held a false loop of 2.8-2.9 spacings (genus 3
     // for a figure eight); the rule changes no result of bench/topology_sweep3.py (90 sets), the
     // shared topology sets or 28 noisy copies of the handle sets.
-    const bool need_loop = thin_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
-    const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : kThinLoopMin) : -1;
-    bool keep = need_loop ? loop >= kThinLoopMin : by_bridges;
+    // A noisy tube (noise of 0.3 spacings on a tube 2-3 spacings in radius) has neither a wall of
+    // long faces at its cut nor an even sample after closing it (after.worst stays above 2.25):
+    // a region that closes one loop, leaves no long face and lowers the worst ratio is kept when
+    // its loop is very long, kNoisyLoopMin spacings (true ones measured 115-150 on noisy chains of
+    // rings; the false tunnels under noisy genus-0 surfaces at most 21.7).
+    const bool noisy_tube = !by_bridges && !thin_tube && !pinched && added && dF == 4 && after.faces == 0 &&
+                            after.worst < before.worst;
+    const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
+    const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
+    const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : min_loop) : -1;
+    bool keep = need_loop ? loop >= min_loop : by_bridges;
     // A closing region must not enclose a void: dF counts a new cavity surface as -4, so a region
     // that closed two loops and sealed a void (dF = 8 - 4) passed as one loop, and a noisy chain
     // of four rings got genus 5 and an inner surface of 4 points. Seals are decided above.
