@@ -41,7 +41,9 @@ struct VoronoiSkeletonStats {
   std::size_t seeds_tried = 0;     ///< seeds grown (seed_limit)
   std::size_t seeds_pruned = 0;    ///< seeds abandoned by the bound
   std::size_t seeds_complete = 0;  ///< seeds whose growth reached every point
-  int best_seed = -1;              ///< Delaunay simplex id of the winning seed
+  /// The winning seed: a simplex id of the search's own triangulation, built from the points in
+  /// canonical order (an index for diagnostics, not one of a caller's build_delaunay2/3 output).
+  int best_seed = -1;
   double tree_length = 0;          ///< length of the winning Voronoi tree (double arithmetic)
   double ms_delaunay = 0, ms_grow = 0, ms_validate = 0;
 };
