@@ -119,7 +119,7 @@ void Constrictor3::Impl::set_visitor(Constrict3Visitor* v) {
 }
 
 std::vector<int> Constrictor3::Impl::input_ids(std::vector<int> ids) const {
-  for (int& v : ids) v = (*order)[uz(v)];
+  detail::to_input_ids(*order, ids);
   std::sort(ids.begin(), ids.end());
   return ids;
 }
@@ -130,8 +130,7 @@ std::array<int, 4> Constrictor3::Impl::input_ids(std::array<int, 4> t) const {
 }
 
 TriMesh3 Constrictor3::Impl::input_ids(TriMesh3 m) const {
-  for (auto& t : m.triangles)
-    for (int& v : t) v = (*order)[uz(v)];
+  detail::to_input_ids(*order, m.triangles);
   return m;
 }
 

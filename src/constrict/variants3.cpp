@@ -28,9 +28,14 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     base.set_visitor(nullptr);
     return s;
   };
-  std::size_t grow_unreached = 0;
-  bool grow_capped = false;
-  double ms_grow = 0;  // a failed growth's time (its result is not kept)
+  // What a failed growth leaves in the result that replaces it: its unreached points, its bound
+  // and its time.
+  Mesh3Result failed_growth;
+  const auto keep_growth_facts = [&](Mesh3Result& r) {
+    r.grow_unreached = failed_growth.grow_unreached;
+    r.cavity_capped = r.cavity_capped || failed_growth.cavity_capped;
+    r.ms_grow = failed_growth.ms_grow;
+  };
   if (base.can_grow()) {
     Mesh3Result rg;
     if (Status sg = single(true, rg); !sg) return sg;
@@ -40,15 +45,13 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
       return Status::ok();
     }
     base.opt.grow = false;  // the variants below start from the hull (reset by the growth stage)
-    grow_unreached = rg.grow_unreached;
-    grow_capped = rg.cavity_capped;
-    ms_grow = rg.ms_grow;
+    failed_growth.grow_unreached = rg.grow_unreached;
+    failed_growth.cavity_capped = rg.cavity_capped;
+    failed_growth.ms_grow = rg.ms_grow;
   }
   if (!base.keys.dg && base.body.n_onb == base.body.n) {
     if (Status sh = single(false, result); !sh) return sh;
-    result.grow_unreached = grow_unreached;
-    result.cavity_capped = result.cavity_capped || grow_capped;
-    result.ms_grow = ms_grow;
+    keep_growth_facts(result);
     if (options.validate) validate_result(base, result);
     return Status::ok();
   }
@@ -82,9 +85,7 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
                        res[i].ms_constrict + res[i].ms_fallback + res[i].ms_sculpt + res[i].ms_carve + res[i].ms_refine});
   const double ms_runs = ms_since(tv);
   result = std::move(res[best]);
-  result.grow_unreached = grow_unreached;
-  result.cavity_capped = result.cavity_capped || grow_capped;
-  result.ms_grow = ms_grow;
+  keep_growth_facts(result);
   result.candidates = std::move(summary);
   result.ms_variants = ms_runs;
   result.ms_setup = base.ms_setup;

@@ -115,14 +115,11 @@ Status voronoi_skeleton2(const PointSet& points, const VoronoiSkeletonOptions& o
   if (Status st = check_points(points); !st) return st;
   const std::vector<int> order = detail::canonical_order(points);
   if (Status st = skeleton2(detail::permuted(points, order), options, result); !st) return st;
-  const auto in = [&](int& v) { v = order[U(v)]; };
-  for (int& v : result.boundary) in(v);
-  if (!result.boundary.empty())
-    std::rotate(result.boundary.begin(), std::min_element(result.boundary.begin(), result.boundary.end()),
-                result.boundary.end());
-  for (auto& t : result.triangles)
-    for (int& v : t) in(v);
-  for (int& v : result.unplaced_points) in(v);
+  detail::to_input_ids(order, result.boundary);
+  std::rotate(result.boundary.begin(), std::min_element(result.boundary.begin(), result.boundary.end()),
+              result.boundary.end());
+  detail::to_input_ids(order, result.triangles);
+  detail::to_input_ids(order, result.unplaced_points);
   std::sort(result.unplaced_points.begin(), result.unplaced_points.end());
   return Status::ok();
 }

@@ -95,12 +95,9 @@ Status voronoi_skeleton3(const PointSet& points, const VoronoiSkeletonOptions& o
   if (Status st = check_points(points); !st) return st;
   const std::vector<int> order = detail::canonical_order(points);
   if (Status st = skeleton3(detail::permuted(points, order), options, result); !st) return st;
-  const auto in = [&](int& v) { v = order[U(v)]; };
-  for (auto& f : result.mesh.triangles)
-    for (int& v : f) in(v);
-  for (auto& t : result.tets)
-    for (int& v : t) in(v);
-  for (int& v : result.unplaced_points) in(v);
+  detail::to_input_ids(order, result.mesh.triangles);
+  detail::to_input_ids(order, result.tets);
+  detail::to_input_ids(order, result.unplaced_points);
   std::sort(result.unplaced_points.begin(), result.unplaced_points.end());
   return Status::ok();
 }

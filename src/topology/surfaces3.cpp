@@ -803,14 +803,16 @@ class SurfaceRepair {
   }
 
   bool capped() const { return capped_; }
+  // Past the work bound (class comment): run() gives up, and says so.
+  bool over_budget() {
+    capped_ = capped_ || work_ > work_limit_;
+    return capped_;
+  }
   // target_faces: the face count of the parts' own surfaces (the same Euler characteristic).
   bool run(std::size_t target_faces, std::size_t& changed) {
     std::vector<int> left;  // points the first pass could not repair
     for (std::size_t v = 0; v < pts_.size(); ++v) {
-      if (work_ > work_limit_) {
-        capped_ = true;
-        return false;
-      }
+      if (over_budget()) return false;
       const int vi = static_cast<int>(v);
       if (vertex_ok(vi)) continue;
       std::vector<int> best;
@@ -961,10 +963,7 @@ class SurfaceRepair {
     std::size_t steps = 0;
     const std::size_t max_steps = kSearchSteps * left.size();
     while (defect() > 0 && steps++ < max_steps) {
-      if (work_ > work_limit_) {
-        capped_ = true;
-        return false;
-      }
+      if (over_budget()) return false;
       long long best_d = 0;
       int best_t = -1;
       std::array<int, 4> best_key{};

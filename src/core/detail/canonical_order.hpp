@@ -3,6 +3,8 @@
 // this order, so the same points in any file order give the same result (STYLE.md; issue 20).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <vector>
 
 #include "constrict/points.hpp"
@@ -24,5 +26,14 @@ bool has_adjacent_duplicate(const PointSet& ordered);
 
 // The points in that order.
 PointSet permuted(const PointSet& points, const std::vector<int>& order);
+
+// Engine ids back to input ids, in place (order[k] = the input id of engine id k).
+inline void to_input_ids(const std::vector<int>& order, std::vector<int>& ids) {
+  for (int& v : ids) v = order[static_cast<std::size_t>(v)];
+}
+template <std::size_t K> void to_input_ids(const std::vector<int>& order, std::vector<std::array<int, K>>& simplices) {
+  for (auto& s : simplices)
+    for (int& v : s) v = order[static_cast<std::size_t>(v)];
+}
 
 }  // namespace constrict::detail
