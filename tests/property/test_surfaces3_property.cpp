@@ -603,5 +603,20 @@ TEST(Surfaces3Property, NoisyTubeClosesItsLongLoops) {
     }
 }
 
+// ... and so is one that leaves a few long faces where the sample is sparse, if it leaves fewer
+// than it found. Regression file: bench/handles_sweep3.py's eightn, c = 0.02, 3 000 points, seed
+// 2 (the tube x(x-1)^2(x-2) + y^2 = g, g^2 + z^2 = c, genus 2, from random points of a box pulled
+// onto it by Newton steps: up to 8x sparser on its sides; 5 decimals). One closing region went
+// from 3 long faces to 2 and its worst ratio from 10.5 to 4.2; it was undone (genus 1).
+TEST(Surfaces3Property, UnevenTubeClosesALoopThatLeavesFewerLongFaces) {
+  const Surfaces3Result r = run_regression_file("eight_tube_uneven.xyz", "unevenly sampled figure-eight tube");
+  EXPECT_EQ(r.genus, 2);
+  for (const Handle3Change& c : r.mesh.handle_changes)
+    if (c.kind == Handle3Change::Kind::CloseLoop && c.bridges_before < 4) {
+      EXPECT_TRUE(c.bridges_after == 0 || c.bridges_after < c.bridges_before);
+      EXPECT_GE(c.loop_spacings, 48.0) << "a loop closed across few long faces is long";
+    }
+}
+
 }  // namespace
 }  // namespace constrict
