@@ -56,6 +56,28 @@ std::vector<Ball> circumballs(const Body3& b) {
   return ball;
 }
 
+// A hull tetrahedron whose circumradius exceeds kFlatHullRatio times its longest edge is nearly
+// flat: its four points are coplanar up to rounding (exact columns and rings of points from a
+// grid, as a marching-cubes mesh of a grid-aligned shape gives; a planar patch of the hull), so its
+// ball is close to a half-space on either side of the face, and which side is decided by rounding.
+// Seeding the propagation with it labels at full confidence in a random direction: on such a mesh
+// of two capsules a flat hull tetrahedron seeded "inside", the label crossed the gap beside the
+// tube and came back "outside" into it, and a quarter of the tube's cross-section was left out
+// of the body. Such a tetrahedron seeds nothing; its neighbours label it.
+constexpr double kFlatHullRatio = 64;
+
+bool nearly_flat(const Body3& b, std::size_t t, double radius) {
+  const auto& v = b.tets[t];
+  double e2 = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      const double* p = b.P(v[uz(i)]);
+      const double* q = b.P(v[uz(j)]);
+      e2 = std::max(e2, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+  return radius > kFlatHullRatio * std::sqrt(e2);
+}
+
 // Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
 // circumball: the signed distance of the centre beyond the face over the radius (NaN if flat).
 double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
@@ -156,7 +178,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
           const int m = b.nbr[t][uz(i)];
           float code = NAN;
           if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
-            if (bt[3] > 0) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
+            if (bt[3] > 0 && !nearly_flat(b, t, bt[3])) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
           } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0) {
             const Ball& bm = ball[uz(m)];
             const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
