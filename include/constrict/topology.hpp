@@ -56,6 +56,17 @@ constexpr double kDefaultTopologyGap = 2.0;
 /// its smallest gap (docs/topology.md, "Open arcs").
 constexpr double kMinRingFatness = 1.0;
 constexpr double kMaxRingEdge = 50.0;
+/// A part of at most kTinyRingPoints points has no region fat by that measure (a regular n-gon
+/// has 2|A|/Σ|e|² = cot(π/n)/2: 0.5 for a square, 0.87 for a hexagon), so it was always joined
+/// to its nearest part, however far: a speck of a CT slice's contours 10 spacings off became a
+/// bridge. Such a part is a ring of its own when every other part is at least kTinyRingGap local
+/// spacings away and its polygon has at least kTinyRingFatness times the regular n-gon's value
+/// (docs/topology.md, "Tiny rings"). The gap is far above kDefaultTopologyGap: in a random
+/// sample along a curve, a run of a few points with gaps of 8 spacings on both sides has a
+/// probability of about e^-16 per point.
+constexpr std::size_t kTinyRingPoints = 8;
+constexpr double kTinyRingGap = 8.0;
+constexpr double kTinyRingFatness = 0.5;
 /// The CLI's single mode infers the topology (for its note) up to this many points.
 constexpr std::size_t kNoteMaxPoints = 20000;
 

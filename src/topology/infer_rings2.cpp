@@ -777,6 +777,16 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
 
 // For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
 // lexicographically smaller pair of points), -1 for none. The edges between parts are links.
+// kTinyRingFatness times a regular m-gon's 2|A|/Σ|e|² = cot(π/m)/2 (3 <= m <= kTinyRingPoints).
+double tiny_ring_fatness(std::size_t m) {
+  static const std::array<double, kTinyRingPoints + 1> t = [] {
+    std::array<double, kTinyRingPoints + 1> a{};
+    for (std::size_t k = 3; k <= kTinyRingPoints; ++k) a[k] = kTinyRingFatness * 0.5 / std::tan(M_PI / static_cast<double>(k));
+    return a;
+  }();
+  return t[std::min(m, kTinyRingPoints)];
+}
+
 std::vector<int> nearest_parts(const PointSet& pts, const Links& links, const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
@@ -896,10 +906,27 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     }
     // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no
     // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one.
+    // Tiny parts far from every other part (kTinyRingPoints, kTinyRingGap): their links to
+    // other parts, each tested exactly against the tiny-ring gap.
+    std::vector<char> tiny(parts.size(), 0);
+    {
+      bool any = false;
+      for (const std::size_t k : todo) {
+        const std::size_t m = parts[k].size();
+        tiny[k] = m >= 3 && m <= kTinyRingPoints && !collinear(points, parts[k]) ? 1 : 0;
+        any = any || tiny[k];
+      }
+      if (any)
+        for (const auto& [g, e] : links) {
+          const int rp = ring_of[static_cast<std::size_t>(e[0])], rq = ring_of[static_cast<std::size_t>(e[1])];
+          if (rp == rq || !(tiny[static_cast<std::size_t>(rp)] || tiny[static_cast<std::size_t>(rq)])) continue;
+          if (gaps.ratio_and_shorter(e[0], e[1], kTinyRingGap).second) tiny[static_cast<std::size_t>(rp)] = tiny[static_cast<std::size_t>(rq)] = 0;
+        }
+    }
     std::vector<std::size_t> need;
     for (const std::size_t k : todo) {
       const bool line = collinear(points, parts[k]);
-      if (!line && encl[k]) {
+      if (!line && (encl[k] || tiny[k])) {
         need.push_back(k);
         continue;
       }
@@ -922,7 +949,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
       // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
       // from the last round passed already: a thin one joined another part.)
-      thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(), kMinRingFatness) <= 0 ||
+      thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(),
+                                      tiny[k] ? tiny_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
                 has_chord(points, rings[k], kMaxRingEdge);
       any_thin = any_thin || thin[k];
       debug_part(points, rings[k], k, parts.size(), thin[k]);

@@ -153,6 +153,79 @@ TEST(Topology2Property, SquareInSquareWithSharpCornersGivesTwoRings) {
   }
 }
 
+// Tiny rings (kTinyRingPoints): a circle sampled at spacing 1 (radius 20, jitter 0.1) with a
+// jittered regular m-gon of edge 1 (m = 3..8, random rotation) outside it at `gap` spacings and
+// another in its middle. At 10 spacings each m-gon is a ring of its own (a shell outside, a hole
+// inside, with the circle as parent); at 5 spacings (under kTinyRingGap) a triangle or square
+// joins the circle as before; a tiny sliver (a 5-point arc) 10 spacings off is an arc, not a
+// ring. Every answer valid (brute force).
+TEST(Topology2Property, TinyRingsFarFromEverythingAreRings) {
+  for (std::size_t m = 3; m <= kTinyRingPoints; ++m)
+    for (double gap : {5.0, 10.0})
+      for (unsigned seed = 1; seed <= 3; ++seed) {
+        SCOPED_TRACE("m " + std::to_string(m) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        std::mt19937 rng(seed * 977 + static_cast<unsigned>(m));
+        std::uniform_real_distribution<double> u(-0.1, 0.1), turn(0, 2 * M_PI);
+        PointSet p;
+        p.dim = 2;
+        const double R = 20;
+        const int nc = static_cast<int>(2 * M_PI * R);
+        for (int i = 0; i < nc; ++i) {
+          const double t = 2 * M_PI * i / nc;
+          p.coords.insert(p.coords.end(), {R * std::cos(t) + u(rng), R * std::sin(t) + u(rng)});
+        }
+        const double rm = 0.5 / std::sin(M_PI / static_cast<double>(m));  // circumradius of edge 1
+        const auto polygon = [&](double cx, double cy) {
+          const double a0 = turn(rng);
+          for (std::size_t k = 0; k < m; ++k) {
+            const double t = a0 + 2 * M_PI * static_cast<double>(k) / static_cast<double>(m);
+            p.coords.insert(p.coords.end(), {cx + rm * std::cos(t) + u(rng), cy + rm * std::sin(t) + u(rng)});
+          }
+        };
+        polygon(R + gap + rm, 0);
+        polygon(0, 0);  // 20 spacings from the circle
+        const Rings2Result a = run(p, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        RingsCheck bc;
+        EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
+        const std::size_t n0 = static_cast<std::size_t>(nc);
+        if (gap >= kTinyRingGap) {
+          ASSERT_EQ(a.rings.size(), 3u);
+          for (const Ring2& r : a.rings) {
+            std::set<int> pts(r.indices.begin(), r.indices.end());
+            if (r.indices.size() == n0) {
+              EXPECT_EQ(r.role, RingRole::Shell);
+              EXPECT_EQ(*pts.rbegin(), nc - 1);
+            } else {
+              ASSERT_EQ(r.indices.size(), m);
+              const bool outside = *pts.begin() == nc;  // the first m-gon
+              EXPECT_EQ(r.role, outside ? RingRole::Shell : RingRole::Hole);
+              EXPECT_EQ(r.parent >= 0, !outside);
+            }
+          }
+        } else if (m <= 4) {
+          // The outer triangle or square joins the circle's part; the middle one (20 spacings
+          // off) stays. (From 5 points these regular m-gons are clean crust cycles: rings at any
+          // gap over the threshold, as before.)
+          EXPECT_EQ(a.rings.size(), 2u);
+        }
+      }
+  // A sliver: five points on an arc of the circle's radius, 10 spacings outside it.
+  PointSet p;
+  p.dim = 2;
+  for (int i = 0; i < 126; ++i) {
+    const double t = 2 * M_PI * i / 126;
+    p.coords.insert(p.coords.end(), {20 * std::cos(t), 20 * std::sin(t)});
+  }
+  for (int k = 0; k < 5; ++k) {
+    const double t = (k - 2) / 30.0;
+    p.coords.insert(p.coords.end(), {30 * std::cos(t), 30 * std::sin(t)});
+  }
+  const Rings2Result a = run(p, Topology2::Auto);
+  ASSERT_TRUE(a.valid()) << a.check.reason;
+  EXPECT_EQ(a.rings.size(), 1u) << "a 5-point arc is not a ring";
+}
+
 // Any gap, 1-5 spacings: whatever auto decides is a valid ring set (brute force); at 5 spacings
 // the rings are the true ones.
 TEST(Topology2Property, EveryGapGivesAValidAnswer) {
