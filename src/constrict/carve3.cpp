@@ -622,6 +622,7 @@ class Regions {
   // Handles: keep the region's changes only if they changed the topology (F = 2N - 4c + 4g over
   // c surfaces of total genus g: a handle raises F, a sealed cavity lowers it) and the decision
   // agrees; else put the region back as it was.
+  static constexpr int kTrimRounds = 8;
   void decide_region(std::size_t F0) {
     changed_.clear();
     for (int t : touched_)
@@ -630,9 +631,52 @@ class Regions {
     // Carving must not split the body (F would drop); a fill that drops F seals a cavity (an inner
     // shell: the caller decides whether enclosed voids are allowed).
     const long long dF = static_cast<long long>(F_) - static_cast<long long>(F0);
-    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF, pinched_)) {
+    std::vector<int> trim;
+    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF, pinched_, &trim)) {
       s_.changed += changed_.size();
       return;
+    }
+    // A refused change whose decision named a part to put back (a closing region that also sealed
+    // a void, or closed a second, short loop): the rest, once, if it is a valid state.
+    if (!trim.empty()) {
+      for (int t : trim)
+        if (b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
+      flush();
+      // Points the trim left non-manifold: the region's changes at them are put back too (the
+      // region only shrinks), a few rounds.
+      const auto bad_touched = [&] {
+        std::vector<int> bad;
+        for (int t : touched_)
+          for (int y : b_.tets[uz(t)])
+            if (bad_of_[uz(y)]) bad.push_back(y);
+        std::sort(bad.begin(), bad.end());
+        bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+        return bad;
+      };
+      for (int round = 0; round < kTrimRounds && nbad_ > 0; ++round) {
+        for (int v : bad_touched())
+          for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
+            const int t = vt_idx_[uz(k)];
+            if (touched_at_[uz(t)] && b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
+          }
+        flush();
+      }
+      if (debug_)
+        std::fprintf(stderr, "handle trim: %zu tets put back, bad points %zu, F %+lld\n", trim.size(), nbad_,
+                     static_cast<long long>(F_) - static_cast<long long>(F0));
+      if (nbad_ == 0) {
+        changed_.clear();
+        for (int t : touched_)
+          if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
+        const long long dF2 = static_cast<long long>(F_) - static_cast<long long>(F0);
+        if (!changed_.empty() && (dF2 > 0 || (add_ && dF2 < 0)) && (*decide_)(b_, changed_, add_, dF2, pinched_, nullptr)) {
+          s_.changed += changed_.size();
+          return;
+        }
+      }
+      changed_.clear();
+      for (int t : touched_)
+        if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
     }
     s_.undone += changed_.size();
     for (int t : changed_) toggle(t, !b_.alive(t));

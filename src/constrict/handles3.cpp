@@ -140,7 +140,7 @@ double cavity_width(const Body3& b, const std::vector<int>& void_tets, const std
 // to centroid) from every patch at once finds the first meeting of two patches' fronts. Searches
 // stop beyond max_len spacings (then returns max_len).
 double shortest_loop(const Body3& b, const std::vector<int>& changed, const std::vector<double>& spacing,
-                     double max_len) {
+                     double max_len, std::vector<int>* near_patch = nullptr) {
   std::vector<int> sorted = changed;
   std::sort(sorted.begin(), sorted.end());
   const auto in_r = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };
@@ -198,6 +198,14 @@ double shortest_loop(const Body3& b, const std::vector<int>& changed, const std:
     pq.push({d0, {m, patch}});
   }
   double best = max_len * h;
+  int pa = -1, pb = -1;  // the two patches of the best loop
+  const auto meet = [&](double len, int p, int q) {
+    if (len < best) {
+      best = len;
+      pa = p;
+      pb = q;
+    }
+  };
   while (!pq.empty()) {
     const auto [d, tp] = pq.top();
     pq.pop();
@@ -205,7 +213,7 @@ double shortest_loop(const Body3& b, const std::vector<int>& changed, const std:
     const auto [t, patch] = tp;
     auto it = label.find(t);
     if (it != label.end()) {
-      if (it->second.second != patch) best = std::min(best, d + it->second.first);
+      if (it->second.second != patch) meet(d + it->second.first, patch, it->second.second);
       continue;
     }
     label[t] = {d, patch};
@@ -214,11 +222,27 @@ double shortest_loop(const Body3& b, const std::vector<int>& changed, const std:
       const auto jt = label.find(m);
       const double dm = d + dist(t, m);
       if (jt != label.end()) {
-        if (jt->second.second != patch) best = std::min(best, dm + jt->second.first);
+        if (jt->second.second != patch) meet(dm + jt->second.first, patch, jt->second.second);
         continue;
       }
       pq.push({dm, {m, patch}});
     }
+  }
+  if (near_patch && pa >= 0) {
+    // The region's tetrahedra on the patch of the two with fewer contact faces (ties: the one
+    // whose first contact comes first in `changed`, an order of the region, not of addresses).
+    std::size_t na = 0, nb = 0;
+    for (std::size_t k = 0; k < cf.size(); ++k) {
+      const int r = uf.find(static_cast<int>(k));
+      na += r == pa;
+      nb += r == pb;
+    }
+    const int small = nb < na ? pb : pa;
+    near_patch->clear();
+    for (std::size_t k = 0; k < cf.size(); ++k)
+      if (uf.find(static_cast<int>(k)) == small) near_patch->push_back(cf[k].t);
+    std::sort(near_patch->begin(), near_patch->end());
+    near_patch->erase(std::unique(near_patch->begin(), near_patch->end()), near_patch->end());
   }
   return best / h;
 }
@@ -233,7 +257,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
   return [spacing, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added,
-                                                long long dF, bool pinched) {
+                                                long long dF, bool pinched, std::vector<int>* trim) {
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
     h.tetrahedra = changed.size();
@@ -347,14 +371,35 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
                             after.worst <= kNoisyDrop * before.worst;
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
-    const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : min_loop) : -1;
+    // A region that closes several loops across a wall of long faces, one of them short, is asked
+    // for again without its tetrahedra on the nearer end of that loop (trim).
+    const bool several = by_bridges && dF >= 8 && !pinched;
+    std::vector<int> near_patch;
+    const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : min_loop,
+                                                  several && trim ? &near_patch : nullptr)
+                                  : -1;
     bool keep = need_loop ? loop >= min_loop : by_bridges;
+    if (!keep && several && trim) *trim = near_patch;
     // A closing region must not enclose a void: dF counts a new cavity surface as -4, so a region
     // that closed two loops and sealed a void (dF = 8 - 4) passed as one loop, and a noisy chain
     // of four rings got genus 5 and an inner surface of 4 points. Seals are decided above.
-    if (keep && added && enclosed_cavity(b, changed).voids > 0) {
-      if (debug) std::fprintf(stderr, "handle close: %zu tets enclose a void: undone\n", changed.size());
-      keep = false;
+    if (keep && added) {
+      const CavityMeasure cav = enclosed_cavity(b, changed);
+      if (cav.voids > 0) {
+        if (debug) std::fprintf(stderr, "handle close: %zu tets enclose a void: undone\n", changed.size());
+        keep = false;
+        // Asked for again without the region's tetrahedra next to the void (trim).
+        if (trim) {
+          std::vector<int> sorted_void = cav.void_tets;
+          std::sort(sorted_void.begin(), sorted_void.end());
+          for (int t : changed)
+            for (int m : b.nbr[uz(t)])
+              if (m >= 0 && std::binary_search(sorted_void.begin(), sorted_void.end(), m)) {
+                trim->push_back(t);
+                break;
+              }
+        }
+      }
     }
     if (keep && log) {
       h.pinched = pinched;

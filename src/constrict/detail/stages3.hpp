@@ -191,8 +191,10 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
 // were added (a loop closed) or removed (a tunnel opened); the body is in the changed state.
 // dF: the change of the surface's face count (> 0 a handle, < 0 a sealed cavity). pinched: the
 // region reached its valid state only through a move of several tetrahedra at a pinched vertex.
-using HandleDecision =
-    std::function<bool(const Body3& body, const std::vector<int>& changed, bool added, long long dF, bool pinched)>;
+// trim (null on a retry): a decision that refuses may list tetrahedra of `changed` to put back;
+// the engine then tries the change without them once (if that state is valid) and asks again.
+using HandleDecision = std::function<bool(const Body3& body, const std::vector<int>& changed, bool added, long long dF,
+                                          bool pinched, std::vector<int>* trim)>;
 // The regions labelled inside that the body left out (closing loops), then the regions labelled
 // outside in the body (opening tunnels), under the manifold rule without the genus-0 condition; a
 // region's change is kept only when it adds a handle and decide agrees. Returns the tetrahedra changed.
