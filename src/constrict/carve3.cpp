@@ -342,9 +342,11 @@ class Regions {
   // kLocalTrials toggles; measured: at most 0.6 trials per point, noisy frames and igea with noise).
   std::size_t trial_budget() const { return kLocalTrialsPerPoint * b_.n + kLocalTrials; }
   // The non-manifold vertices of the region's pending additions, ascending.
-  std::vector<int> bad_vertices() const {
+  std::vector<int> bad_vertices() const { return bad_vertices_of(pending_); }
+  // ... of the given tetrahedra.
+  std::vector<int> bad_vertices_of(const std::vector<int>& tets) const {
     std::vector<int> bad;
-    for (int x : pending_)
+    for (int x : tets)
       for (int y : b_.tets[uz(x)])
         if (bad_of_[uz(y)]) bad.push_back(y);
     std::sort(bad.begin(), bad.end());
@@ -622,66 +624,56 @@ class Regions {
   // Handles: keep the region's changes only if they changed the topology (F = 2N - 4c + 4g over
   // c surfaces of total genus g: a handle raises F, a sealed cavity lowers it) and the decision
   // agrees; else put the region back as it was.
-  static constexpr int kTrimRounds = 8;
   void decide_region(std::size_t F0) {
-    changed_.clear();
-    for (int t : touched_)
-      if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
+    collect_changed();
     if (changed_.empty()) return;
     // Carving must not split the body (F would drop); a fill that drops F seals a cavity (an inner
     // shell: the caller decides whether enclosed voids are allowed).
-    const long long dF = static_cast<long long>(F_) - static_cast<long long>(F0);
     std::vector<int> trim;
-    if ((dF > 0 || (add_ && dF < 0)) && (*decide_)(b_, changed_, add_, dF, pinched_, &trim)) {
+    if (topology_changed(F0) && (*decide_)(b_, changed_, add_, dF_since(F0), pinched_, &trim)) {
       s_.changed += changed_.size();
       return;
     }
     // A refused change whose decision named a part to put back (a closing region that also sealed
     // a void, or closed a second, short loop): the rest, once, if it is a valid state.
-    if (!trim.empty()) {
-      for (int t : trim)
-        if (b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
-      flush();
-      // Points the trim left non-manifold: the region's changes at them are put back too (the
-      // region only shrinks), a few rounds.
-      const auto bad_touched = [&] {
-        std::vector<int> bad;
-        for (int t : touched_)
-          for (int y : b_.tets[uz(t)])
-            if (bad_of_[uz(y)]) bad.push_back(y);
-        std::sort(bad.begin(), bad.end());
-        bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-        return bad;
-      };
-      for (int round = 0; round < kTrimRounds && nbad_ > 0; ++round) {
-        for (int v : bad_touched())
-          for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
-            const int t = vt_idx_[uz(k)];
-            if (touched_at_[uz(t)] && b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
-          }
-        flush();
-      }
-      if (debug_)
-        std::fprintf(stderr, "handle trim: %zu tets put back, bad points %zu, F %+lld\n", trim.size(), nbad_,
-                     static_cast<long long>(F_) - static_cast<long long>(F0));
-      if (nbad_ == 0) {
-        changed_.clear();
-        for (int t : touched_)
-          if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
-        const long long dF2 = static_cast<long long>(F_) - static_cast<long long>(F0);
-        if (!changed_.empty() && (dF2 > 0 || (add_ && dF2 < 0)) && (*decide_)(b_, changed_, add_, dF2, pinched_, nullptr)) {
-          s_.changed += changed_.size();
-          return;
-        }
-      }
-      changed_.clear();
-      for (int t : touched_)
-        if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
-    }
+    if (!trim.empty() && trimmed_is_kept(trim, F0)) return;
     s_.undone += changed_.size();
     for (int t : changed_) toggle(t, !b_.alive(t));
     flush();
     CONSTRICT_CHECK(F_ == F0 && nbad_ == 0, "handle undo did not restore the surface");
+  }
+  // The region's tetrahedra whose state differs from the start (changed_).
+  void collect_changed() {
+    changed_.clear();
+    for (int t : touched_)
+      if (b_.alive(t) != (touched_at_[uz(t)] == 2)) changed_.push_back(t);
+  }
+  long long dF_since(std::size_t F0) const { return static_cast<long long>(F_) - static_cast<long long>(F0); }
+  bool topology_changed(std::size_t F0) const { return dF_since(F0) > 0 || (add_ && dF_since(F0) < 0); }
+  // Puts `trim` back, then the region's changes at the points that leaves non-manifold (the region
+  // only shrinks; kTrimRounds rounds), and asks the decision again if that is a valid state. True
+  // when the rest is kept; otherwise changed_ holds what differs from the start.
+  static constexpr int kTrimRounds = 8;
+  bool trimmed_is_kept(const std::vector<int>& trim, std::size_t F0) {
+    const auto put_back = [&](int t) {
+      if (touched_at_[uz(t)] && b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
+    };
+    for (int t : trim) put_back(t);
+    flush();
+    for (int round = 0; round < kTrimRounds && nbad_ > 0; ++round) {
+      for (int v : bad_vertices_of(touched_))
+        for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) put_back(vt_idx_[uz(k)]);
+      flush();
+    }
+    if (debug_)
+      std::fprintf(stderr, "handle trim: %zu tets put back, bad points %zu, F %+lld\n", trim.size(), nbad_, dF_since(F0));
+    collect_changed();
+    if (nbad_ == 0 && !changed_.empty() && topology_changed(F0) &&
+        (*decide_)(b_, changed_, add_, dF_since(F0), pinched_, nullptr)) {
+      s_.changed += changed_.size();
+      return true;
+    }
+    return false;
   }
 
   Body3& b_;
