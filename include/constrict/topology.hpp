@@ -60,7 +60,7 @@ constexpr double kMaxRingEdge = 50.0;
 /// has 2|A|/Σ|e|² = cot(π/n)/2: 0.5 for a square, 0.87 for a hexagon), so it was always joined
 /// to its nearest part, however far: a speck of a CT slice's contours 10 spacings off became a
 /// bridge. Such a part is a ring of its own when every other part is at least kTinyRingGap local
-/// spacings away and its polygon has at least kTinyRingFatness times the regular n-gon's value
+/// spacings away and its polygon has more than kTinyRingFatness times the regular n-gon's value
 /// (docs/topology.md, "Tiny rings"). The gap is far above kDefaultTopologyGap: in a random
 /// sample along a curve, a run of a few points with gaps of 8 spacings on both sides has a
 /// probability of about e^-16 per point.

@@ -658,6 +658,7 @@ class Regions {
     const auto put_back = [&](int t) {
       if (touched_at_[uz(t)] && b_.alive(t) != (touched_at_[uz(t)] == 2)) toggle(t, !b_.alive(t));
     };
+    const std::size_t before = changed_.size();
     for (int t : trim) put_back(t);
     flush();
     for (int round = 0; round < kTrimRounds && nbad_ > 0; ++round) {
@@ -668,6 +669,7 @@ class Regions {
     if (debug_)
       std::fprintf(stderr, "handle trim: %zu tets put back, bad points %zu, F %+lld\n", trim.size(), nbad_, dF_since(F0));
     collect_changed();
+    s_.undone += before - changed_.size();  // (the trim only puts back)
     if (nbad_ == 0 && !changed_.empty() && topology_changed(F0) &&
         (*decide_)(b_, changed_, add_, dF_since(F0), pinched_, nullptr)) {
       s_.changed += changed_.size();

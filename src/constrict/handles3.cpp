@@ -230,14 +230,14 @@ double shortest_loop(const Body3& b, const std::vector<int>& changed, const std:
   }
   if (near_patch && pa >= 0) {
     // The region's tetrahedra on the patch of the two with fewer contact faces (ties: the one
-    // whose first contact comes first in `changed`, an order of the region, not of addresses).
+    // whose root, a contact index in the order of `changed`, is smaller).
     std::size_t na = 0, nb = 0;
     for (std::size_t k = 0; k < cf.size(); ++k) {
       const int r = uf.find(static_cast<int>(k));
       na += r == pa;
       nb += r == pb;
     }
-    const int small = nb < na ? pb : pa;
+    const int small = nb < na || (nb == na && pb < pa) ? pb : pa;
     near_patch->clear();
     for (std::size_t k = 0; k < cf.size(); ++k)
       if (uf.find(static_cast<int>(k)) == small) near_patch->push_back(cf[k].t);
@@ -371,9 +371,10 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
                             after.worst <= kNoisyDrop * before.worst;
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
-    // A region that closes several loops across a wall of long faces, one of them short, is asked
-    // for again without its tetrahedra on the nearer end of that loop (trim).
-    const bool several = by_bridges && dF >= 8 && !pinched;
+    // A closing region that closes several loops across a wall of long faces, one of them short,
+    // is asked for again without its tetrahedra on one end of that loop: the patch with fewer
+    // contact faces (trim).
+    const bool several = added && by_bridges && dF >= 8 && !pinched;
     std::vector<int> near_patch;
     const double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : min_loop,
                                                   several && trim ? &near_patch : nullptr)

@@ -63,7 +63,8 @@ std::vector<Ball> circumballs(const Body3& b) {
 // Seeding the propagation with it labels at full confidence in a random direction: on such a mesh
 // of two capsules a flat hull tetrahedron seeded "inside", the label crossed the gap beside the
 // tube and came back "outside" into it, and a quarter of the tube's cross-section was left out
-// of the body. Such a tetrahedron seeds nothing; its neighbours label it.
+// of the body. Such a tetrahedron seeds nothing (unless no other hull tetrahedron seeds); its
+// neighbours label it.
 constexpr double kFlatHullRatio = 64;
 
 bool nearly_flat(const Body3& b, std::size_t t, double radius) {
@@ -167,6 +168,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   // half-space), computed in parallel beforehand: the sequential propagation then reads only the
   // tetrahedron it pops, not its neighbours' balls.
   std::vector<std::array<float, 4>> pass(T0);
+  std::vector<char> flat_hull(T0, 0);  // a hull tetrahedron that is nearly flat (kFlatHullRatio)
   {
     const std::vector<Ball> ball = circumballs(b);
     out->lrad.resize(T0);
@@ -178,7 +180,10 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
           const int m = b.nbr[t][uz(i)];
           float code = NAN;
           if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
-            if (bt[3] > 0 && !nearly_flat(b, t, bt[3])) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
+            if (bt[3] > 0) {
+              code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
+              flat_hull[t] = nearly_flat(b, t, bt[3]) ? 1 : 0;
+            }
           } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0) {
             const Ball& bm = ball[uz(m)];
             const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
@@ -190,9 +195,16 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
       }
     });
   }
-  for (std::size_t t = 0; t < T0; ++t)
-    for (int i = 0; i < 4; ++i)
-      if (b.nbr[t][uz(i)] < 0) q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
+  // The hull's seeds, without the nearly flat tetrahedra; with them when there is no other (a
+  // hull of points coplanar up to rounding).
+  bool seeded = false;
+  for (int with_flat = 0; with_flat < 2 && !seeded; ++with_flat)
+    for (std::size_t t = 0; t < T0; ++t)
+      for (int i = 0; i < 4; ++i)
+        if (b.nbr[t][uz(i)] < 0 && (with_flat || !flat_hull[t]) && pass[t][uz(i)] == pass[t][uz(i)]) {
+          q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
+          seeded = true;
+        }
   out->label.assign(T0, 0.0f);
   // The propagation below runs on one core: the caller's work that does not read the labels runs
   // on the other one meanwhile (its results cannot depend on the order: it shares nothing with

@@ -775,18 +775,17 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
   return false;
 }
 
-// For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
-// lexicographically smaller pair of points), -1 for none. The edges between parts are links.
-// kTinyRingFatness times a regular m-gon's 2|A|/Σ|e|² = cot(π/m)/2 (3 <= m <= kTinyRingPoints).
+// kTinyRingFatness times a regular m-gon's 2|A|/Σ|e|² = cot(π/m)/2 (3 <= m <= kTinyRingPoints),
+// as constants (a library's tan need not be correctly rounded; these are the same everywhere).
 double tiny_ring_fatness(std::size_t m) {
-  static const std::array<double, kTinyRingPoints + 1> t = [] {
-    std::array<double, kTinyRingPoints + 1> a{};
-    for (std::size_t k = 3; k <= kTinyRingPoints; ++k) a[k] = kTinyRingFatness * 0.5 / std::tan(M_PI / static_cast<double>(k));
-    return a;
-  }();
+  static_assert(kTinyRingPoints == 8 && kTinyRingFatness == 0.5, "the table is for 3..8 points at half the n-gon");
+  constexpr std::array<double, 9> t{0, 0, 0, 0.1443375672974065, 0.25, 0.3440954801177934, 0.43301270189221935,
+                                    0.5191303491430842, 0.6035533905932737};
   return t[std::min(m, kTinyRingPoints)];
 }
 
+// For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
+// lexicographically smaller pair of points), -1 for none. The edges between parts are links.
 std::vector<int> nearest_parts(const PointSet& pts, const Links& links, const std::vector<int>& ring_of, std::size_t parts) {
   struct Best { double gap; int p, q; };
   std::vector<Best> best(parts, Best{HUGE_VAL, -1, -1});
@@ -908,25 +907,25 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one.
     // Tiny parts far from every other part (kTinyRingPoints, kTinyRingGap): their links to
     // other parts, each tested exactly against the tiny-ring gap.
-    std::vector<char> tiny(parts.size(), 0);
+    std::vector<char> tiny(parts.size(), 0), line(parts.size(), 0);
     {
       bool any = false;
       for (const std::size_t k : todo) {
         const std::size_t m = parts[k].size();
-        tiny[k] = m >= 3 && m <= kTinyRingPoints && !collinear(points, parts[k]) ? 1 : 0;
+        line[k] = collinear(points, parts[k]) ? 1 : 0;
+        tiny[k] = m >= 3 && m <= kTinyRingPoints && !line[k] ? 1 : 0;
         any = any || tiny[k];
       }
       if (any)
         for (const auto& [g, e] : links) {
           const int rp = ring_of[static_cast<std::size_t>(e[0])], rq = ring_of[static_cast<std::size_t>(e[1])];
           if (rp == rq || !(tiny[static_cast<std::size_t>(rp)] || tiny[static_cast<std::size_t>(rq)])) continue;
-          if (gaps.ratio_and_shorter(e[0], e[1], kTinyRingGap).second) tiny[static_cast<std::size_t>(rp)] = tiny[static_cast<std::size_t>(rq)] = 0;
+          if (gaps.shorter(e[0], e[1], kTinyRingGap)) tiny[static_cast<std::size_t>(rp)] = tiny[static_cast<std::size_t>(rq)] = 0;
         }
     }
     std::vector<std::size_t> need;
     for (const std::size_t k : todo) {
-      const bool line = collinear(points, parts[k]);
-      if (!line && (encl[k] || tiny[k])) {
+      if (!line[k] && (encl[k] || tiny[k])) {
         need.push_back(k);
         continue;
       }

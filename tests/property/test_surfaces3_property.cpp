@@ -619,8 +619,9 @@ TEST(Surfaces3Property, UnevenTubeClosesALoopThatLeavesFewerLongFaces) {
 }
 
 // A region that closes two loops at once across a wall of long faces, one of them false (2.8
-// spacings), was undone whole. It is now asked for again without its tetrahedra on the nearer
-// patch of the short loop (and without those at the points that leaves non-manifold): the rest
+// spacings), was undone whole. It is now asked for again without its tetrahedra on one end of
+// the short loop, the patch with fewer contact faces (and without those at the points that leaves
+// non-manifold): the rest
 // closes the one true loop. Regression file: bench/handles_sweep3.py's eightn, c = 0.035, 3 000
 // points, seed 2 (6 decimals); genus 1 before.
 TEST(Surfaces3Property, RegionClosingATrueAndAFalseLoopIsTrimmedToTheTrueOne) {

@@ -10,6 +10,7 @@
 // (volume 49.86 instead of about 51.8; rounding the file to 6 digits hides it).
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 
 #include "constrict/constrict3.hpp"
@@ -31,6 +32,21 @@ TEST(Labels3Regression, FlatHullTetrahedraOfGridAlignedCapsulesSeedNoLabel) {
   // points has a little less: 51.82 for the same points rounded to 6 digits.
   EXPECT_GT(r.volume, 0.975 * 52.59) << "a part of a capsule is left out of the body";
   EXPECT_LT(r.volume, 52.59);
+}
+
+// ... but when every hull tetrahedron is nearly flat (a slab of points coplanar up to 1e-9), they
+// still seed: otherwise no tetrahedron is labelled and the growth, which starts from the labels,
+// cannot run (the result falls back to the constriction from the hull).
+TEST(Labels3Regression, AllFlatHullStillSeeds) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(0, 1);
+  PointSet p;
+  p.dim = 3;
+  for (int i = 0; i < 500; ++i) p.coords.insert(p.coords.end(), {u(rng), u(rng), 1e-9 * u(rng)});
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
+  ASSERT_TRUE(r.valid());
+  EXPECT_EQ(r.method, Method3::Grow);
 }
 
 }  // namespace
