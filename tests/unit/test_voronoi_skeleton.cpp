@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <random>
 #include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "constrict/delaunay.hpp"
@@ -269,8 +271,11 @@ TEST(VoronoiSkeleton3, SmallSetsGiveValidSurfaces) {
 // were broken by input ids (a 6 x 6 grid: 28 of 36 edges differed; the surface points of a
 // 4 x 4 x 4 lattice: complete in one order, 55 of 56 points in another). Orders: reversed and
 // a seeded shuffle (seeds printed).
-TEST(VoronoiSkeleton, LatticesGiveTheSameResultInAnyFileOrder) {
-  const auto shuffled = [](const PointSet& p, unsigned seed) {
+// Runs `run` on p and on reordered copies of it (reversed, then shuffled by seeds 1-3) and
+// expects the same completeness and the same `key` (the result as coordinates).
+template <class Result, class Run, class Key>
+void expect_same_in_any_order(const PointSet& p, Run run, Key key, const std::string& what) {
+  const auto reordered = [&](unsigned seed) {
     std::vector<std::size_t> perm(p.size());
     for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = perm.size() - 1 - i;
     if (seed != 0) std::shuffle(perm.begin(), perm.end(), std::mt19937_64(seed));
@@ -280,6 +285,19 @@ TEST(VoronoiSkeleton, LatticesGiveTheSameResultInAnyFileOrder) {
       for (int c = 0; c < p.dim; ++c) q.coords.push_back(p[i][c]);
     return q;
   };
+  Result r0;
+  ASSERT_TRUE(run(p, r0).is_ok());
+  for (unsigned seed : {0u, 1u, 2u, 3u}) {
+    SCOPED_TRACE(what + ", shuffle seed " + std::to_string(seed));
+    const PointSet q = reordered(seed);
+    Result r;
+    ASSERT_TRUE(run(q, r).is_ok());
+    EXPECT_EQ(r.complete, r0.complete);
+    EXPECT_EQ(key(q, r), key(p, r0));
+  }
+}
+
+TEST(VoronoiSkeleton, LatticesGiveTheSameResultInAnyFileOrder) {
   using Coords = std::vector<double>;
   PointSet grid;
   grid.dim = 2;
@@ -294,16 +312,8 @@ TEST(VoronoiSkeleton, LatticesGiveTheSameResultInAnyFileOrder) {
     }
     return e;
   };
-  VoronoiSkeleton2Result r0;
-  ASSERT_TRUE(voronoi_skeleton2(grid, {}, r0).is_ok());
-  for (unsigned seed : {0u, 1u, 2u, 3u}) {
-    SCOPED_TRACE("2D grid, shuffle seed " + std::to_string(seed));
-    const PointSet q = shuffled(grid, seed);
-    VoronoiSkeleton2Result r;
-    ASSERT_TRUE(voronoi_skeleton2(q, {}, r).is_ok());
-    EXPECT_EQ(r.complete, r0.complete);
-    EXPECT_EQ(edges2(q, r), edges2(grid, r0));
-  }
+  expect_same_in_any_order<VoronoiSkeleton2Result>(
+      grid, [](const PointSet& p, VoronoiSkeleton2Result& r) { return voronoi_skeleton2(p, {}, r); }, edges2, "2D grid");
 
   PointSet cube;
   cube.dim = 3;
@@ -311,27 +321,21 @@ TEST(VoronoiSkeleton, LatticesGiveTheSameResultInAnyFileOrder) {
     for (int j = 0; j < 4; ++j)
       for (int k = 0; k < 4; ++k)
         if (i % 3 == 0 || j % 3 == 0 || k % 3 == 0) cube.coords.insert(cube.coords.end(), {double(i), double(j), double(k)});
+  // The faces as coordinates (each from its smallest corner, orientation kept) and the number of
+  // points left off the surface.
   const auto faces3 = [](const PointSet& p, const VoronoiSkeleton3Result& r) {
     std::set<std::vector<Coords>> f;
     for (const auto& t : r.mesh.triangles) {
       std::vector<Coords> c;
       for (int v : t) c.push_back({p[U(v)][0], p[U(v)][1], p[U(v)][2]});
-      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());  // orientation kept
+      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
       f.insert(c);
     }
-    return f;
+    return std::make_pair(f, r.unplaced_points.size());
   };
-  VoronoiSkeleton3Result s0;
-  ASSERT_TRUE(voronoi_skeleton3(cube, {}, s0).is_ok());
-  for (unsigned seed : {0u, 1u, 2u, 3u}) {
-    SCOPED_TRACE("3D lattice surface, shuffle seed " + std::to_string(seed));
-    const PointSet q = shuffled(cube, seed);
-    VoronoiSkeleton3Result s;
-    ASSERT_TRUE(voronoi_skeleton3(q, {}, s).is_ok());
-    EXPECT_EQ(s.complete, s0.complete);
-    EXPECT_EQ(s.unplaced_points.size(), s0.unplaced_points.size());
-    EXPECT_EQ(faces3(q, s), faces3(cube, s0));
-  }
+  expect_same_in_any_order<VoronoiSkeleton3Result>(
+      cube, [](const PointSet& p, VoronoiSkeleton3Result& r) { return voronoi_skeleton3(p, {}, r); }, faces3,
+      "3D lattice surface");
 }
 
 }  // namespace
