@@ -41,6 +41,37 @@ constexpr double kNoisyDrop = 0.85;
 constexpr std::size_t kMinCavity = 64;
 constexpr double kMinCavityWidth = 5.0;
 
+// On an even sample a closing region must leave no long face around it. A true cut is a wall
+// across a tube: closing the loop takes the wall away, and on an even sample no other face is
+// long. On machined parts (flat faces, sharp edges, through holes; bench/cad_sweep3.py), rotated
+// in double precision so that the points of a face are coplanar up to rounding, regions along a
+// sharp edge or a crease closed false loops of 3-133 spacings and left 2-7 long faces (7.50 ->
+// 7.58, 26.4 -> 24.0, 37.3 -> 27.9): a box got genus 3, a part with one hole genus 6. Every true
+// closing on those parts left none (worst ratio after: 2.1-2.4).
+// An even sample is told by the 90th percentile of the bridge ratios of the surface's faces (at
+// the first decision that needs it): 1.76-1.96 on blue noise (the shared topology sets
+// 1.91-1.96), 2.2-2.55 on noisy samples and tubes from a grid, 3.2-3.4 on tubes sampled 4-8x more
+// sparsely on one side (bench/handles_sweep3.py tori3u, eightn). On uneven samples true closings
+// leave sparse long faces (13 -> 2 long faces, worst ratio 13.2 -> 13.7).
+constexpr double kUnevenSample = 2.25;
+
+// The q-quantile of the bridge ratios of the body's surface faces.
+double surface_ratio_quantile(const Body3& b, const std::vector<double>& spacing, double q) {
+  std::vector<double> r;
+  r.reserve(2 * b.n);
+  for (std::size_t t = 0; t < b.tets.size(); ++t) {
+    if (!b.alive(static_cast<int>(t))) continue;
+    const auto& v = b.tets[t];
+    for (int i = 0; i < 4; ++i)
+      if (!b.alive(b.nbr[t][uz(i)]))
+        r.push_back(bridge_ratio3(*b.pts, spacing, v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]));
+  }
+  if (r.empty()) return 0;
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(r.size() - 1));
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(k), r.end());
+  return r[k];
+}
+
 struct BridgeCount {
   int faces = 0;
   double worst = 0;
@@ -253,10 +284,11 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
                                       std::shared_ptr<std::vector<Handle3Change>> log) {
   // (The spacing on first use: most bodies have no candidate region.)
   auto spacing = std::make_shared<std::vector<double>>();
+  auto uneven = std::make_shared<double>(-1);  // the surface's 90th-percentile ratio, on first use
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
-  return [spacing, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added,
+  return [spacing, uneven, debug, part_of, mixed0, log](const Body3& b, const std::vector<int>& changed, bool added,
                                                 long long dF, bool pinched, std::vector<int>* trim) {
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
@@ -380,6 +412,16 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
                                                   several && trim ? &near_patch : nullptr)
                                   : -1;
     bool keep = need_loop ? loop >= min_loop : by_bridges;
+    // On an even sample a closing leaves no long face (kUnevenSample above).
+    if (keep && added && after.faces > 0) {
+      if (*uneven < 0) *uneven = surface_ratio_quantile(b, *spacing, 0.9);
+      if (*uneven < kUnevenSample) {
+        if (debug)
+          std::fprintf(stderr, "handle close: %d long faces left (worst %.2f -> %.2f) on an even sample (%.2f): undone\n",
+                       after.faces, before.worst, after.worst, *uneven);
+        keep = false;
+      }
+    }
     if (!keep && several && trim) *trim = near_patch;
     // A closing region must not enclose a void: dF counts a new cavity surface as -4, so a region
     // that closed two loops and sealed a void (dF = 8 - 4) passed as one loop, and a noisy chain

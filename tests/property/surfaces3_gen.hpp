@@ -19,7 +19,7 @@
 
 namespace constrict::test {
 
-enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window };
+enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window, Block, Plate };
 
 struct Sample3 {
   PointSet points;
@@ -98,6 +98,17 @@ inline P on_capsule(std::mt19937_64& rng, const P& a, const P& b, double r) {
   P p{};
   for (int k = 0; k < 3; ++k) p[k] = a[k] + s * t[k] + r * (std::cos(ph) * e[k] + std::sin(ph) * f[k]);
   return p;
+}
+// Uniform (by area) random point of the surface of the box [-a, a] x [-b, b] x [-c, c]: flat faces
+// and sharp edges, as machined parts have.
+inline P on_box(std::mt19937_64& rng, double a, double b, double c) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double xy = a * b, xz = a * c, yz = b * c;
+  const double pick = (u(rng) + 1) / 2 * (xy + xz + yz);
+  const double side = u(rng) < 0 ? -1.0 : 1.0;
+  if (pick < xy) return {a * u(rng), b * u(rng), side * c};
+  if (pick < xy + xz) return {a * u(rng), side * b, c * u(rng)};
+  return {side * a, b * u(rng), c * u(rng)};
 }
 // Distance from p to segment ab.
 inline double segment_distance(const P& p, const P& a, const P& b) {
@@ -193,8 +204,23 @@ inline Sample3 make_surfaces3(Family3 f, double gap, unsigned seed, double h = 0
       }
       break;
     }
+    case Family3::Block:  // a box: flat faces and sharp edges, genus 0
+      throw_on(8 * (2 * 1 + 2 * 0.3 + 1 * 0.3), [&] { return detail_gen3::on_box(rng, 2, 1, 0.3); }, all);
+      break;
+    case Family3::Plate: {  // the box with a round hole of radius 0.4 through it: genus 1
+      s.genus = 1;
+      const double r = 0.4;
+      throw_on(8 * (2 * 1 + 2 * 0.3 + 1 * 0.3), [&] { return detail_gen3::on_box(rng, 2, 1, 0.3); },
+               [&](const P& p) { return p[0] * p[0] + p[1] * p[1] >= r * r; });
+      throw_on(2 * M_PI * r * 0.6, [&] {
+        const double ph = 2 * M_PI * u(rng);
+        return P{r * std::cos(ph), r * std::sin(ph), 0.6 * u(rng) - 0.3};
+      }, all);
+      break;
+    }
   }
-  // A random rotation (three angles), scale and offset; then shuffled.
+  // A random rotation (three angles), scale and offset; then shuffled. (In double precision: the
+  // points of a flat face end up coplanar up to rounding only, as in a rotated CAD model.)
   const double a = 2 * M_PI * u(rng), b = 2 * M_PI * u(rng), c = 2 * M_PI * u(rng);
   const double scale = std::exp(4 * u(rng) - 2), ox = 20 * u(rng) - 10, oy = 20 * u(rng) - 10, oz = 20 * u(rng) - 10;
   std::vector<P> pts = darts.kept();
