@@ -25,7 +25,46 @@ constexpr std::size_t kGrain = 4096;
 
 using Ball = std::array<double, 4>;  // centre xyz, radius (radius < 0: flat)
 
-std::vector<Ball> circumballs(const Body3& b) {
+// A hull tetrahedron whose circumradius exceeds kFlatHullRatio times its longest edge is nearly
+// flat: its four points are coplanar up to rounding (exact columns and rings of points from a
+// grid, as a marching-cubes mesh of a grid-aligned shape gives; a planar patch of the hull), so its
+// ball is close to a half-space on either side of the face, and which side is decided by rounding.
+// Seeding the propagation with it labels at full confidence in a random direction: on such a mesh
+// of two capsules a flat hull tetrahedron seeded "inside", the label crossed the gap beside the
+// tube and came back "outside" into it, and a quarter of the tube's cross-section was left out
+// of the body. Such a tetrahedron seeds nothing (unless no other hull tetrahedron seeds); its
+// neighbours label it.
+constexpr double kFlatHullRatio = 64;
+
+bool nearly_flat(const Body3& b, std::size_t t, double radius) {
+  const auto& v = b.tets[t];
+  double e2 = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      const double* p = b.P(v[uz(i)]);
+      const double* q = b.P(v[uz(j)]);
+      e2 = std::max(e2, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+  return radius > kFlatHullRatio * std::sqrt(e2);
+}
+
+// A tetrahedron whose circumradius exceeds kCoplanarRatio times its longest edge has four points
+// coplanar up to the rounding of their coordinates (its height is under a millionth of its size).
+// The points of a flat face of a machined part, rotated in double precision, give thousands of
+// them, a crust along the face (a rotated plate with a hole: 54 621 of 129 852 tetrahedra at 10^11
+// or more; the shared models have none above 10^8). Each one's ball is a half-space on a side that
+// rounding chose, and two of them pass a label to each other at confidence 1 (cos = +-1): a label
+// that entered the crust anywhere ran along the whole face and into the part below it at full
+// confidence. Two such tetrahedra pass no label to each other; each gets its label from its other
+// neighbours.
+constexpr double kCoplanarRatio = 1e6;
+
+// Flags of a tetrahedron (circumballs).
+constexpr char kFlatHull = 1;  // on the convex hull and nearly flat (kFlatHullRatio)
+constexpr char kCoplanar = 2;  // coplanar up to rounding (kCoplanarRatio)
+
+// The circumballs, and each tetrahedron's flags.
+std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
   std::vector<Ball> ball(b.T0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
@@ -51,32 +90,20 @@ std::vector<Ball> circumballs(const Body3& b) {
         if (std::isfinite(rr)) o = {{a[0] + x[0], a[1] + x[1], a[2] + x[2], rr}};
       }
       ball[t] = o;
+      char f = 0;
+      if (o[3] > 0) {
+        const auto d2 = [](const double* u, const double* w) {
+          return (u[0] - w[0]) * (u[0] - w[0]) + (u[1] - w[1]) * (u[1] - w[1]) + (u[2] - w[2]) * (u[2] - w[2]);
+        };
+        const double longest2 = std::max({nb, nc, nd, d2(e1, e2), d2(e1, e3), d2(e2, e3)});
+        if (o[3] > kCoplanarRatio * std::sqrt(longest2)) f |= kCoplanar;
+        const auto& nt = b.nbr[t];
+        if ((nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0) && nearly_flat(b, t, o[3])) f |= kFlatHull;
+      }
+      flags[t] = f;
     }
   });
   return ball;
-}
-
-// A hull tetrahedron whose circumradius exceeds kFlatHullRatio times its longest edge is nearly
-// flat: its four points are coplanar up to rounding (exact columns and rings of points from a
-// grid, as a marching-cubes mesh of a grid-aligned shape gives; a planar patch of the hull), so its
-// ball is close to a half-space on either side of the face, and which side is decided by rounding.
-// Seeding the propagation with it labels at full confidence in a random direction: on such a mesh
-// of two capsules a flat hull tetrahedron seeded "inside", the label crossed the gap beside the
-// tube and came back "outside" into it, and a quarter of the tube's cross-section was left out
-// of the body. Such a tetrahedron seeds nothing (unless no other hull tetrahedron seeds); its
-// neighbours label it.
-constexpr double kFlatHullRatio = 64;
-
-bool nearly_flat(const Body3& b, std::size_t t, double radius) {
-  const auto& v = b.tets[t];
-  double e2 = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) {
-      const double* p = b.P(v[uz(i)]);
-      const double* q = b.P(v[uz(j)]);
-      e2 = std::max(e2, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-    }
-  return radius > kFlatHullRatio * std::sqrt(e2);
 }
 
 // Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
@@ -168,9 +195,9 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   // half-space), computed in parallel beforehand: the sequential propagation then reads only the
   // tetrahedron it pops, not its neighbours' balls.
   std::vector<std::array<float, 4>> pass(T0);
-  std::vector<char> flat_hull(T0, 0);  // a hull tetrahedron that is nearly flat (kFlatHullRatio)
+  std::vector<char> flags(T0);  // kFlatHull, kCoplanar
   {
-    const std::vector<Ball> ball = circumballs(b);
+    const std::vector<Ball> ball = circumballs(b, flags);
     out->lrad.resize(T0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
@@ -180,11 +207,9 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
           const int m = b.nbr[t][uz(i)];
           float code = NAN;
           if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
-            if (bt[3] > 0) {
-              code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
-              flat_hull[t] = nearly_flat(b, t, bt[3]) ? 1 : 0;
-            }
-          } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0) {
+            if (bt[3] > 0) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
+          } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0 &&
+                     !(flags[t] & flags[uz(m)] & kCoplanar)) {
             const Ball& bm = ball[uz(m)];
             const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
             const double d2 = dx * dx + dy * dy + dz * dz;
@@ -201,7 +226,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   for (int with_flat = 0; with_flat < 2 && !seeded; ++with_flat)
     for (std::size_t t = 0; t < T0; ++t)
       for (int i = 0; i < 4; ++i)
-        if (b.nbr[t][uz(i)] < 0 && (with_flat || !flat_hull[t]) && pass[t][uz(i)] == pass[t][uz(i)]) {
+        if (b.nbr[t][uz(i)] < 0 && (with_flat || !(flags[t] & kFlatHull)) && pass[t][uz(i)] == pass[t][uz(i)]) {
           q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
           seeded = true;
         }
