@@ -202,7 +202,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         const Ball& bt = ball[t];
-        out->lrad[t] = bt[3] > 0 ? std::log(bt[3]) : kFlatLogRadius;
+        out->lrad[t] = bt[3] > 0 && !(flags[t] & kCoplanar) ? std::log(bt[3]) : kFlatLogRadius;
         for (int i = 0; i < 4; ++i) {
           const int m = b.nbr[t][uz(i)];
           float code = NAN;

@@ -81,8 +81,8 @@ double surface_to_box(const RotatedBox& box, const P& half, const TriMesh3& m) {
   return worst;
 }
 
-// Measured: 0.60-0.89 spacings (triangles across the sharp edges cut their corners); 1.81-5.00
-// before the change (dents into the box along a face).
+// Measured: 0.49-0.57 spacings (triangles across the sharp edges cut their corners); 1.81-5.00
+// before (dents into the box along a face), 0.60-0.89 with the crust's labels alone.
 TEST(FlatFaces3Property, RotatedBoxStaysOnItsFaces) {
   const P half{2, 1, 0.3};
   constexpr double kH = 0.06;
@@ -98,6 +98,103 @@ TEST(FlatFaces3Property, RotatedBoxStaysOnItsFaces) {
     std::printf("[ info ] rotated box, seed %u, %zu points: surface within %.2f spacings of the box\n", seed,
                 box.points.size(), d);
     EXPECT_LE(d, 1.25) << "seed " << seed;
+  }
+}
+
+// An L-shaped bracket: two boxes, A = [-1, 1] x [-1, 1] x [-0.3, 0.3] and B = [-1, -0.4] x [-1, 1] x
+// [0.3, 1.5] standing on it; non-convex, with a reflex edge and faces off the convex hull. The
+// growth from the inside added the inside tetrahedra by circumradius, largest first: those of the
+// faces' crust came first (radii 10^11 times their size). The surface kept 3-8 bridge faces on
+// these 6 brackets (0.63-0.85 spacings off), and on samples of the same bracket from another
+// generator a point on an edge of B was left to a step across the notch (a tent of three faces
+// 35 spacings long). A tetrahedron coplanar up to rounding now has no radius (kFlatLogRadius), as
+// an exactly flat one: no bridge face, 0.46-0.53 spacings.
+struct RotatedL {
+  std::vector<P> local;
+  PointSet points;
+};
+
+double l_distance(const P& q) {
+  const auto box = [&](const P& lo, const P& hi) {
+    const P c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    const P half{(hi[0] - lo[0]) / 2, (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2};
+    return box_distance({q[0] - c[0], q[1] - c[1], q[2] - c[2]}, half);
+  };
+  return std::min(box({-1, -1, -0.3}, {1, 1, 0.3}), box({-1, -1, 0.3}, {-0.4, 1, 1.5}));
+}
+
+RotatedL rotated_l(double h, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  test::detail_gen3::Darts darts(h);
+  // Faces of the union (axis, fixed coordinate, ranges of the other two), by area.
+  struct Face {
+    int axis;
+    double at, lo1, hi1, lo2, hi2;
+  };
+  const Face faces[] = {
+      {2, -0.3, -1, 1, -1, 1},     {2, 0.3, -0.4, 1, -1, 1},    {0, 1, -1, 1, -0.3, 0.3},  // A: bottom, top, +x
+      {1, -1, -1, 1, -0.3, 0.3},   {1, 1, -1, 1, -0.3, 0.3},    {0, -1, -1, 1, -0.3, 1.5},  // A: -y, +y; -x (A and B)
+      {2, 1.5, -1, -0.4, -1, 1},   {0, -0.4, -1, 1, 0.3, 1.5},                              // B: top, +x
+      {1, -1, -1, -0.4, 0.3, 1.5}, {1, 1, -1, -0.4, 0.3, 1.5}};                            // B: -y, +y
+  double total = 0;
+  for (const Face& f : faces) total += (f.hi1 - f.lo1) * (f.hi2 - f.lo2);
+  const long n = std::lround(30 * total / (M_PI * h * h / 4));
+  for (long i = 0; i < n; ++i) {
+    double pick = u(rng) * total;
+    const Face* f = &faces[0];
+    for (const Face& g : faces) {
+      f = &g;
+      pick -= (g.hi1 - g.lo1) * (g.hi2 - g.lo2);
+      if (pick < 0) break;
+    }
+    const double s = f->lo1 + (f->hi1 - f->lo1) * u(rng), t = f->lo2 + (f->hi2 - f->lo2) * u(rng);
+    P p{};
+    p[static_cast<std::size_t>(f->axis)] = f->at;
+    p[static_cast<std::size_t>((f->axis + 1) % 3)] = f->axis == 1 ? t : s;  // (x, z) on the y faces
+    p[static_cast<std::size_t>((f->axis + 2) % 3)] = f->axis == 1 ? s : t;
+    darts.offer(p);
+  }
+  RotatedL l;
+  l.local = darts.kept();
+  std::shuffle(l.local.begin(), l.local.end(), rng);
+  const double a = 2 * M_PI * u(rng), b = 2 * M_PI * u(rng), c = 2 * M_PI * u(rng);
+  l.points.dim = 3;
+  for (const P& p : l.local) {
+    const double x1 = std::cos(a) * p[0] - std::sin(a) * p[1], y1 = std::sin(a) * p[0] + std::cos(a) * p[1], z1 = p[2];
+    const double y2 = std::cos(b) * y1 - std::sin(b) * z1, z2 = std::sin(b) * y1 + std::cos(b) * z1;
+    const double x3 = std::cos(c) * x1 + std::sin(c) * z2, z3 = -std::sin(c) * x1 + std::cos(c) * z2;
+    l.points.coords.insert(l.points.coords.end(), {3.7 * x3 + 1, 3.7 * y2 - 2, 3.7 * z3 + 5});
+  }
+  return l;
+}
+
+TEST(FlatFaces3Property, RotatedBracketHasNoBridgeFaces) {
+  constexpr double kH = 0.05;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const RotatedL l = rotated_l(kH, seed);
+    Mesh3Result r;
+    ASSERT_TRUE(reconstruct3(l.points, {}, r).is_ok());
+    ASSERT_TRUE(r.complete);
+    MeshCheck mc;
+    EXPECT_TRUE(validate_mesh3(l.points, r.mesh, &mc).is_ok()) << mc.reason;
+    double worst = 0;
+    for (const auto& t : r.mesh.triangles) {
+      const P& p0 = l.local[static_cast<std::size_t>(t[0])];
+      const P& p1 = l.local[static_cast<std::size_t>(t[1])];
+      const P& p2 = l.local[static_cast<std::size_t>(t[2])];
+      for (int i = 0; i <= 4; ++i)
+        for (int j = 0; i + j <= 4; ++j) {
+          const double wa = i / 4.0, wb = j / 4.0, wc = 1 - wa - wb;
+          worst = std::max(worst, std::fabs(l_distance({wa * p0[0] + wb * p1[0] + wc * p2[0],
+                                                         wa * p0[1] + wb * p1[1] + wc * p2[1],
+                                                         wa * p0[2] + wb * p1[2] + wc * p2[2]})));
+        }
+    }
+    std::printf("[ info ] rotated bracket, seed %u, %zu points: surface within %.2f spacings, %zu bridge faces\n",
+                seed, l.points.size(), worst / kH, r.bridge_faces);
+    EXPECT_LE(worst / kH, 1.0) << "seed " << seed;
+    EXPECT_EQ(r.bridge_faces, 0u) << "seed " << seed;
   }
 }
 
