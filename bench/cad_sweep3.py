@@ -20,32 +20,19 @@ Usage: bench/cad_sweep3.py [BUILD_DIR (build-bench)] [OUT (out/cad_sweep3)] [N,N
 Writes OUT/data/*.xyz (kept: a second run with another build reads the same sets), OUT/out/*.json
 and OUT/table.md. Needs numpy (python3-numpy). About 3 minutes."""
 import importlib.util
-import json
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
 
 _here = os.path.dirname(os.path.abspath(__file__))
-_spec = importlib.util.spec_from_file_location("topology_sweep3", os.path.join(_here, "topology_sweep3.py"))
-ts = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(ts)
+_spec = importlib.util.spec_from_file_location("handles_sweep3", os.path.join(_here, "handles_sweep3.py"))
+hs = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(hs)
+ts = hs.ts  # bench/topology_sweep3.py
 
 SEEDS = (1, 2)
-
-
-def thin_to(cand, n):
-    """Poisson-disk thinning of shuffled candidates to about n points."""
-    d = 0.05
-    keep = None
-    for _ in range(10):
-        keep = ts.poisson_thin(cand, d)
-        if abs(len(keep) - n) <= 0.04 * n:
-            break
-        d *= math.sqrt(len(keep) / n)
-    return cand[keep]
 
 
 def box_minus(rng, m, a, b, c, round_holes=(), square_holes=()):
@@ -143,35 +130,13 @@ def main():
             for seed in SEEDS:
                 name = f"{fam}_N{n}_s{seed}"
                 path = os.path.join(out, "data", name + ".xyz")
-                truth = (1, genus)
                 if not os.path.exists(path):  # (another build on the same sets: the data are kept)
                     rng = np.random.default_rng([si, n, seed])
-                    pts = thin_to(gen(rng, 12 * n), n)
+                    pts = hs.thin_to(gen(rng, 12 * n), n, tolerance=0.04, rounds=10)
                     pts = (pts @ ts.random_rotation(rng).T) * 3.7 + [1, -2, 5]
                     np.savetxt(path, pts[rng.permutation(len(pts))], fmt="%.17g")
-                npts = sum(1 for _ in open(path))
-                rep = os.path.join(out, "out", name + ".json")
-                p = subprocess.run([cli, "reconstruct", path, "-o", os.path.join(out, "out", name + ".off"),
-                                    "--topology", "auto", "--report", rep, "-q"], capture_output=True, text=True)
-                r = json.load(open(rep)) if p.returncode == 0 else {}
-                got = (r.get("components"), r.get("genus"))
-                rows.append((fam, name, truth, got, p.returncode))
-                ok = p.returncode == 0 and got == truth
-                print(f"{name}: {npts} points, truth {truth}, got {got}{'' if ok else '  WRONG'}", flush=True)
-    lines = ["| family | sets | right | more genus than the truth |", "|---|---|---|---|"]
-    for fam in SHAPES:
-        sel = [r for r in rows if r[0] == fam]
-        right = sum(r[4] == 0 and r[2] == r[3] for r in sel)
-        over = sum(r[4] == 0 and (r[3][1] or 0) > r[2][1] for r in sel)
-        lines.append(f"| {fam} | {len(sel)} | {right} | {over} |")
-    right = sum(r[4] == 0 and r[2] == r[3] for r in rows)
-    over = sum(r[4] == 0 and (r[3][1] or 0) > r[2][1] for r in rows)
-    lines += ["", f"{right} of {len(rows)} right (surfaces, total genus); {over} with more genus than the truth.", "",
-              "| wrong set | truth | result |", "|---|---|---|"]
-    lines += [f"| {r[1]} | {r[2]} | {r[3]}{'' if r[4] == 0 else f' (exit {r[4]})'} |" for r in rows
-              if not (r[4] == 0 and r[2] == r[3])]
-    open(os.path.join(out, "table.md"), "w").write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+                hs.run_set(cli, out, fam, name, path, (1, genus), rows)
+    hs.write_table(out, list(SHAPES), rows)
 
 
 if __name__ == "__main__":

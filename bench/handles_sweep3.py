@@ -35,13 +35,13 @@ _spec.loader.exec_module(ts)
 SEEDS = (1, 2)
 
 
-def thin_to(cand, n):
+def thin_to(cand, n, tolerance=0.03, rounds=8):
     """Poisson-disk thinning of shuffled candidates to about n points."""
     d = 0.05
     keep = None
-    for _ in range(8):
+    for _ in range(rounds):
         keep = ts.poisson_thin(cand, d)
-        if abs(len(keep) - n) <= 0.03 * n:
+        if abs(len(keep) - n) <= tolerance * n:
             break
         d *= math.sqrt(len(keep) / n)
     return cand[keep]
@@ -117,6 +117,37 @@ FAMS = [("tori2", (0.25, 0.4)), ("tori3", (0.25, 0.4)), ("tori2u", (0.25, 0.4)),
         ("eight", (0.02, 0.035)), ("eightn", (0.02, 0.035))]
 
 
+def run_set(cli, out, fam, name, path, truth, rows):
+    """`constrict reconstruct PATH --topology auto`: appends (fam, name, truth, got, exit) to rows."""
+    npts = sum(1 for _ in open(path))
+    rep = os.path.join(out, "out", name + ".json")
+    p = subprocess.run([cli, "reconstruct", path, "-o", os.path.join(out, "out", name + ".off"),
+                        "--topology", "auto", "--report", rep, "-q"], capture_output=True, text=True)
+    r = json.load(open(rep)) if p.returncode == 0 else {}
+    got = (r.get("components"), r.get("genus"))
+    rows.append((fam, name, truth, got, p.returncode))
+    ok = p.returncode == 0 and got == truth
+    print(f"{name}: {npts} points, truth {truth}, got {got}{'' if ok else '  WRONG'}", flush=True)
+
+
+def write_table(out, fams, rows):
+    """OUT/table.md: per family the sets, the right ones and those with more genus than the truth."""
+    lines = ["| family | sets | right | more genus than the truth |", "|---|---|---|---|"]
+    for fam in fams:
+        sel = [r for r in rows if r[0] == fam]
+        right = sum(r[4] == 0 and r[2] == r[3] for r in sel)
+        over = sum(r[4] == 0 and (r[3][1] or 0) > r[2][1] for r in sel)
+        lines.append(f"| {fam} | {len(sel)} | {right} | {over} |")
+    right = sum(r[4] == 0 and r[2] == r[3] for r in rows)
+    over = sum(r[4] == 0 and (r[3][1] or 0) > r[2][1] for r in rows)
+    lines += ["", f"{right} of {len(rows)} right (surfaces, total genus); {over} with more genus than the truth.", "",
+              "| wrong set | truth | result |", "|---|---|---|"]
+    lines += [f"| {r[1]} | {r[2]} | {r[3]}{'' if r[4] == 0 else f' (exit {r[4]})'} |" for r in rows
+              if not (r[4] == 0 and r[2] == r[3])]
+    open(os.path.join(out, "table.md"), "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
 def main():
     build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
     out = sys.argv[2] if len(sys.argv) > 2 else "out/handles_sweep3"
@@ -130,34 +161,12 @@ def main():
                     name = f"{fam}_{param}_N{n}_s{seed}"
                     path = os.path.join(out, "data", name + ".xyz")
                     truth = (1, 3 if fam.startswith("tori3") else 2)
-                    if os.path.exists(path):  # (another build on the same sets: the data are kept)
-                        npts = sum(1 for _ in open(path))
-                    else:
+                    if not os.path.exists(path):  # (another build on the same sets: the data are kept)
                         rng = np.random.default_rng([fi, int(param * 1000), n, seed])
                         pts, truth = make(fam, param, n, rng)
                         np.savetxt(path, pts @ ts.random_rotation(rng).T, fmt="%.17g")
-                        npts = len(pts)
-                    rep = os.path.join(out, "out", name + ".json")
-                    p = subprocess.run([cli, "reconstruct", path, "-o", os.path.join(out, "out", name + ".off"),
-                                        "--topology", "auto", "--report", rep, "-q"], capture_output=True, text=True)
-                    r = json.load(open(rep)) if p.returncode == 0 else {}
-                    got = (r.get("components"), r.get("genus"))
-                    rows.append((fam, name, truth, got, p.returncode))
-                    ok = p.returncode == 0 and got == truth
-                    print(f"{name}: {npts} points, truth {truth}, got {got}{'' if ok else '  WRONG'}", flush=True)
-    lines = ["| family | sets | right | more genus than the truth |", "|---|---|---|---|"]
-    for fam, _ in FAMS:
-        sel = [r for r in rows if r[0] == fam]
-        right = sum(r[4] == 0 and r[2] == r[3] for r in sel)
-        over = sum(r[4] == 0 and (r[3][1] or 0) > r[2][1] for r in sel)
-        lines.append(f"| {fam} | {len(sel)} | {right} | {over} |")
-    right = sum(r[4] == 0 and r[2] == r[3] for r in rows)
-    lines += ["", f"{right} of {len(rows)} right (surfaces, total genus).", "", "| wrong set | truth | result |",
-              "|---|---|---|"]
-    lines += [f"| {r[1]} | {r[2]} | {r[3]}{'' if r[4] == 0 else f' (exit {r[4]})'} |" for r in rows
-              if not (r[4] == 0 and r[2] == r[3])]
-    open(os.path.join(out, "table.md"), "w").write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+                    run_set(cli, out, fam, name, path, truth, rows)
+    write_table(out, [fam for fam, _ in FAMS], rows)
 
 
 if __name__ == "__main__":

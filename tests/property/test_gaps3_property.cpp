@@ -16,26 +16,20 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/validate.hpp"
 #include "gaps3_gen.hpp"
+#include "surface_distance.hpp"
 
 namespace constrict {
 namespace {
 
 // Largest distance from the surface to the true surface, over a barycentric grid of each triangle.
 double surface_to_truth(const test::GapObject& o, const TriMesh3& m) {
-  constexpr int kGrid = 4;
-  double worst = 0;
-  for (const auto& t : m.triangles) {
-    const double* p[3] = {o.points[static_cast<std::size_t>(t[0])], o.points[static_cast<std::size_t>(t[1])],
-                          o.points[static_cast<std::size_t>(t[2])]};
-    for (int i = 0; i <= kGrid; ++i)
-      for (int j = 0; i + j <= kGrid; ++j) {
-        const double a = double(i) / kGrid, b = double(j) / kGrid, c = 1 - a - b;
-        const std::array<double, 3> q{a * p[0][0] + b * p[1][0] + c * p[2][0], a * p[0][1] + b * p[1][1] + c * p[2][1],
-                                      a * p[0][2] + b * p[1][2] + c * p[2][2]};
-        worst = std::max(worst, test::gap_object_distance(o, q));
-      }
-  }
-  return worst;
+  return test::max_distance_over_surface(
+      m,
+      [&](int v) {
+        const double* p = o.points[static_cast<std::size_t>(v)];
+        return std::array<double, 3>{p[0], p[1], p[2]};
+      },
+      [&](const std::array<double, 3>& q) { return test::gap_object_distance(o, q); });
 }
 
 struct Case {
