@@ -15,6 +15,8 @@ Families (numpy generators; seeds fixed, so the sets are the same on every run):
   frame      a box 3 x 3 x 0.6 with a square hole 1.6 x 1.6 (genus 1, all edges sharp)
   can        a closed cylinder (genus 0)
   mug1, mug2 the cylinder with one or two torus handles (genus 1, 2): concave creases where they meet
+  gridblock, gridplate1  the box and the plate with one hole, their faces sampled on a square grid
+             (every square four cocircular points) instead of blue noise
 
 Usage: bench/cad_sweep3.py [BUILD_DIR (build-bench)] [OUT (out/cad_sweep3)] [N,N,... (2000,6000,20000)]
 Writes OUT/data/*.xyz (kept: a second run with another build reads the same sets), OUT/out/*.json
@@ -107,6 +109,30 @@ def can_with_handles(rng, m, R, H, handles):
     return np.vstack([can[~in_tori(can)], tor[~in_can]])
 
 
+def grid_plate(a, b, c, n, hole=0.0):
+    """The box [-a,a]x[-b,b]x[-c,c] (minus a round hole of radius `hole` along z) with its faces
+    sampled on a square grid of about n points (the hole's wall in rings): every grid square four
+    cocircular points, coplanar up to rounding once rotated."""
+    area = 8 * (a * b + a * c + b * c) + (2 * math.pi * hole * 2 * c - 2 * math.pi * hole * hole if hole else 0)
+    h = math.sqrt(area / n)
+
+    def steps(lo, hi):
+        k = max(1, int(round((hi - lo) / h)))
+        return [lo + (hi - lo) * i / k for i in range(k + 1)]
+
+    xs, ys, zs = steps(-a, a), steps(-b, b), steps(-c, c)
+    pts = {(x, y, z) for x in xs for y in ys for z in (-c, c)}
+    pts |= {(x, y, z) for x in xs for z in zs for y in (-b, b)}
+    pts |= {(x, y, z) for y in ys for z in zs for x in (-a, a)}
+    p = np.array(sorted(pts))
+    if hole:
+        p = p[np.hypot(p[:, 0], p[:, 1]) > hole + 1e-9]
+        k = int(round(2 * math.pi * hole / h))
+        t = 2 * math.pi * np.arange(k) / k
+        p = np.vstack([p] + [np.c_[hole * np.cos(t), hole * np.sin(t), np.full(k, z)] for z in zs])
+    return p
+
+
 SHAPES = {
     "block": (lambda rng, m: box_minus(rng, m, 2, 1, 0.3), 0),
     "plate1": (lambda rng, m: box_minus(rng, m, 2, 1, 0.3, [(0, 0, 0.4)]), 1),
@@ -117,6 +143,11 @@ SHAPES = {
     "mug1": (lambda rng, m: can_with_handles(rng, m, 1, 2, [(1.0, 0.55, 0.12)]), 1),
     "mug2": (lambda rng, m: can_with_handles(rng, m, 1, 2.5, [(0.7, 0.45, 0.1), (1.8, 0.45, 0.1)]), 2),
 }
+# Faces sampled on a grid instead of blue noise (n points, no thinning).
+GRID_SHAPES = {
+    "gridblock": (lambda n: grid_plate(2, 1, 0.3, n), 0),
+    "gridplate1": (lambda n: grid_plate(2, 1, 0.3, n, 0.4), 1),
+}
 
 
 def main():
@@ -125,18 +156,21 @@ def main():
     ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else [2000, 6000, 20000]
     cli = ts.prepare(build, out)
     rows = []
-    for si, (fam, (gen, genus)) in enumerate(SHAPES.items()):
+    for si, (fam, (gen, genus)) in enumerate(list(SHAPES.items()) + list(GRID_SHAPES.items())):
         for n in ns:
             for seed in SEEDS:
                 name = f"{fam}_N{n}_s{seed}"
                 path = os.path.join(out, "data", name + ".xyz")
                 if not os.path.exists(path):  # (another build on the same sets: the data are kept)
                     rng = np.random.default_rng([si, n, seed])
-                    pts = hs.thin_to(gen(rng, 12 * n), n, tolerance=0.04, rounds=10)
+                    if fam in GRID_SHAPES:
+                        pts = gen(n)
+                    else:
+                        pts = hs.thin_to(gen(rng, 12 * n), n, tolerance=0.04, rounds=10)
                     pts = (pts @ ts.random_rotation(rng).T) * 3.7 + [1, -2, 5]
                     np.savetxt(path, pts[rng.permutation(len(pts))], fmt="%.17g")
                 hs.run_set(cli, out, fam, name, path, (1, genus), rows)
-    hs.write_table(out, list(SHAPES), rows)
+    hs.write_table(out, list(SHAPES) + list(GRID_SHAPES), rows)
 
 
 if __name__ == "__main__":
