@@ -56,7 +56,9 @@ bool nearly_flat(const Body3& b, std::size_t t, double radius) {
 // rounding chose, and two of them pass a label to each other at confidence 1 (cos = +-1): a label
 // that entered the crust anywhere ran along the whole face and into the part below it at full
 // confidence. Two such tetrahedra pass no label to each other; each gets its label from its other
-// neighbours.
+// neighbours. Nor has such a tetrahedron a radius (Labels3::lrad = kFlatLogRadius, as an exactly
+// flat one): the growth takes the inside tetrahedra largest ball first and starts from the
+// largest, and the crust's came first (an L-shaped bracket kept a tent across its notch).
 constexpr double kCoplanarRatio = 1e6;
 // ... and so is a tetrahedron six times whose volume is under kCoplanarVolume times the cube of its
 // longest edge (a height of about 10^-12 of its size), whatever its computed radius: four points
@@ -68,7 +70,7 @@ constexpr double kCoplanarVolume = 1e-12;
 
 // Flags of a tetrahedron (circumballs).
 constexpr char kFlatHull = 1;  // on the convex hull and nearly flat (kFlatHullRatio)
-constexpr char kCoplanar = 2;  // coplanar up to rounding (kCoplanarRatio)
+constexpr char kCoplanar = 2;  // coplanar up to rounding (kCoplanarRatio, kCoplanarVolume)
 
 // The circumballs, and each tetrahedron's flags.
 std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
