@@ -36,7 +36,8 @@ using Ball = std::array<double, 4>;  // centre xyz, radius (radius < 0: flat)
 // neighbours label it.
 constexpr double kFlatHullRatio = 64;
 
-bool nearly_flat(const Body3& b, std::size_t t, double radius) {
+// The squared length of t's longest edge.
+double longest_edge2(const Body3& b, std::size_t t) {
   const auto& v = b.tets[t];
   double e2 = 0;
   for (int i = 0; i < 4; ++i)
@@ -45,7 +46,7 @@ bool nearly_flat(const Body3& b, std::size_t t, double radius) {
       const double* q = b.P(v[uz(j)]);
       e2 = std::max(e2, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
     }
-  return radius > kFlatHullRatio * std::sqrt(e2);
+  return e2;
 }
 
 // A tetrahedron whose circumradius exceeds kCoplanarRatio times its longest edge has four points
@@ -101,15 +102,12 @@ std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
       ball[t] = o;
       char f = 0;
       if (o[3] > 0) {
-        const auto d2 = [](const double* u, const double* w) {
-          return (u[0] - w[0]) * (u[0] - w[0]) + (u[1] - w[1]) * (u[1] - w[1]) + (u[2] - w[2]) * (u[2] - w[2]);
-        };
-        const double longest2 = std::max({nb, nc, nd, d2(e1, e2), d2(e1, e3), d2(e2, e3)});
-        const double longest = std::sqrt(longest2);
+        const double longest2 = longest_edge2(b, t), longest = std::sqrt(longest2);
         // (den = 2 e1 . (e2 x e3), twelve times the volume.)
         if (o[3] > kCoplanarRatio * longest || std::fabs(den) < 2 * kCoplanarVolume * longest2 * longest) f |= kCoplanar;
         const auto& nt = b.nbr[t];
-        if ((nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0) && nearly_flat(b, t, o[3])) f |= kFlatHull;
+        const bool hull = nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
+        if (hull && o[3] > kFlatHullRatio * longest) f |= kFlatHull;
       }
       flags[t] = f;
     }
