@@ -59,6 +59,26 @@ struct Rotated {
   PointSet points;
 };
 
+// The samples shuffled, and rotated (points).
+Rotated shuffled_and_rotated(std::vector<P> local, std::mt19937_64& rng) {
+  Rotated s;
+  s.local = std::move(local);
+  std::shuffle(s.local.begin(), s.local.end(), rng);
+  s.points = rotated(s.local, rng);
+  return s;
+}
+
+// The default reconstruction, which must be complete and valid; genus: the validator's.
+Mesh3Result reconstruct_valid(const PointSet& p, int* genus = nullptr) {
+  Mesh3Result r;
+  EXPECT_TRUE(reconstruct3(p, {}, r).is_ok());
+  EXPECT_TRUE(r.complete);
+  MeshCheck mc;
+  EXPECT_TRUE(validate_mesh3(p, r.mesh, &mc).is_ok()) << mc.reason;
+  if (genus) *genus = mc.genus;
+  return r;
+}
+
 // Largest distance from the surface to the true one (in the samples' frame: the rotation is linear).
 template <class Distance>
 double surface_to_truth(const Rotated& s, const TriMesh3& m, Distance distance) {
@@ -71,11 +91,7 @@ Rotated rotated_box(const P& half, double h, unsigned seed) {
   const double area = 8 * (half[0] * half[1] + half[0] * half[2] + half[1] * half[2]);
   const long n = std::lround(30 * area / (M_PI * h * h / 4));
   for (long i = 0; i < n; ++i) darts.offer(test::detail_gen3::on_box(rng, half[0], half[1], half[2]));
-  Rotated box;
-  box.local = darts.kept();
-  std::shuffle(box.local.begin(), box.local.end(), rng);
-  box.points = rotated(box.local, rng);
-  return box;
+  return shuffled_and_rotated(darts.kept(), rng);
 }
 
 // Measured: 0.49-0.57 spacings (triangles across the sharp edges cut their corners); 1.81-5.00
@@ -85,12 +101,9 @@ TEST(FlatFaces3Property, RotatedBoxStaysOnItsFaces) {
   constexpr double kH = 0.06;
   for (unsigned seed = 1; seed <= 4; ++seed) {
     const Rotated box = rotated_box(half, kH, seed);
-    Mesh3Result r;
-    ASSERT_TRUE(reconstruct3(box.points, {}, r).is_ok());
-    ASSERT_TRUE(r.complete);
-    MeshCheck mc;
-    EXPECT_TRUE(validate_mesh3(box.points, r.mesh, &mc).is_ok()) << mc.reason;
-    EXPECT_EQ(mc.genus, 0);
+    int genus = -1;
+    const Mesh3Result r = reconstruct_valid(box.points, &genus);
+    EXPECT_EQ(genus, 0);
     const double d = surface_to_truth(box, r.mesh, [&](const P& q) { return box_distance(q, half); }) / kH;
     std::printf("[ info ] rotated box, seed %u, %zu points: surface within %.2f spacings of the box\n", seed,
                 box.points.size(), d);
@@ -147,22 +160,14 @@ Rotated rotated_l(double h, unsigned seed) {
     p[static_cast<std::size_t>((f->axis + 2) % 3)] = f->axis == 1 ? s : t;
     darts.offer(p);
   }
-  Rotated l;
-  l.local = darts.kept();
-  std::shuffle(l.local.begin(), l.local.end(), rng);
-  l.points = rotated(l.local, rng);
-  return l;
+  return shuffled_and_rotated(darts.kept(), rng);
 }
 
 TEST(FlatFaces3Property, RotatedBracketHasNoBridgeFaces) {
   constexpr double kH = 0.05;
   for (unsigned seed = 1; seed <= 6; ++seed) {
     const Rotated l = rotated_l(kH, seed);
-    Mesh3Result r;
-    ASSERT_TRUE(reconstruct3(l.points, {}, r).is_ok());
-    ASSERT_TRUE(r.complete);
-    MeshCheck mc;
-    EXPECT_TRUE(validate_mesh3(l.points, r.mesh, &mc).is_ok()) << mc.reason;
+    const Mesh3Result r = reconstruct_valid(l.points);
     const double worst = surface_to_truth(l, r.mesh, l_distance);
     std::printf("[ info ] rotated bracket, seed %u, %zu points: surface within %.2f spacings, %zu bridge faces\n",
                 seed, l.points.size(), worst / kH, r.bridge_faces);
@@ -183,7 +188,7 @@ TEST(FlatFaces3Property, RotatedGridPlateKeepsItsHole) {
   int good = 0;
   for (const double h : {0.1, 0.05})
     for (unsigned seed = 1; seed <= 2; ++seed) {
-      Rotated plate;
+      std::vector<P> local;
       const auto steps = [&](double lo, double hi) {
         std::vector<double> v;
         const long n = std::max(1L, std::lround((hi - lo) / h));
@@ -192,7 +197,7 @@ TEST(FlatFaces3Property, RotatedGridPlateKeepsItsHole) {
       };
       const std::vector<double> xs = steps(-half[0], half[0]), ys = steps(-half[1], half[1]), zs = steps(-half[2], half[2]);
       const auto keep = [&](const P& p) {
-        if (std::hypot(p[0], p[1]) > kR + 1e-9) plate.local.push_back(p);
+        if (std::hypot(p[0], p[1]) > kR + 1e-9) local.push_back(p);
       };
       for (double x : xs)
         for (double y : ys)
@@ -209,11 +214,10 @@ TEST(FlatFaces3Property, RotatedGridPlateKeepsItsHole) {
       for (double z : zs)
         for (long k = 0; k < ring; ++k) {
           const double a = 2 * M_PI * static_cast<double>(k) / static_cast<double>(ring);
-          plate.local.push_back({kR * std::cos(a), kR * std::sin(a), z});
+          local.push_back({kR * std::cos(a), kR * std::sin(a), z});
         }
       std::mt19937_64 rng(seed);
-      std::shuffle(plate.local.begin(), plate.local.end(), rng);
-      plate.points = rotated(plate.local, rng);
+      const Rotated plate = shuffled_and_rotated(std::move(local), rng);
       const Surfaces3Result r = [&] {
         Surfaces3Options o;
         o.topology = Topology3::Auto;
