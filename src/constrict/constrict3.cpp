@@ -20,6 +20,7 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/detail/constrict3_impl.hpp"
+#include "constrict/detail/share3.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/canonical_order.hpp"
@@ -592,6 +593,21 @@ Status reconstruct3(const PointSet& points, const Constrict3Options& options, Me
                     Constrict3Visitor* visitor) {
   Constrictor3 c;
   return Constrictor3::run(c, points, options, result, visitor);
+}
+
+std::vector<float> detail::circumball_labels3(const PointSet& points, Delaunay3& dt) {
+  // The tetrahedra and their adjacency are lent to a body for the propagation (no copy) and given
+  // back.
+  Body3 b;
+  b.pts = &points;
+  b.n = points.size();
+  b.tets = std::move(dt.tets);
+  b.nbr = std::move(dt.neighbors);
+  b.T0 = b.tets.size();
+  std::shared_ptr<const Labels3> labels = compute_labels3(b);
+  dt.tets = std::move(b.tets);
+  dt.neighbors = std::move(b.nbr);
+  return labels->label;
 }
 
 Status detail::reconstruct3_sharing(const PointSet& points, const Constrict3Options& options, Delaunay3&& dt,

@@ -19,7 +19,7 @@
 
 namespace constrict::test {
 
-enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window, Block, Plate };
+enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window, Block, Plate, Stack };
 
 struct Sample3 {
   PointSet points;
@@ -121,7 +121,7 @@ inline double segment_distance(const P& p, const P& a, const P& b) {
 }
 }  // namespace detail_gen3
 
-/// @param gap distance between neighbouring surfaces in spacings (Spheres, Hollow)
+/// @param gap distance between neighbouring surfaces in spacings (Spheres, Hollow, Stack)
 /// @param h the spacing (before the random scale)
 inline Sample3 make_surfaces3(Family3 f, double gap, unsigned seed, double h = 0.12) {
   using detail_gen3::P;
@@ -215,6 +215,17 @@ inline Sample3 make_surfaces3(Family3 f, double gap, unsigned seed, double h = 0
       throw_on(2 * M_PI * r * 0.6, [&] {
         const double ph = 2 * M_PI * u(rng);
         return P{r * std::cos(ph), r * std::sin(ph), 0.6 * u(rng) - 0.3};
+      }, all);
+      break;
+    }
+    case Family3::Stack: {  // two boxes, one on the other, their large faces gap spacings apart
+      s.surfaces = 2;
+      const double dz = 0.6 + gap * h;
+      const double area = 8 * (2 * 1 + 2 * 0.3 + 1 * 0.3);
+      throw_on(area, [&] { return detail_gen3::on_box(rng, 2, 1, 0.3); }, all);
+      throw_on(area, [&] {
+        const P q = detail_gen3::on_box(rng, 2, 1, 0.3);
+        return P{q[0], q[1], q[2] + dz};
       }, all);
       break;
     }

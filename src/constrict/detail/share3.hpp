@@ -3,6 +3,8 @@
 // src/topology/surfaces3.cpp, builds it for its own inference first).
 #pragma once
 
+#include <vector>
+
 #include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
 
@@ -15,5 +17,10 @@ namespace constrict::detail {
 // of the gap rule, which lets the handle stage seal the cavities that separate them.
 Status reconstruct3_sharing(const PointSet& points, const Constrict3Options& options, Delaunay3&& dt, Mesh3Result& result,
                             std::vector<int> part_of = {});
+
+// The engine's circumball labels of dt's tetrahedra (+confidence outside, -confidence inside;
+// docs/reconstruction-3d.md §4.5), as the growth reads them: the auto topology's test of parts
+// that nearly touch (docs/topology.md). dt is unchanged when this returns (its arrays are lent).
+std::vector<float> circumball_labels3(const PointSet& points, Delaunay3& dt);
 
 }  // namespace constrict::detail
