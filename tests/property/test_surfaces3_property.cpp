@@ -581,6 +581,25 @@ TEST(Surfaces3Property, StackedBoxesAFewSpacingsApartStayTwoParts) {
     }
 }
 
+// Two boxes 2 spacings apart are one part for both gap rules: one surface, joined across the gap
+// where the growth took outside steps to reach the second box. Its labels are right (the gap
+// outside), and the genus-0 growth left cuts inside the second box between those steps: closing
+// them made handles whose every loop runs through the outside steps (before: genus 3, 1, 1, 1 on
+// these four). A closing must now close a loop through tetrahedra labelled inside
+// (handles3.cpp, loop_through_inside).
+TEST(Surfaces3Property, StackedBoxesTwoSpacingsApartGetNoFalseHandle) {
+  for (const auto& [h, seed] : {std::pair<double, unsigned>{0.08, 1}, {0.06, 1}, {0.06, 3}, {0.06, 5}}) {
+    const test::Sample3 s = test::make_surfaces3(Family3::Stack, 2.0, seed, h);
+    const std::string what = "stack gap 2, h " + std::to_string(h) + " seed " + std::to_string(seed) + ", " +
+                             std::to_string(s.points.size()) + " points";
+    const Surfaces3Result r = run_auto(s.points);
+    std::cout << "[ info ] " << what << ": " << r.surfaces.size() << " surface(s), genus " << r.genus << "\n";
+    ASSERT_TRUE(r.valid()) << what << ": " << r.check;
+    expect_closed_oriented(r, what);
+    EXPECT_EQ(r.genus, 0) << what << ": a handle that is not there";
+  }
+}
+
 // A regression file of tests/data/topology3 in auto mode: one closed, oriented surface.
 Surfaces3Result run_regression_file(const std::string& name, const char* what) {
   PointSet p;

@@ -208,7 +208,7 @@ std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const 
 // a sealed cavity that leaves fewer surfaces holding points of two parts.
 // log (may be null) receives every change the decision keeps.
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
-                                      std::shared_ptr<std::vector<Handle3Change>> log);
+                                      std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels = nullptr);
 
 // ---- edge flips (flips3.cpp; docs/reconstruction-3d.md §4) -------------------------------------
 
