@@ -581,6 +581,40 @@ TEST(Surfaces3Property, StackedBoxesAFewSpacingsApartStayTwoParts) {
     }
 }
 
+// The labels' split does not depend on the file order, a power-of-two scale or a cyclic permutation
+// of the axes: the same two parts (the engine's canonical order and the labels' arithmetic see the
+// same points); without the axis permutation, the same triangles.
+TEST(Surfaces3Property, LabelSplitIndependentOfOrderAxesAndScale) {
+  const test::Sample3 s = test::make_surfaces3(Family3::Stack, 2.5, 2, 0.08);
+  const Surfaces3Result a = run_auto(s.points);
+  ASSERT_TRUE(a.valid()) << a.check;
+  ASSERT_EQ(a.parts_split_by_labels, 1u);
+  for (const auto& [shift, exp2] : std::vector<std::pair<int, int>>{{0, 0}, {0, -20}, {1, 0}, {2, 30}}) {
+    const std::string what = "shift " + std::to_string(shift) + " 2^" + std::to_string(exp2);
+    const PointSet q = transformed(s.points, 40u + static_cast<unsigned>(shift), shift, exp2);
+    const Surfaces3Result b = run_auto(q);
+    ASSERT_TRUE(b.valid()) << what << ": " << b.check;
+    EXPECT_EQ(b.parts_split_by_labels, 1u) << what;
+    EXPECT_EQ(b.surfaces.size(), 2u) << what;
+    EXPECT_EQ(b.genus, 0) << what;
+    std::vector<std::size_t> sizes_a, sizes_b;
+    for (const auto& x : a.surfaces) sizes_a.push_back(x.points.size());
+    for (const auto& x : b.surfaces) sizes_b.push_back(x.points.size());
+    std::sort(sizes_a.begin(), sizes_a.end());
+    std::sort(sizes_b.begin(), sizes_b.end());
+    EXPECT_EQ(sizes_a, sizes_b) << what;
+    if (shift == 0) {  // (a power-of-two scale keeps the canonical order: the same triangles)
+      std::set<std::array<Coord3, 3>> back;
+      for (auto t : coordinate_triangles(q, b.mesh.mesh)) {
+        for (auto& c : t)
+          for (double& x : c) x = std::ldexp(x, -exp2);
+        back.insert(t);
+      }
+      EXPECT_EQ(back, coordinate_triangles(s.points, a.mesh.mesh)) << what;
+    }
+  }
+}
+
 // Two boxes 2 spacings apart are one part for both gap rules: one surface, joined across the gap
 // where the growth took outside steps to reach the second box. Its labels are right (the gap
 // outside), and the genus-0 growth left cuts inside the second box between those steps: closing
