@@ -24,7 +24,6 @@ and OUT/table.md. Needs numpy (python3-numpy). About 3 minutes."""
 import importlib.util
 import math
 import os
-import sys
 
 import numpy as np
 
@@ -151,10 +150,7 @@ GRID_SHAPES = {
 
 
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
-    out = sys.argv[2] if len(sys.argv) > 2 else "out/cad_sweep3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else [2000, 6000, 20000]
-    cli = ts.prepare(build, out)
+    cli, out, ns = ts.args("out/cad_sweep3", [2000, 6000, 20000])
     rows = []
     for si, (fam, (gen, genus)) in enumerate(list(SHAPES.items()) + list(GRID_SHAPES.items())):
         for n in ns:

@@ -23,7 +23,6 @@ import json
 import math
 import os
 import subprocess
-import sys
 
 import numpy as np
 
@@ -149,10 +148,7 @@ def write_table(out, fams, rows):
 
 
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
-    out = sys.argv[2] if len(sys.argv) > 2 else "out/handles_sweep3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else [3000, 10000, 30000]
-    cli = ts.prepare(build, out)
+    cli, out, ns = ts.args("out/handles_sweep3", [3000, 10000, 30000])
     rows = []
     for fi, (fam, params) in enumerate(FAMS):
         for param in params:

@@ -21,7 +21,6 @@ Writes OUT/data/*.xyz (kept: a second run with another build reads the same sets
 and OUT/table.md (right sets per family and gap). Needs numpy (python3-numpy). About 5 minutes."""
 import importlib.util
 import os
-import sys
 
 import numpy as np
 
@@ -54,10 +53,7 @@ def make(fam, n, gap, rng):
 
 
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
-    out = sys.argv[2] if len(sys.argv) > 2 else "out/near_parts3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else [3000, 8000]
-    cli = ts.prepare(build, out)
+    cli, out, ns = ts.args("out/near_parts3", [3000, 8000])
     rows, groups = [], []
     for fi, fam in enumerate(FAMILIES):
         for gap in GAPS:

@@ -192,12 +192,18 @@ def prepare(build, out):
     return cli
 
 
-def main():
+def args(default_out, default_ns):
+    """The sweeps' command line: [BUILD_DIR (build-bench)] [OUT (default_out)] [N,N,... (default_ns)];
+    returns the CLI (prepare()), OUT and the sizes."""
     build = sys.argv[1] if len(sys.argv) > 1 else "build-bench"
-    out = sys.argv[2] if len(sys.argv) > 2 else "out/topology_sweep3"
-    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else NS
+    out = sys.argv[2] if len(sys.argv) > 2 else default_out
+    ns = [int(x) for x in sys.argv[3].split(",")] if len(sys.argv) > 3 and sys.argv[3] else list(default_ns)
+    return prepare(build, out), out, ns
+
+
+def main():
+    cli, out, ns = args("out/topology_sweep3", NS)
     seed = int(sys.argv[4]) if len(sys.argv) > 4 else 31337
-    cli = prepare(build, out)
     rows = []
     for fi, fam in enumerate(FAMS):
         for N in ns:
