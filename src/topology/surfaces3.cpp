@@ -320,11 +320,13 @@ Parts split_by_labels(const PointSet& pts, Delaunay3& dt, const std::vector<int>
     bool one_part = true;
     for (int x : v) one_part = one_part && parts.part_of[uz(x)] == k;
     if (!one_part) continue;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const int a = piece[uz(v[uz(i)])], b = piece[uz(v[uz(j)])];
-        if (a == b) continue;
-        std::vector<int>& on = touching[{std::min(a, b), std::max(a, b)}];
+    std::array<int, 4> pc{};  // the tetrahedron's pieces, ascending, each once
+    for (int i = 0; i < 4; ++i) pc[uz(i)] = piece[uz(v[uz(i)])];
+    std::sort(pc.begin(), pc.end());
+    const auto end = std::unique(pc.begin(), pc.end());
+    for (auto i = pc.begin(); i != end; ++i)
+      for (auto j = i + 1; j != end; ++j) {
+        std::vector<int>& on = touching[{*i, *j}];
         if (label[t] < 0) on.insert(on.end(), v.begin(), v.end());
       }
   }
@@ -827,19 +829,22 @@ bool planes_apart(const PointSet& pts, const Parts& parts) {
     for (int c = 0; c < 3; ++c) centroid[a][uz(c)] /= static_cast<double>(parts.points[a].size());
   }
   constexpr double kRound = 4 * std::numeric_limits<double>::epsilon();
-  // max (or min) of u.p over a part, and the largest rounding bound of those products
-  const auto extent = [&](std::size_t a, const std::array<double, 3>& u, bool upper, double& bound) {
-    double best = upper ? -HUGE_VAL : HUGE_VAL;
-    bound = 0;
+  // The smallest and largest u.p over a part, and the largest rounding bound of those products.
+  struct Extent {
+    double lo = HUGE_VAL, hi = -HUGE_VAL, bound = 0;
+  };
+  const auto extent = [&](std::size_t a, const std::array<double, 3>& u) {
+    Extent e;
     for (int v : parts.points[a]) {
       const double* p = pts[uz(v)];
       const double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
-      best = upper ? std::max(best, d) : std::min(best, d);
+      e.lo = std::min(e.lo, d);
+      e.hi = std::max(e.hi, d);
       // (plus the absolute error of products in the subnormal range)
-      bound = std::max(bound, kRound * (std::fabs(u[0] * p[0]) + std::fabs(u[1] * p[1]) + std::fabs(u[2] * p[2])) +
-                                  4 * std::numeric_limits<double>::denorm_min());
+      e.bound = std::max(e.bound, kRound * (std::fabs(u[0] * p[0]) + std::fabs(u[1] * p[1]) + std::fabs(u[2] * p[2])) +
+                                      4 * std::numeric_limits<double>::denorm_min());
     }
-    return best;
+    return e;
   };
   for (std::size_t a = 0; a < k; ++a)
     for (std::size_t b = a + 1; b < k; ++b) {
@@ -849,11 +854,9 @@ bool planes_apart(const PointSet& pts, const Parts& parts) {
       for (const std::array<double, 3>& u : {d, std::array<double, 3>{1, 0, 0}, std::array<double, 3>{0, 1, 0},
                                              std::array<double, 3>{0, 0, 1}}) {
         if (!std::isfinite(u[0] + u[1] + u[2])) continue;
-        double ba = 0, bb = 0;
-        const double hi_a = extent(a, u, true, ba), lo_b = extent(b, u, false, bb);
-        double ba2 = 0, bb2 = 0;
-        const double hi_b = extent(b, u, true, bb2), lo_a = extent(a, u, false, ba2);
-        if (lo_b - hi_a > 2 * (ba + bb) || lo_a - hi_b > 2 * (ba2 + bb2)) {
+        const Extent ea = extent(a, u), eb = extent(b, u);
+        const double margin = 2 * (ea.bound + eb.bound);
+        if (eb.lo - ea.hi > margin || ea.lo - eb.hi > margin) {
           apart = true;
           break;
         }
