@@ -109,14 +109,47 @@ Status check_dimension_options(const ReconstructArgs& a, int dim) {
   return Status::ok();
 }
 
-// Indices written are the file's rows, also after --merge-duplicates (docs/cli.md): only .idx
-// holds indices; the other formats write coordinates, the same either way.
+// Indices written are the file's rows, also after --merge-duplicates (docs/cli.md): .idx and
+// .rings hold indices; the other formats write coordinates, the same either way.
+bool writes_indices(PolygonFormat fmt) { return fmt == PolygonFormat::Idx || fmt == PolygonFormat::Rings; }
+
 Status write_polygon_rows(const std::string& path, const PointSet& pts, const ReadReport& rep,
                           const std::vector<int>& boundary, PolygonFormat fmt, const PolygonSvgLayers* layers) {
-  if (rep.merged.empty() || fmt != PolygonFormat::Idx) return write_polygon2(path, pts, boundary, fmt, layers);
+  if (rep.merged.empty() || !writes_indices(fmt)) return write_polygon2(path, pts, boundary, fmt, layers);
   std::vector<int> rows(boundary.size());
   for (std::size_t i = 0; i < boundary.size(); ++i) rows[i] = file_row(rep, boundary[i]);
   return write_polygon2(path, file_row_points(pts, rep), rows, fmt, layers);
+}
+
+Status write_rings_rows(const std::string& path, const PointSet& pts, const ReadReport& rep, const std::vector<Ring2>& rings,
+                        PolygonFormat fmt, const PolygonSvgLayers* layers) {
+  if (rep.merged.empty() || !writes_indices(fmt)) return write_rings2(path, pts, rings, fmt, layers);
+  std::vector<Ring2> rows = rings;
+  for (Ring2& r : rows)
+    for (int& v : r.indices) v = file_row(rep, v);
+  return write_rings2(path, file_row_points(pts, rep), rows, fmt, layers);
+}
+
+// The report's point indices as the file's rows (after --merge-duplicates): the rings, the
+// inferred rings of single mode, the points the constriction left inside or unplaced.
+void report_rows(const ReadReport& rep, nlohmann::json& j) {
+  if (rep.merged.empty()) return;
+  const auto rows = [&](nlohmann::json& a) {
+    if (!a.is_array()) return;
+    for (auto& v : a)
+      if (v.is_number_integer()) v = file_row(rep, v.get<int>());
+  };
+  const auto ring_rows = [&](nlohmann::json& list) {
+    if (!list.is_array()) return;
+    for (auto& r : list)
+      if (r.is_object() && r.contains("indices")) rows(r["indices"]);
+  };
+  for (const char* key : {"stuck_points", "unplaced_points"})
+    if (j.contains(key)) rows(j[key]);
+  if (j.contains("rings")) ring_rows(j["rings"]);
+  if (j.contains("topology") && j["topology"].is_object() && j["topology"].contains("inferred") &&
+      j["topology"]["inferred"].is_object() && j["topology"]["inferred"].contains("ring_list"))
+    ring_rows(j["topology"]["inferred"]["ring_list"]);
 }
 
 // The surface (and body) with the file's points as vertices, so that face indices are file rows
@@ -187,7 +220,7 @@ int finish_rings2(const ReconstructArgs& a, const PointSet& pts, const ReadRepor
   GammaFaces dt_edges;
   if (fmt == PolygonFormat::Svg)
     if (Status s = svg_layers(a, pts, "rings", dt_edges, layers); !s) return fail(s);
-  if (Status s = write_rings2(a.out, pts, rr.rings, fmt, &layers); !s) return fail(s);
+  if (Status s = write_rings_rows(a.out, pts, rep, rr.rings, fmt, &layers); !s) return fail(s);
   const auto t4 = Clock::now();
   const std::size_t n = pts.size(), sh = rr.inferred.shells(), ho = rr.inferred.holes();
   if (!a.report.empty()) {
@@ -195,6 +228,7 @@ int finish_rings2(const ReconstructArgs& a, const PointSet& pts, const ReadRepor
     add_common_json(a, rep, 2, n, n, j);
     add_method_json(a, VoronoiSkeletonStats{}, j);
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"write", ms(tw, t4)}, {"total", ms(t0, Clock::now())}});
+    report_rows(rep, j);
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (int rc = a.render.empty() ? 0 : render_rings2(a.render, pts, rr.rings)) return rc;
@@ -278,6 +312,7 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     add_method_json(a, skel, j);
     if (is_skeleton(a)) j["fallback"] = nullptr;
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms(t3, t4)}, {"total", ms(t0, Clock::now())}});
+    report_rows(rep, j);
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
@@ -489,6 +524,7 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     add_method_json(a, skel, j);
     j["timings_ms"].update({{"read", ms(t0, t1)}, {"validate", ms_validate}, {"write", ms_write}, {"total", ms(t0, Clock::now())}});
     if (infer) j["timings_ms"]["topology_note"] = ms_note;
+    report_rows(rep, j);
     if (Status s = write_report(a.report, j); !s) return fail(s);
   }
   if (!r.complete) {
