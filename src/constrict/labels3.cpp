@@ -15,6 +15,7 @@
 #include <tbb/task_group.h>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -69,9 +70,32 @@ constexpr double kCoplanarRatio = 1e6;
 // lay 2.6-5.0 median edges off; with this test 7 of 8 are right and within 0.4 edges.
 constexpr double kCoplanarVolume = 1e-12;
 
+// The growth takes the inside tetrahedra largest ball first (from the medial axis outwards). Points
+// that are cospherical (a torus or any surface of revolution sampled on a grid of its parameters:
+// two neighbouring rings of points lie on one sphere) give a cell of many tetrahedra with one ball,
+// any tetrahedralization of which is Delaunay; their radii differ by rounding only (10^-13 on a grid
+// torus), and in that order the growth locked on the cell's tetrahedra whose points it had already
+// reached from elsewhere: a grid torus kept 5 900 inside tetrahedra (a third of its volume) out of
+// the body, 104 points unreached, 566 faces across its tube. Among balls equal to within
+// kDepthTie (relative), the tetrahedra nearer the ball's centre go first (depth: the distance of
+// the centroid from the centre over the radius, in [0, 1)); then the torus grows whole (its one
+// cut left), and the opposite order leaves two thirds of it out.
+constexpr double kDepthTie = 1e-9;
+double depth(const Body3& b, std::size_t t, const Ball& ball) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double c = 0.25 * (b.P(b.tets[t][0])[k] + b.P(b.tets[t][1])[k] + b.P(b.tets[t][2])[k] + b.P(b.tets[t][3])[k]);
+    d2 += (c - ball[uz(k)]) * (c - ball[uz(k)]);
+  }
+  return std::min(1.0, std::sqrt(d2) / ball[3]);
+}
+
 // Flags of a tetrahedron (circumballs).
 constexpr char kFlatHull = 1;  // on the convex hull and nearly flat (kFlatHullRatio)
 constexpr char kCoplanar = 2;  // coplanar up to rounding (kCoplanarRatio, kCoplanarVolume)
+constexpr char kSeam = 4;      // exactly flat (no ball): a seam (Through below)
+constexpr char kThrough = 8;   // passes labels on through a seam (Through entries)
+constexpr char kFlat = kSeam | kCoplanar;
 
 // The circumballs, and each tetrahedron's flags.
 std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
@@ -109,6 +133,7 @@ std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
         const bool hull = nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
         if (hull && o[3] > kFlatHullRatio * longest) f |= kFlatHull;
       }
+      if (!(o[3] > 0)) f |= kSeam;
       flags[t] = f;
     }
   });
@@ -133,6 +158,52 @@ double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
   const double dist =
       sgn * (nrm[0] * (ball[0] - p0[0]) + nrm[1] * (ball[1] - p0[1]) + nrm[2] * (ball[2] - p0[2])) / ln;
   return dist / ball[3];
+}
+
+// Flat tetrahedra. Points on a grid of a surface of revolution (a torus or a vase sampled on a
+// grid of its parameters: every ring of points cocircular and coplanar, every grid square an
+// isosceles trapezoid, cocircular and coplanar) and machined faces sampled on a grid give whole
+// sets of tetrahedra with no volume: across the solid, one disc per ring; on the surface, one per
+// grid square. An exactly flat one has no ball and passed nothing: the slabs between a vase's rings
+// got their labels at random, and the growth left a wall across the vase at each ring (a grid vase:
+// 15.4 of its 19.5 units of area were faces across its inside). One coplanar up to rounding has a
+// ball that is a half-space on a side rounding chose, and its cosines are as random.
+// So (docs/reconstruction-3d.md §4.10):
+// - an exactly flat tetrahedron (a seam) passes labels *through* itself: from a tetrahedron on one
+//   side to those on its other side (through several seams when they are stacked), with the cosine
+//   of their two balls; a hull face beyond a seam seeds the tetrahedron before it;
+// - the cosines through a seam and those to or from a tetrahedron coplanar up to rounding count
+//   kWeakPass times less: they decide only where no other path reaches (where balls pass through
+//   one circle, on both sides of a grid square or a ring's disc, they meet at cos near 1 whether
+//   the square is a wall or a disc across the solid: passed at full confidence, grid-faced plates
+//   lost their holes);
+// - afterwards a connected set of flat tetrahedra that lies between tetrahedra labelled inside only
+//   (no hull face, no other neighbour) is inside too (a disc across the solid), with the radius of
+//   the largest inside ball beside it (label_flat_sets).
+constexpr double kWeakPass = 1.0 / 1024;  // below the bucket queue's first bucket
+struct Through {
+  std::uint32_t from;  // the tetrahedron that passes the label on
+  std::uint32_t to;    // the one it reaches through a seam
+  float code;          // LabelQueue::encode of the cosine of their balls
+};
+constexpr std::size_t kMaxSeamWalk = 64;  // seams visited per face (a bound on pathological stacks)
+
+// The unnormalised outward normal of face i of t (kFaceOut order).
+std::array<double, 3> face_normal(const Body3& b, std::size_t t, int i) {
+  const auto& v = b.tets[t];
+  const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
+  const double* p1 = b.P(v[uz(kFaceOut[i][1])]);
+  const double* p2 = b.P(v[uz(kFaceOut[i][2])]);
+  const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  return {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+}
+
+// The index of t among m's neighbours.
+int back_index(const Body3& b, int m, int t) {
+  for (int k = 0; k < 4; ++k)
+    if (b.nbr[uz(m)][uz(k)] == t) return k;
+  return -1;
 }
 
 // Bucket queue over the confidence quantised to 1/kBuckets (a binary heap of the ~4 pushes per
@@ -188,6 +259,99 @@ class LabelQueue {
   int top_ = -1;
 };
 
+// Calls found(f, k, normal of face k of f) for each face k through which a walk from t into the
+// seam m0 leaves the seams on their other side: the faces of a seam whose outward normals point
+// against that of the face it was entered by; a neighbour across such a face that is a seam too is
+// walked into (at most kMaxSeamWalk seams).
+template <class Found>
+void seams_beyond(const Body3& b, const std::vector<char>& flags, int t, int m0, std::vector<std::pair<int, int>>& stack,
+                  std::vector<int>& seen, const Found& found) {
+  stack.assign(1, {m0, back_index(b, m0, t)});
+  seen.assign(1, m0);
+  while (!stack.empty()) {
+    const auto [f, j] = stack.back();
+    stack.pop_back();
+    if (j < 0) continue;
+    const auto nj = face_normal(b, uz(f), j);
+    for (int k = 0; k < 4; ++k) {
+      if (k == j) continue;
+      const auto nk = face_normal(b, uz(f), k);
+      if (!(nk[0] * nj[0] + nk[1] * nj[1] + nk[2] * nj[2] < 0)) continue;  // not across
+      const int n = b.nbr[uz(f)][uz(k)];
+      if (n >= 0 && uz(n) >= b.T0) continue;
+      if (n >= 0 && (flags[uz(n)] & kSeam)) {
+        if (seen.size() < kMaxSeamWalk && std::find(seen.begin(), seen.end(), n) == seen.end()) {
+          seen.push_back(n);
+          stack.push_back({n, back_index(b, n, f)});
+        }
+      } else {
+        found(f, k, nk);
+      }
+    }
+  }
+}
+
+// The cosine of t's ball with the outer half-space of the hull face k of the seam f (normal nk):
+// the signed distance of the centre beyond the face (away from t's points) over the radius.
+double beyond_hull_cos(const Body3& b, std::size_t t, int f, int k, const std::array<double, 3>& nk, const Ball& ball) {
+  const double* p0 = b.P(b.tets[uz(f)][uz(kFaceOut[k][0])]);
+  const double ln = std::sqrt(nk[0] * nk[0] + nk[1] * nk[1] + nk[2] * nk[2]);
+  if (!(ln > 0)) return NAN;
+  double side = 0;
+  for (int v : b.tets[t]) side += nk[0] * (b.P(v)[0] - p0[0]) + nk[1] * (b.P(v)[1] - p0[1]) + nk[2] * (b.P(v)[2] - p0[2]);
+  const double sgn = side > 0 ? -1.0 : 1.0;
+  return sgn * (nk[0] * (ball[0] - p0[0]) + nk[1] * (ball[1] - p0[1]) + nk[2] * (ball[2] - p0[2])) / ln / ball[3];
+}
+
+// A connected set of flat tetrahedra (joined across their shared faces) with no hull face, whose
+// other neighbours are all labelled inside, is inside (a ring's disc across a solid); the others
+// keep their labels (a grid square on the surface). An inside flat tetrahedron joins the growth with
+// the largest inside ball beside it (or beside its set), just after that tetrahedron: last of all,
+// the growth went past a ring's disc before it had crossed the whole disc, and the rest of the disc
+// stayed a wall. Never the seed (its radius is just below a neighbour's).
+void label_flat_sets(const Body3& b, const std::vector<char>& flags, Labels3& out) {
+  const std::size_t T0 = b.T0;
+  std::vector<int> flat;
+  for (std::size_t t = 0; t < T0; ++t)
+    if (flags[t] & kFlat) flat.push_back(static_cast<int>(t));
+  if (flat.empty()) return;
+  const auto index = [&](int t) {
+    return static_cast<int>(std::lower_bound(flat.begin(), flat.end(), t) - flat.begin());
+  };
+  const auto is_flat = [&](int m) { return m >= 0 && uz(m) < T0 && (flags[uz(m)] & kFlat); };
+  UnionFind uf(flat.size());
+  for (std::size_t k = 0; k < flat.size(); ++k)
+    for (int m : b.nbr[uz(flat[k])])
+      if (is_flat(m)) uf.join(static_cast<int>(k), index(m));
+  std::vector<double> sum(flat.size(), 0.0), set_lrad(flat.size(), kFlatLogRadius);
+  std::vector<int> count(flat.size(), 0);
+  std::vector<char> not_inside(flat.size(), 0);
+  for (std::size_t k = 0; k < flat.size(); ++k) {
+    const auto r = uz(uf.find(static_cast<int>(k)));
+    for (int m : b.nbr[uz(flat[k])]) {
+      if (is_flat(m)) continue;
+      if (m < 0 || uz(m) >= T0 || !(out.label[uz(m)] < 0)) {
+        not_inside[r] = 1;
+        continue;
+      }
+      sum[r] += out.label[uz(m)];
+      ++count[r];
+      set_lrad[r] = std::max(set_lrad[r], out.lrad[uz(m)]);
+    }
+  }
+  for (std::size_t k = 0; k < flat.size(); ++k) {
+    const auto r = uz(uf.find(static_cast<int>(k)));
+    if (not_inside[r] || count[r] == 0) continue;
+    const int t = flat[k];
+    out.label[uz(t)] = static_cast<float>(sum[r] / count[r]);
+    double own = kFlatLogRadius;
+    for (int m : b.nbr[uz(t)])
+      if (!is_flat(m) && m >= 0 && uz(m) < T0) own = std::max(own, out.lrad[uz(m)]);
+    if (!(own > kFlatLogRadius)) own = set_lrad[r];
+    if (own > kFlatLogRadius) out.lrad[uz(t)] = std::nextafter(own, -HUGE_VAL);
+  }
+}
+
 }  // namespace
 
 // The outer half-space of a hull face and the circumball of its tetrahedron meet at an angle
@@ -204,41 +368,92 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   // half-space), computed in parallel beforehand: the sequential propagation then reads only the
   // tetrahedron it pops, not its neighbours' balls.
   std::vector<std::array<float, 4>> pass(T0);
-  std::vector<char> flags(T0);  // kFlatHull, kCoplanar
+  std::vector<char> flags(T0);  // kFlatHull, kCoplanar, kSeam, kThrough
+  // Passes through seams (sorted by `from`), and the hull faces beyond seams (`to` unused).
+  std::vector<Through> through, hull_seeds;
   {
     const std::vector<Ball> ball = circumballs(b, flags);
+    const auto cosine = [](const Ball& x, const Ball& y) {
+      const double dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2];
+      return (x[3] * x[3] + y[3] * y[3] - (dx * dx + dy * dy + dz * dz)) / (2 * x[3] * y[3]);
+    };
     out->lrad.resize(T0);
+    std::atomic<bool> any_seam{false};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      bool seam_here = false;
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         const Ball& bt = ball[t];
-        out->lrad[t] = bt[3] > 0 && !(flags[t] & kCoplanar) ? std::log(bt[3]) : kFlatLogRadius;
+        seam_here = seam_here || (flags[t] & kSeam);
+        out->lrad[t] = bt[3] > 0 && !(flags[t] & kCoplanar) ? std::log(bt[3]) - kDepthTie * depth(b, t, bt) : kFlatLogRadius;
         for (int i = 0; i < 4; ++i) {
           const int m = b.nbr[t][uz(i)];
           float code = NAN;
           if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
             if (bt[3] > 0) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
-          } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0 &&
-                     !(flags[t] & flags[uz(m)] & kCoplanar)) {
-            const Ball& bm = ball[uz(m)];
-            const double dx = bt[0] - bm[0], dy = bt[1] - bm[1], dz = bt[2] - bm[2];
-            const double d2 = dx * dx + dy * dy + dz * dz;
-            code = LabelQueue::encode((bt[3] * bt[3] + bm[3] * bm[3] - d2) / (2 * bt[3] * bm[3]));
+          } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0 && !(flags[t] & flags[uz(m)] & kCoplanar)) {
+            const double weight = (flags[t] | flags[uz(m)]) & kCoplanar ? kWeakPass : 1.0;
+            code = LabelQueue::encode(weight * cosine(bt, ball[uz(m)]));
           }
           pass[t][uz(i)] = code;
         }
       }
+      if (seam_here) any_seam.store(true, std::memory_order_relaxed);
     });
+    if (any_seam.load()) {
+      // For each tetrahedron beside a seam, the tetrahedra (and hull faces) on the seam's other
+      // side: a walk through stacked seams, each entered through one face and left through the
+      // faces whose outward normals point the other way. Per block of tetrahedra, then joined in
+      // block order (sorted by `from`, whatever the thread count).
+      struct Found {
+        std::vector<Through> through, hull;
+      };
+      const std::size_t blocks = (T0 + kGrain - 1) / kGrain;
+      std::vector<Found> found(blocks);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<std::pair<int, int>> stack;
+        std::vector<int> seen;
+        for (std::size_t blk = r.begin(); blk != r.end(); ++blk)
+          for (std::size_t t = blk * kGrain; t < std::min(T0, (blk + 1) * kGrain); ++t) {
+            if (!(ball[t][3] > 0)) continue;
+            for (int i = 0; i < 4; ++i) {
+              const int m0 = b.nbr[t][uz(i)];
+              if (m0 < 0 || uz(m0) >= T0 || !(flags[uz(m0)] & kSeam)) continue;
+              seams_beyond(b, flags, static_cast<int>(t), m0, stack, seen, [&](int f, int k, const std::array<double, 3>& nk) {
+                const int n = b.nbr[uz(f)][uz(k)];
+                if (n < 0) {
+                  const float code = LabelQueue::encode(beyond_hull_cos(b, t, f, k, nk, ball[t]));
+                  if (code == code) found[blk].hull.push_back({static_cast<std::uint32_t>(t), 0, code});
+                } else if (uz(n) != t && ball[uz(n)][3] > 0) {
+                  const float code = LabelQueue::encode(kWeakPass * cosine(ball[t], ball[uz(n)]));
+                  if (code == code) found[blk].through.push_back({static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(n), code});
+                }
+              });
+            }
+          }
+      });
+      for (Found& fd : found) {
+        through.insert(through.end(), fd.through.begin(), fd.through.end());
+        hull_seeds.insert(hull_seeds.end(), fd.hull.begin(), fd.hull.end());
+      }
+      for (const Through& e : through) flags[e.from] |= kThrough;
+    }
   }
-  // The hull's seeds, without the nearly flat tetrahedra; with them when there is no other (a
-  // hull of points coplanar up to rounding).
+  // The hull's seeds (and those beyond seams), without the nearly flat tetrahedra; with them when
+  // there is no other (a hull of points coplanar up to rounding).
   bool seeded = false;
-  for (int with_flat = 0; with_flat < 2 && !seeded; ++with_flat)
+  for (int with_flat = 0; with_flat < 2 && !seeded; ++with_flat) {
     for (std::size_t t = 0; t < T0; ++t)
       for (int i = 0; i < 4; ++i)
         if (b.nbr[t][uz(i)] < 0 && (with_flat || !(flags[t] & kFlatHull)) && pass[t][uz(i)] == pass[t][uz(i)]) {
           q.push_coded(static_cast<int>(t), pass[t][uz(i)], +1);
           seeded = true;
         }
+    if (with_flat == 0)
+      for (const Through& h : hull_seeds) {
+        q.push_coded(static_cast<int>(h.from), h.code, +1);
+        seeded = true;
+      }
+  }
   out->label.assign(T0, 0.0f);
   // The propagation below runs on one core: the caller's work that does not read the labels runs
   // on the other one meanwhile (its results cannot depend on the order: it shares nothing with
@@ -264,8 +479,14 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
       const int m = b.nbr[uz(it.tet)][uz(i)];
       if (m >= 0 && uz(m) < T0) q.push_coded(m, code[uz(i)], lab);
     }
+    if (flags[uz(it.tet)] & kThrough) {
+      const auto from = static_cast<std::uint32_t>(it.tet);
+      auto e = std::lower_bound(through.begin(), through.end(), from, [](const Through& x, std::uint32_t f) { return x.from < f; });
+      for (; e != through.end() && e->from == from; ++e) q.push_coded(static_cast<int>(e->to), e->code, lab);
+    }
   }
   beside_task.wait();
+  label_flat_sets(b, flags, *out);
   return out;
 }
 
