@@ -71,7 +71,22 @@ def sets(dim):
         "cospherical": bytes([COSPH, 14]) + cosph,
         "near_line": bytes([NEARLINE, 6]) + near,
         "rawfloat_curve": points(RAWF, curve(16, dim, 3.0)),
+        # A grid of a surface of revolution: cocircular rings, cospherical cells, flat tetrahedra
+        # (docs/reconstruction-3d.md 4.10); in 2D two evenly sampled concentric circles.
+        "raw_grid_revolution": points(RAW, grid_revolution(dim)),
     }
+
+
+def grid_revolution(dim):
+    if dim == 2:
+        return [[r * math.cos(2 * math.pi * i / n), r * math.sin(2 * math.pi * i / n)] for r, n in ((4, 24), (2, 12))
+                for i in range(n)]
+    out = []
+    for i in range(16):
+        for j in range(12):
+            u, v = 2 * math.pi * i / 16, 2 * math.pi * j / 12
+            out.append([(2 + 0.7 * math.cos(v)) * math.cos(u), (2 + 0.7 * math.cos(v)) * math.sin(u), 0.7 * math.sin(v)])
+    return out
 
 
 def write(target, opts, dim, lead=b""):
