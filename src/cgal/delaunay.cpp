@@ -948,6 +948,19 @@ bool released_export3_available() {
   return dt.dimension() == 3 && record_layout_holds(dt.finite_cells_begin());
 }
 
+// Points along curves in space (two skew lines, a circle and its axis) have a Delaunay
+// tetrahedralization of quadratic size: 25 million tetrahedra for 10 000 points, minutes and tens of
+// GB (a surface sample has 4.5-8 per point). The insertion stops with Unsupported once the
+// triangulation holds more than kMaxCellsPerPoint3 cells per inserted point and kMaxCellsFloor3 in
+// all (about 0.8 GB; 1 500 + 1 500 points of a circle and its axis, 2.25 million, still run).
+constexpr std::size_t kMaxCellsPerPoint3 = 32, kMaxCellsFloor3 = std::size_t{1} << 22;
+static Status too_many_cells3(std::size_t cells, std::size_t inserted, std::size_t n) {
+  return {StatusCode::Unsupported,
+          "3D Delaunay: " + std::to_string(cells) + " tetrahedra after " + std::to_string(inserted) + " of " +
+              std::to_string(n) + " points, quadratically many: the points lie along curves or lines in space, not on "
+              "a surface; sample the surface itself"};
+}
+
 Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3>* local, std::size_t release_from) {
   if (points.dim != 3) return {StatusCode::InvalidArgument, "build_delaunay3: points are not 3D"};
   const std::size_t n = points.size();
@@ -972,8 +985,11 @@ Status build_delaunay3_local(const PointSet& points, Delaunay3& out, LocalMesh<3
       hint = dt.insert(it.first, hint);
       if (hint != DT3::Vertex_handle()) hint->info() = rank;
       ++rank;
+      if ((rank & 1023) == 0 && dt.number_of_cells() > std::max(kMaxCellsFloor3, kMaxCellsPerPoint3 * static_cast<std::size_t>(rank)))
+        return too_many_cells3(dt.number_of_cells(), static_cast<std::size_t>(rank), n);
     }
   }
+  if (dt.number_of_cells() > std::max(kMaxCellsFloor3, kMaxCellsPerPoint3 * n)) return too_many_cells3(dt.number_of_cells(), n, n);
   if (dt.number_of_vertices() != n) return {StatusCode::Duplicate, duplicate_message(n, dt.number_of_vertices())};
   if (dt.dimension() < 3) return {StatusCode::Coplanar, "Delaunay: all points are coplanar"};
 
