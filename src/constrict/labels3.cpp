@@ -90,12 +90,51 @@ double depth(const Body3& b, std::size_t t, const Ball& ball) {
   return std::min(1.0, std::sqrt(d2) / ball[3]);
 }
 
+// Four points coplanar up to rounding that lie on one circle too (up to kCocircularTol of the
+// longest edge's fourth power in the in-circle determinant of their projection on the plane).
+constexpr double kCocircularTol = 1e-9;
+bool cocircular(const Body3& b, std::size_t t, double longest2) {
+  const auto& v = b.tets[t];
+  const double* a = b.P(v[0]);
+  double e[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) e[i][k] = b.P(v[uz(i + 1)])[k] - a[k];
+  // The plane's normal: the largest cross product of two edges from a.
+  double nrm[3] = {0, 0, 0}, best = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j) {
+      const double c[3] = {e[i][1] * e[j][2] - e[i][2] * e[j][1], e[i][2] * e[j][0] - e[i][0] * e[j][2], e[i][0] * e[j][1] - e[i][1] * e[j][0]};
+      const double l = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+      if (l > best) best = l, nrm[0] = c[0], nrm[1] = c[1], nrm[2] = c[2];
+    }
+  if (!(best > 0)) return true;
+  // An orthonormal basis (u, w) of the plane.
+  const double ln = std::sqrt(best);
+  const double n0 = nrm[0] / ln, n1 = nrm[1] / ln, n2 = nrm[2] / ln;
+  double u[3] = {e[0][0], e[0][1], e[0][2]};
+  const double un = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (!(un > 0)) return true;
+  for (double& x : u) x /= un;
+  const double w[3] = {n1 * u[2] - n2 * u[1], n2 * u[0] - n0 * u[2], n0 * u[1] - n1 * u[0]};
+  double px[3], py[3];
+  for (int i = 0; i < 3; ++i) {
+    px[i] = e[i][0] * u[0] + e[i][1] * u[1] + e[i][2] * u[2];
+    py[i] = e[i][0] * w[0] + e[i][1] * w[1] + e[i][2] * w[2];
+  }
+  // In-circle of (0, 0), p0, p1, p2.
+  const double det = px[0] * (py[1] * (px[2] * px[2] + py[2] * py[2]) - py[2] * (px[1] * px[1] + py[1] * py[1])) -
+                     py[0] * (px[1] * (px[2] * px[2] + py[2] * py[2]) - px[2] * (px[1] * px[1] + py[1] * py[1])) +
+                     (px[0] * px[0] + py[0] * py[0]) * (px[1] * py[2] - px[2] * py[1]);
+  return std::fabs(det) <= kCocircularTol * longest2 * longest2;
+}
+
 // Flags of a tetrahedron (circumballs).
 constexpr char kFlatHull = 1;  // on the convex hull and nearly flat (kFlatHullRatio)
 constexpr char kCoplanar = 2;  // coplanar up to rounding (kCoplanarRatio, kCoplanarVolume)
 constexpr char kSeam = 4;      // exactly flat (no ball): a seam (Through below)
 constexpr char kThrough = 8;   // passes labels on through a seam (Through entries)
 constexpr char kFlat = kSeam | kCoplanar;
+constexpr char kCocircular = 16;  // coplanar up to rounding and cocircular too (cocircular())
 
 // The circumballs, and each tetrahedron's flags.
 std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
@@ -128,7 +167,10 @@ std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
       if (o[3] > 0) {
         const double longest2 = longest_edge2(b, t), longest = std::sqrt(longest2);
         // (den = 2 e1 . (e2 x e3), twelve times the volume.)
-        if (o[3] > kCoplanarRatio * longest || std::fabs(den) < 2 * kCoplanarVolume * longest2 * longest) f |= kCoplanar;
+        if (o[3] > kCoplanarRatio * longest || std::fabs(den) < 2 * kCoplanarVolume * longest2 * longest) {
+          f |= kCoplanar;
+          if (cocircular(b, t, longest2)) f |= kCocircular;
+        }
         const auto& nt = b.nbr[t];
         const bool hull = nt[0] < 0 || nt[1] < 0 || nt[2] < 0 || nt[3] < 0;
         if (hull && o[3] > kFlatHullRatio * longest) f |= kFlatHull;
@@ -172,11 +214,13 @@ double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
 // - an exactly flat tetrahedron (a seam) passes labels *through* itself: from a tetrahedron on one
 //   side to those on its other side (through several seams when they are stacked), with the cosine
 //   of their two balls; a hull face beyond a seam seeds the tetrahedron before it;
-// - the cosines through a seam and those to or from a tetrahedron coplanar up to rounding count
-//   kWeakPass times less: they decide only where no other path reaches (where balls pass through
-//   one circle, on both sides of a grid square or a ring's disc, they meet at cos near 1 whether
-//   the square is a wall or a disc across the solid: passed at full confidence, grid-faced plates
-//   lost their holes);
+// - those cosines, and the cosines to or from a tetrahedron coplanar up to rounding whose four
+//   points are cocircular too (no ball at all: a grid square, a ring's disc), count kWeakPass times
+//   less: they decide only where no other path reaches. Where balls pass through one circle, on
+//   both sides of a grid square or of a ring's disc, they meet at a cosine near 1 whether the
+//   square is a wall or the disc lies across the solid: at full weight grid-faced plates lost their
+//   holes, and weakening every coplanar tetrahedron (blue-noise flat faces too, whose huge balls
+//   are half-spaces) gave a near-touching pair of boxes a false handle;
 // - afterwards a connected set of flat tetrahedra that lies between tetrahedra labelled inside only
 //   (no hull face, no other neighbour) is inside too (a disc across the solid), with the radius of
 //   the largest inside ball beside it (label_flat_sets).
@@ -391,7 +435,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
           if (m < 0) {  // a hull face: the cosine with the outer half-space, pushed below
             if (bt[3] > 0) code = LabelQueue::encode(hull_face_cos(b, t, i, bt));
           } else if (uz(m) < T0 && bt[3] > 0 && ball[uz(m)][3] > 0 && !(flags[t] & flags[uz(m)] & kCoplanar)) {
-            const double weight = (flags[t] | flags[uz(m)]) & kCoplanar ? kWeakPass : 1.0;
+            const double weight = (flags[t] | flags[uz(m)]) & kCocircular ? kWeakPass : 1.0;
             code = LabelQueue::encode(weight * cosine(bt, ball[uz(m)]));
           }
           pass[t][uz(i)] = code;
@@ -421,7 +465,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
               seams_beyond(b, flags, static_cast<int>(t), m0, stack, seen, [&](int f, int k, const std::array<double, 3>& nk) {
                 const int n = b.nbr[uz(f)][uz(k)];
                 if (n < 0) {
-                  const float code = LabelQueue::encode(beyond_hull_cos(b, t, f, k, nk, ball[t]));
+                  const float code = LabelQueue::encode(kWeakPass * beyond_hull_cos(b, t, f, k, nk, ball[t]));
                   if (code == code) found[blk].hull.push_back({static_cast<std::uint32_t>(t), 0, code});
                 } else if (uz(n) != t && ball[uz(n)][3] > 0) {
                   const float code = LabelQueue::encode(kWeakPass * cosine(ball[t], ball[uz(n)]));
