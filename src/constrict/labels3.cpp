@@ -182,16 +182,23 @@ std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
   return ball;
 }
 
-// Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
-// circumball: the signed distance of the centre beyond the face over the radius (NaN if flat).
-double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
+// The unnormalised outward normal of face i of t (kFaceOut order).
+std::array<double, 3> face_normal(const Body3& b, std::size_t t, int i) {
   const auto& v = b.tets[t];
   const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
   const double* p1 = b.P(v[uz(kFaceOut[i][1])]);
   const double* p2 = b.P(v[uz(kFaceOut[i][2])]);
   const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
   const double w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-  const double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  return {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+}
+
+// Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
+// circumball: the signed distance of the centre beyond the face over the radius (NaN if flat).
+double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
+  const auto& v = b.tets[t];
+  const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
+  const auto nrm = face_normal(b, t, i);
   const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
   if (!(ln > 0)) return NAN;
   const double* ap = b.P(v[uz(i)]);
@@ -231,17 +238,6 @@ struct Through {
   float code;          // LabelQueue::encode of the cosine of their balls
 };
 constexpr std::size_t kMaxSeamWalk = 64;  // seams visited per face (a bound on pathological stacks)
-
-// The unnormalised outward normal of face i of t (kFaceOut order).
-std::array<double, 3> face_normal(const Body3& b, std::size_t t, int i) {
-  const auto& v = b.tets[t];
-  const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
-  const double* p1 = b.P(v[uz(kFaceOut[i][1])]);
-  const double* p2 = b.P(v[uz(kFaceOut[i][2])]);
-  const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-  const double w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-  return {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-}
 
 // The index of t among m's neighbours.
 int back_index(const Body3& b, int m, int t) {
