@@ -195,18 +195,24 @@ std::array<double, 3> face_normal(const Body3& b, std::size_t t, int i) {
 
 // Cosine of the angle between the outer half-space of the hull face opposite i of t and t's
 // circumball: the signed distance of the centre beyond the face over the radius (NaN if flat).
+// The cosine of the ball with the outer half-space of a plane through p0 with normal nrm, outer
+// being the side away from the reference whose signed offset along nrm is `inner` (NaN when the
+// normal vanishes): the signed distance of the centre beyond the plane over the radius.
+double half_space_cos(const double* p0, const std::array<double, 3>& nrm, double inner, const Ball& ball) {
+  const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+  if (!(ln > 0)) return NAN;
+  const double sgn = inner > 0 ? -1.0 : 1.0;  // flip so that nrm points away from the reference
+  const double dist =
+      sgn * (nrm[0] * (ball[0] - p0[0]) + nrm[1] * (ball[1] - p0[1]) + nrm[2] * (ball[2] - p0[2])) / ln;
+  return dist / ball[3];
+}
+
 double hull_face_cos(const Body3& b, std::size_t t, int i, const Ball& ball) {
   const auto& v = b.tets[t];
   const double* p0 = b.P(v[uz(kFaceOut[i][0])]);
   const auto nrm = face_normal(b, t, i);
-  const double ln = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-  if (!(ln > 0)) return NAN;
-  const double* ap = b.P(v[uz(i)]);
-  const double side = nrm[0] * (ap[0] - p0[0]) + nrm[1] * (ap[1] - p0[1]) + nrm[2] * (ap[2] - p0[2]);
-  const double sgn = side > 0 ? -1.0 : 1.0;  // flip so that nrm points away from the apex
-  const double dist =
-      sgn * (nrm[0] * (ball[0] - p0[0]) + nrm[1] * (ball[1] - p0[1]) + nrm[2] * (ball[2] - p0[2])) / ln;
-  return dist / ball[3];
+  const double* ap = b.P(v[uz(i)]);  // the reference: the apex
+  return half_space_cos(p0, nrm, nrm[0] * (ap[0] - p0[0]) + nrm[1] * (ap[1] - p0[1]) + nrm[2] * (ap[2] - p0[2]), ball);
 }
 
 // Flat tetrahedra. Points on a grid of a surface of revolution (a torus or a vase sampled on a
@@ -335,12 +341,9 @@ void seams_beyond(const Body3& b, const std::vector<char>& flags, int t, int m0,
 // the signed distance of the centre beyond the face (away from t's points) over the radius.
 double beyond_hull_cos(const Body3& b, std::size_t t, int f, int k, const std::array<double, 3>& nk, const Ball& ball) {
   const double* p0 = b.P(b.tets[uz(f)][uz(kFaceOut[k][0])]);
-  const double ln = std::sqrt(nk[0] * nk[0] + nk[1] * nk[1] + nk[2] * nk[2]);
-  if (!(ln > 0)) return NAN;
-  double side = 0;
+  double side = 0;  // the reference: t's points
   for (int v : b.tets[t]) side += nk[0] * (b.P(v)[0] - p0[0]) + nk[1] * (b.P(v)[1] - p0[1]) + nk[2] * (b.P(v)[2] - p0[2]);
-  const double sgn = side > 0 ? -1.0 : 1.0;
-  return sgn * (nk[0] * (ball[0] - p0[0]) + nk[1] * (ball[1] - p0[1]) + nk[2] * (ball[2] - p0[2])) / ln / ball[3];
+  return half_space_cos(p0, nk, side, ball);
 }
 
 // A connected set of flat tetrahedra (joined across their shared faces) with no hull face, whose
@@ -411,6 +414,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   std::vector<char> flags(T0);  // kFlatHull, kCoplanar, kSeam, kThrough
   // Passes through seams (sorted by `from`), and the hull faces beyond seams (`to` unused).
   std::vector<Through> through, hull_seeds;
+  std::atomic<bool> any_flat{false};  // (label_flat_sets has nothing to do without one)
   {
     const std::vector<Ball> ball = circumballs(b, flags);
     const auto cosine = [](const Ball& x, const Ball& y) {
@@ -420,10 +424,11 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
     out->lrad.resize(T0);
     std::atomic<bool> any_seam{false};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-      bool seam_here = false;
+      bool seam_here = false, flat_here = false;
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         const Ball& bt = ball[t];
         seam_here = seam_here || (flags[t] & kSeam);
+        flat_here = flat_here || (flags[t] & kFlat);
         out->lrad[t] = bt[3] > 0 && !(flags[t] & kCoplanar) ? std::log(bt[3]) - kDepthTie * depth(b, t, bt) : kFlatLogRadius;
         for (int i = 0; i < 4; ++i) {
           const int m = b.nbr[t][uz(i)];
@@ -438,6 +443,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
         }
       }
       if (seam_here) any_seam.store(true, std::memory_order_relaxed);
+      if (flat_here) any_flat.store(true, std::memory_order_relaxed);
     });
     if (any_seam.load()) {
       // For each tetrahedron beside a seam, the tetrahedra (and hull faces) on the seam's other
@@ -526,7 +532,7 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
     }
   }
   beside_task.wait();
-  label_flat_sets(b, flags, *out);
+  if (any_flat.load()) label_flat_sets(b, flags, *out);
   return out;
 }
 
