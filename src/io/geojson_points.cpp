@@ -21,16 +21,28 @@ class GeoJsonPoints {
   GeoJsonPoints(const std::string& name, int forced_dim, PointSet& out)
       : name_(name), dim_(forced_dim), out_(out) {}
 
-  Status object(const Json& j, const std::string& at) {
+  // Nesting of collections and features beyond this is refused (RFC 7946 §3.1.8 asks not to
+  // nest GeometryCollections at all): every level costs stack and a longer error location.
+  static constexpr int kMaxDepth = 64;
+
+  // geometry_only: j is in a Feature's "geometry" or a GeometryCollection's "geometries", where
+  // RFC 7946 allows geometry objects only (no Feature, no FeatureCollection).
+  Status object(const Json& j, const std::string& at, bool geometry_only = false, int depth = 0) {
     if (!j.is_object() || !j.contains("type") || !j["type"].is_string())
       return bad(at, "not a GeoJSON object (an object with a \"type\" member)");
     const std::string type = j["type"].get<std::string>();
-    if (type == "FeatureCollection") return list(j, at, "features");
-    if (type == "GeometryCollection") return list(j, at, "geometries");
+    if (geometry_only && (type == "Feature" || type == "FeatureCollection"))
+      return bad(at, "a " + type + " where RFC 7946 allows a geometry only (Point, MultiPoint, GeometryCollection, ...)");
+    const bool nests = type == "FeatureCollection" || type == "GeometryCollection" || type == "Feature";
+    if (nests && depth >= kMaxDepth)
+      return bad(at.substr(0, 60) + (at.size() > 60 ? "..." : ""),
+                 "collections and features nested deeper than " + std::to_string(kMaxDepth) + " levels; flatten the file");
+    if (type == "FeatureCollection") return list(j, at, "features", false, depth + 1);
+    if (type == "GeometryCollection") return list(j, at, "geometries", true, depth + 1);
     if (type == "Feature") {
       if (!j.contains("geometry")) return bad(at, "Feature without a \"geometry\" member");
       const Json& g = j["geometry"];
-      return g.is_null() ? Status::ok() : object(g, at + "/geometry");  // unlocated: no point
+      return g.is_null() ? Status::ok() : object(g, at + "/geometry", true, depth + 1);  // unlocated: no point
     }
     if (!j.contains("coordinates")) return bad(at, type + " without \"coordinates\"");
     const Json& c = j["coordinates"];
@@ -55,12 +67,12 @@ class GeoJsonPoints {
     return error_in(StatusCode::ParseError, name_, (at.empty() ? "/" : at) + ": " + what);
   }
 
-  Status list(const Json& j, const std::string& at, const char* member) {
+  Status list(const Json& j, const std::string& at, const char* member, bool geometry_only, int depth) {
     if (!j.contains(member) || !j[member].is_array())
       return bad(at, std::string("\"") + member + "\" must be an array");
     const Json& items = j[member];
     for (std::size_t i = 0; i < items.size(); ++i) {
-      Status st = object(items[i], at + "/" + member + "/" + std::to_string(i));
+      Status st = object(items[i], at + "/" + member + "/" + std::to_string(i), geometry_only, depth);
       if (!st) return st;
     }
     return Status::ok();

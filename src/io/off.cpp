@@ -115,6 +115,23 @@ Status OffReader::vertices(int dim, std::vector<double>& coords) {
   return Status::ok();
 }
 
+Status OffReader::after_vertices() {
+  const char* b = nullptr;
+  const char* e = nullptr;
+  std::vector<Span> fields;
+  std::size_t count = 0;
+  do {
+    if (!lines_.next(b, e, true)) return Status::ok();
+    fields.clear();
+    count = split_fields(b, e, [&fields](std::size_t, const Span& s) { fields.push_back(s); });
+  } while (count == 0);
+  std::uint64_t k = 0;
+  if (count != kEmptyField && parse_count(fields[0].b, fields[0].e, k) && k <= fields.size() - 1) return Status::ok();
+  return error_at(StatusCode::ParseError, name_, lines_.line(),
+                  "the header announces " + std::to_string(n_vertices_) + (n_vertices_ == 1 ? " vertex" : " vertices") + ", but the line after them, " +
+                      quote(b, std::min(e, b + 40)) + ", is not a face line; correct the vertex count");
+}
+
 Status OffReader::face(std::uint64_t f, std::vector<std::int64_t>& ids) {
   const char* b = nullptr;
   const char* e = nullptr;

@@ -249,6 +249,23 @@ Status PlyBody::check_room(const PlyElement& el) const {
                       " bytes left in the file can hold; correct the count");
 }
 
+Status PlyBody::check_end(const PlyElement& last) {
+  const std::string announced = "the header announces " + std::to_string(last.count) + " records of element '" +
+                                last.name + "' (line " + std::to_string(last.header_line) + ")";
+  if (ascii_) {
+    const char* b = nullptr;
+    const char* e = nullptr;
+    if (!next_token(b, e)) return Status::ok();
+    return error_at(StatusCode::ParseError, name_, line_,
+                    "PLY data goes on after its last element: " + announced + ", then " +
+                        quote(b, std::min(e, b + 40)) + " follows; correct the count");
+  }
+  if (bytes_left() < std::max<std::uint64_t>(last.min_size, 1)) return Status::ok();
+  return error_in(StatusCode::ParseError, name_,
+                  "PLY data goes on after its last element: " + announced + ", then " +
+                      std::to_string(bytes_left()) + " bytes follow; correct the count");
+}
+
 Status PlyBody::truncated(const PlyElement& el, std::uint64_t i) const {
   return error_in(StatusCode::ParseError, name_,
                   "PLY data ends inside element '" + el.name + "' (" + el.name + " " +

@@ -61,6 +61,7 @@ Status parse_off(std::string_view data, const std::string& name, int forced_dim,
   Status st = off.header(false);
   if (!st || off.empty()) return st;
   st = off.vertices(dim, out.coords);
+  if (st) st = off.after_vertices();
   if (st) out.dim = dim;
   return st;
 }
@@ -158,6 +159,10 @@ Status vertex_layout(const detail::PlyElement& vertex, const std::string& name, 
     if (prop[k] >= 0 && vertex.properties[static_cast<std::size_t>(prop[k])].is_list)
       return error_in(StatusCode::ParseError, name,
                       std::string("PLY vertex property '") + kAxes[k] + "' is a list");
+    for (std::size_t j = prop[k] < 0 ? vertex.properties.size() : static_cast<std::size_t>(prop[k]) + 1; j < vertex.properties.size(); ++j)
+      if (vertex.properties[j].name == kAxes[k])  // which one is the coordinate? not guessed
+        return error_in(StatusCode::ParseError, name,
+                        std::string("PLY vertex element has two properties '") + kAxes[k] + "'; rename one");
   }
   if (prop[0] < 0 || prop[1] < 0)
     return error_in(StatusCode::ParseError, name, "PLY vertex element has no x and y properties");
@@ -215,10 +220,23 @@ Status parse_ply(std::string_view data, const std::string& name, int forced_dim,
     st = vertex_layout(el, name, forced_dim, attributes != nullptr, layout);
     if (!st) return st;
     out.dim = layout.dim;
-    if (layout.width == layout.dim) return body.read_table(el, layout.spec, layout.dim, out.coords);
     std::vector<double> table;
-    st = body.read_table(el, layout.spec, layout.width, table);
-    if (st) split_table(table, layout, out, *attributes);
+    st = layout.width == layout.dim ? body.read_table(el, layout.spec, layout.dim, out.coords)
+                                    : body.read_table(el, layout.spec, layout.width, table);
+    if (!st) return st;
+    // A vertex count smaller than the data would drop points silently: the data must end here,
+    // or (ascii) the next element's first record must read as one. Later elements are not read.
+    const detail::PlyElement* next = &el + 1;
+    while (next != header.elements.data() + header.elements.size() && next->count == 0) ++next;
+    if (next == header.elements.data() + header.elements.size()) {
+      st = body.check_end(el);
+    } else if (body.ascii()) {
+      detail::PlyElement first = *next;
+      first.count = std::min<std::uint64_t>(first.count, 1);
+      st = body.check_room(first);
+      if (st) st = body.skip(first);
+    }
+    if (st && layout.width != layout.dim) split_table(table, layout, out, *attributes);
     return st;
   }
   return error_in(StatusCode::ParseError, name, "PLY file has no 'vertex' element");

@@ -70,6 +70,15 @@ Status too_many_fields(const std::string& name, std::size_t line, std::size_t co
                   std::to_string(count) + " fields per line, more than x, y, z: " + kHowToChoose);
 }
 
+// A coordinate's header name must name one column: "x,x,y" would pick one of two silently.
+Status unique_name(const Header& h, std::vector<std::string>::const_iterator it, const std::string& name) {
+  const auto again = std::find(it + 1, h.names.cend(), *it);
+  if (again == h.names.cend()) return Status::ok();
+  return error_at(StatusCode::ParseError, name, h.line,
+                  "the header names '" + *it + "' twice (columns " + std::to_string(it - h.names.cbegin() + 1) + " and " +
+                      std::to_string(again - h.names.cbegin() + 1) + "); rename one or choose the columns with --columns (e.g. 1,3)");
+}
+
 // 0-based field index of each coordinate; empty: the first fields (no selection made).
 Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
                       const std::string& name, std::vector<std::size_t>& index) {
@@ -86,6 +95,7 @@ Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
       if (it == h.names.end())
         return error_at(StatusCode::InvalidArgument, name, h.line,
                         "no column named '" + want + "' in the header (" + joined(h.names) + ")");
+      if (Status u = unique_name(h, it, name); !u) return u;
       index.push_back(static_cast<std::size_t>(it - h.names.begin()));
     }
   } else if (h.line != 0) {
@@ -93,6 +103,7 @@ Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
     for (const char* axis : kAxes) {
       const auto it = std::find(h.names.begin(), h.names.end(), axis);
       if (it == h.names.end()) break;
+      if (Status u = unique_name(h, it, name); !u) return u;
       index.push_back(static_cast<std::size_t>(it - h.names.begin()));
     }
     if (index.size() < 2) {

@@ -259,6 +259,65 @@ TEST(IoFormats, GeoJsonPoints) {
       << st.message();
 }
 
+// Found by a hostile-input sweep (2026-12-05): 20 000 nested GeometryCollections overflowed the
+// stack (each level also built a longer error location: 2 GB); a Feature as another's geometry
+// was read. Both are refused now, in one line.
+TEST(IoFormats, GeoJsonNestingIsBounded) {
+  PointSet p;
+  const auto nested = [](int depth, const char* open, const char* close) {
+    std::string s;
+    for (int i = 0; i < depth; ++i) s += open;
+    s += R"({"type": "MultiPoint", "coordinates": [[0,0],[1,0],[0,1]]})";
+    for (int i = 0; i < depth; ++i) s += close;
+    return s;
+  };
+  const char* gc_open = R"({"type": "GeometryCollection", "geometries": [)";
+  ASSERT_TRUE(read_points_from_buffer(nested(10, gc_open, "]}"), "ok.geojson", PointFormat::Auto, {}, p));
+  EXPECT_EQ(p.size(), 3u);
+  for (int depth : {65, 20000}) {
+    const Status st = read_points_from_buffer(nested(depth, gc_open, "]}"), "deep.geojson", PointFormat::Auto, {}, p);
+    EXPECT_EQ(st.code(), StatusCode::ParseError) << depth;
+    EXPECT_NE(st.message().find("nested deeper than 64 levels"), std::string::npos) << st.message();
+    EXPECT_LT(st.message().size(), 300u);
+  }
+  const Status st = read_points_from_buffer(
+      nested(1, R"({"type": "Feature", "geometry": {"type": "Feature", "geometry": )", "}}"), "f.geojson", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("/geometry: a Feature where RFC 7946 allows a geometry only"), std::string::npos) << st.message();
+}
+
+// A header count smaller than the data dropped the points beyond it without a word (hostile-input
+// sweep, 2026-12-05); a repeated coordinate name picked one of the two columns.
+TEST(IoFormats, MoreDataThanAnnouncedIsAnError) {
+  PointSet p;
+  const std::string verts = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n";
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+  Status st = read_points_from_buffer(ply + verts, "short.ply", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("PLY data goes on after its last element"), std::string::npos) << st.message();
+  ASSERT_TRUE(read_points_from_buffer(ply + "0 0 0\n1 0 0\n0 1 0\n0 0 1\n\n  \n", "ok.ply", PointFormat::Auto, {}, p));
+  EXPECT_EQ(p.size(), 4u);
+  // With a face element after the vertices, its first record must read as one.
+  const std::string ply_faces = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                                "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  EXPECT_EQ(read_points_from_buffer(ply_faces + "0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0.5 0.5\n3 0 1 2\n", "shortf.ply", PointFormat::Auto, {}, p).code(),
+            StatusCode::ParseError);
+  ASSERT_TRUE(read_points_from_buffer(ply_faces + "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "okf.ply", PointFormat::Auto, {}, p));
+  st = read_points_from_buffer("OFF\n4 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0.5 0.5\n", "short.off", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("short.off:7: the header announces 4 vertices, but the line after them"), std::string::npos)
+      << st.message();
+  ASSERT_TRUE(read_points_from_buffer("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "ok.off", PointFormat::Auto, {}, p));
+  st = read_points_from_buffer("x,x,y\n0,1,2\n1,2,3\n4,5,7\n", "xxy.csv", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("xxy.csv:1: the header names 'x' twice (columns 1 and 2)"), std::string::npos) << st.message();
+  st = read_points_from_buffer("ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double x\nproperty double y\n"
+                               "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n",
+                               "xx.ply", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("two properties 'x'"), std::string::npos) << st.message();
+}
+
 TEST(IoFormats, ScannerFormatsRefusedWithAHint) {
   PointSet p;
   std::string las = "LASF";

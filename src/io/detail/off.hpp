@@ -37,6 +37,11 @@ class OffReader {
   /// Reads the n_vertices() vertex lines; appends the first @p dim (2 or 3) values of each.
   Status vertices(int dim, std::vector<double>& coords);
 
+  /// The point reader, after vertices(): the next record, if any, must be a face line (a count,
+  /// then at least that many fields). Else the header's vertex count is smaller than the data
+  /// and points would be lost without a word: ParseError naming the line.
+  Status after_vertices();
+
   /// Reads face @p f (0-based, < n_faces()): its vertex indices as written.
   Status face(std::uint64_t f, std::vector<std::int64_t>& ids);
 

@@ -95,6 +95,11 @@ class PlyBody {
   Status read_record(const PlyElement& el, std::uint64_t i, const PlyRecordSpec& spec,
                      double* values, std::vector<std::int64_t>* list);
 
+  /// After @p last, the file's last element: ParseError when data is left that no element
+  /// announced (a count smaller than the data; its records would be lost without a word).
+  /// Binary files may end with a few padding bytes, fewer than one record of @p last.
+  Status check_end(const PlyElement& last);
+
   bool ascii() const noexcept { return ascii_; }
   /// Line of the last token read (ascii); 0 for binary files.
   std::size_t line() const noexcept { return line_; }
