@@ -104,6 +104,8 @@ bool ok_options(const DistanceOptions& o) {
   return std::isfinite(o.relative_spacing) && o.relative_spacing > 0 && o.max_samples > 0;
 }
 
+std::size_t uk(int k) { return static_cast<std::size_t>(k); }
+
 double dist3(const double* a, const double* b) {
   const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
   return std::sqrt(x * x + y * y + z * z);
@@ -123,7 +125,25 @@ struct Mesh {
 std::size_t grid_k(double longest, double h) {
   if (!(longest > 0)) return 1;
   const double k = std::ceil(longest / h);
-  return k < 1 ? 1 : static_cast<std::size_t>(std::min(k, kMaxGrid));
+  if (!(k >= 1)) return 1;  // (NaN too: a cast of NaN to an integer is undefined)
+  return static_cast<std::size_t>(std::min(k, kMaxGrid));
+}
+
+// Far from 1 in magnitude (beyond 2^±kRescaleExponent) squared lengths and cross products
+// overflow or underflow: the distances are measured on both meshes' coordinates times 2^-e (e
+// the larger exponent of the two) and scaled back. Vertices are matched on the coordinates as
+// given. Returns 0 when no scaling is needed.
+int common_exponent(const PointSet& a, const PointSet& b) {
+  const int e = std::max(max_coordinate_exponent(a), max_coordinate_exponent(b));
+  return e > kRescaleExponent || e < -kRescaleExponent ? e : 0;
+}
+
+PointSet scaled_by_two_to(const PointSet& p, int e) {
+  PointSet s;
+  s.dim = p.dim;
+  s.coords.resize(p.coords.size());
+  std::transform(p.coords.begin(), p.coords.end(), s.coords.begin(), [e](double x) { return std::ldexp(x, e); });
+  return s;
 }
 
 // Spacing that honours both the wanted relative spacing and the sample budget.
@@ -198,11 +218,21 @@ Status check_mesh(const PointSet& pts, const TriMesh3& m, const char* what) {
   return Status::ok();
 }
 
+// The tree's triangles. CGAL's distance acceleration keeps one reference point per triangle, its
+// first vertex; many equal ones (a polygon face read as a fan: 50 000 triangles from one vertex)
+// make its Kd-tree split once per point, a recursion that overflowed the stack. Each triangle
+// therefore starts at its vertex of the fewest triangles (the first such).
 std::vector<Tri3> triangles_of(const Mesh& a) {
+  std::vector<std::uint32_t> valence(a.pts.size(), 0);
+  for (const auto& f : a.m.triangles)
+    for (int v : f) ++valence[static_cast<std::size_t>(v)];
   std::vector<Tri3> out;
   out.reserve(a.m.triangles.size());
   for (const auto& f : a.m.triangles) {
-    const double *A = a.p(f[0]), *B = a.p(f[1]), *C = a.p(f[2]);
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+      if (valence[static_cast<std::size_t>(f[uk(k)])] < valence[static_cast<std::size_t>(f[uk(first)])]) first = k;
+    const double *A = a.p(f[uk(first)]), *B = a.p(f[uk((first + 1) % 3)]), *C = a.p(f[uk((first + 2) % 3)]);
     if (area3(A, B, C) > 0) out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
   }
   return out;
@@ -239,7 +269,15 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   if (!ok_options(options)) return {StatusCode::InvalidArgument, "distance options: spacing must be > 0 and finite, max_samples > 0"};
   if (Status s = check_mesh(result_points, result, "result"); !s) return s;
   if (Status s = check_mesh(reference_points, reference, "reference"); !s) return s;
-  const Mesh A{result_points, result}, B{reference_points, reference};
+  const int e = common_exponent(result_points, reference_points);
+  PointSet result_scaled, reference_scaled;
+  if (e != 0) {
+    result_scaled = scaled_by_two_to(result_points, -e);
+    reference_scaled = scaled_by_two_to(reference_points, -e);
+  }
+  // A, B: the geometry (scaled if far from 1); A0: the coordinates as given, for the matching.
+  const Mesh A{e != 0 ? result_scaled : result_points, result}, B{e != 0 ? reference_scaled : reference_points, reference};
+  const Mesh A0{result_points, result};
   const std::vector<Tri3> ta = triangles_of(A), tb = triangles_of(B);
   if (ta.empty()) return {StatusCode::InvalidArgument, "result: no triangle with a positive area"};
   if (tb.empty()) return {StatusCode::InvalidArgument, "reference: no triangle with a positive area"};
@@ -274,7 +312,7 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   std::vector<std::array<int, 3>> canon_a, canon_b;
   canon_a.reserve(result.triangles.size());
   for (const auto& f : result.triangles)
-    canon_a.push_back(sorted({{ids.at(key_of(A.p(f[0]))), ids.at(key_of(A.p(f[1]))), ids.at(key_of(A.p(f[2])))}}));
+    canon_a.push_back(sorted({{ids.at(key_of(A0.p(f[0]))), ids.at(key_of(A0.p(f[1]))), ids.at(key_of(A0.p(f[2])))}}));
   rt = canon_a;
   std::sort(rt.begin(), rt.end());
   rt.erase(std::unique(rt.begin(), rt.end()), rt.end());
@@ -317,6 +355,12 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
   const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
   put_sides(ab, ba, d);
+  if (e != 0) {  // back to the input's scale (the relative values stay as measured)
+    for (double* x : {&d.hausdorff, &d.hausdorff_result_to_reference, &d.hausdorff_reference_to_result,
+                      &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
+                      &d.spacing_result, &d.spacing_reference})
+      *x = std::ldexp(*x, e);
+  }
   out = d;
   return Status::ok();
 }

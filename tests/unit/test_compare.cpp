@@ -115,6 +115,56 @@ TEST(CompareMeshes3, TranslatedCubeHasHausdorffEqualToTheShift) {
   EXPECT_LT(d.mean, 0.1);
 }
 
+// Far from 1 in magnitude the squared lengths overflowed (inf, then NaN samples per triangle: a
+// loop of 2^63 steps from 1e154 on) or underflowed (hostile-input sweep, 2026-12-05). The same
+// cubes at 2^±1000 give the same answer, scaled.
+TEST(CompareMeshes3, ScaleFreeFarFromOne) {
+  PointSet p, q;
+  TriMesh3 m, n;
+  cube(0, p, m);
+  cube(0.1, q, n);
+  MeshDistance ref;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, ref, fast()));
+  for (int e : {1000, 600, -1000}) {
+    PointSet ps = p, qs = q;
+    for (double& x : ps.coords) x = std::ldexp(x, e);
+    for (double& x : qs.coords) x = std::ldexp(x, e);
+    MeshDistance d;
+    ASSERT_TRUE(compare_meshes3(qs, n, ps, m, d, fast())) << e;
+    EXPECT_EQ(d.relative_hausdorff, ref.relative_hausdorff) << e;
+    EXPECT_EQ(d.relative_mean, ref.relative_mean) << e;
+    EXPECT_EQ(d.hausdorff, std::ldexp(ref.hausdorff, e)) << e;
+    EXPECT_EQ(d.recovered_triangles, ref.recovered_triangles) << e;
+    EXPECT_EQ(d.samples_result, ref.samples_result) << e;
+  }
+}
+
+// A polygon face read as a fan (every triangle from one vertex) gave CGAL's distance search
+// thousands of equal reference points: its Kd-tree recursed once per triangle and overflowed the
+// stack at 50 000 (hostile-input sweep, 2026-12-05). A fan of 60 000 slivers over a disc.
+TEST(CompareMeshes3, FanOfSliversDoesNotRecurseDeeply) {
+  const int k = 60000;
+  PointSet p;
+  p.dim = 3;
+  p.coords = {0, 0, 0};
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * M_PI * i / k;
+    p.coords.insert(p.coords.end(), {std::cos(a), std::sin(a), 0});
+  }
+  p.coords.insert(p.coords.end(), {0, 0, -1});
+  TriMesh3 fan;  // a cone: the fan on top, a second fan below
+  for (int i = 0; i < k; ++i) {
+    const int a = 1 + i, b = 1 + (i + 1) % k;
+    fan.triangles.push_back({{0, a, b}});
+    fan.triangles.push_back({{k + 1, b, a}});
+  }
+  DistanceOptions o;
+  o.max_samples = 200000;
+  MeshDistance d;
+  ASSERT_TRUE(compare_meshes3(p, fan, p, fan, d, o));
+  EXPECT_TRUE(d.identical);
+}
+
 TEST(CompareMeshes3, SampleBudgetCoarsensTheSpacing) {
   PointSet p;
   TriMesh3 m;
