@@ -128,6 +128,14 @@ Status parse_ply(std::string_view data, Builder& b) {
   detail::PlyHeader header;
   Status st = detail::parse_ply_header(data, b.name, header);
   if (!st) return st;
+  // 2D points (a vertex element without z) and no faces: not a mesh, as a file without faces
+  // (EmptyInput, so that `render` reads it as a point set).
+  bool faces = false, z = true;
+  for (const detail::PlyElement& el : header.elements) {
+    faces = faces || (el.name == "face" && el.count > 0);
+    if (el.name == "vertex") z = el.find("z") >= 0;
+  }
+  if (!z && !faces) return {StatusCode::EmptyInput, b.name + ": a PLY of 2D points and no faces is not a mesh"};
   detail::PlyBody body(data, b.name, header);
   for (const detail::PlyElement& el : header.elements) {
     st = body.check_room(el);

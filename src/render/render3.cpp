@@ -113,6 +113,15 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};
   if (!(o.ambient >= 0 && o.ambient <= 1) || !(o.edge_width > 0) || o.columns < 0 || o.up_axis < 0 || o.up_axis > 2)
     return {StatusCode::InvalidArgument, "render: ambient in [0, 1], edge width > 0, columns >= 0, up axis 0..2"};
+  // Far from 1 in magnitude the normals' cross products overflow or underflow (a blank or flat
+  // picture): the picture of the points times 2^-e (e their largest exponent) is the same.
+  if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
+    PointSet scaled;
+    scaled.dim = points.dim;
+    scaled.coords.resize(points.coords.size());
+    std::transform(points.coords.begin(), points.coords.end(), scaled.coords.begin(), [e](double x) { return std::ldexp(x, -e); });
+    return render_sheet3(scaled, panels, o, out);
+  }
   const UpFrame at(points, o.up_axis);
   std::vector<char> used(points.size(), 0);
   if (Status s = mark_used(panels, points.size(), used); !s) return s;

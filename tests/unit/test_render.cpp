@@ -111,6 +111,23 @@ TEST(Render3, TetrahedronGolden) {
   expect_golden(img, "tetra_wire_2views_64.png");
 }
 
+// Far from 1 the normals' cross products overflowed or underflowed: a blank picture at 1e-100
+// and 1e200, a flat dark one at 1e100 (hostile-input sweep, 2026-12-05). The picture is the same
+// at any power-of-two scale.
+TEST(Render3, SamePictureFarFromOne) {
+  RenderOptions3 o;
+  o.width = o.height = 64;
+  Image ref;
+  ASSERT_TRUE(render_mesh3(tetra_points(), tetra_mesh(), {}, o, ref));
+  for (int e : {-400, 300, 700}) {
+    PointSet p = tetra_points();
+    for (double& x : p.coords) x = std::ldexp(x, e);
+    Image img;
+    ASSERT_TRUE(render_mesh3(p, tetra_mesh(), {}, o, img)) << e;
+    EXPECT_EQ(img.rgb, ref.rgb) << e;
+  }
+}
+
 TEST(Render3, HiddenFacesAreHidden) {
   // Seen from +z: a big triangle at z = 1 facing the camera (front colour) covers a small one at
   // z = 0 facing away (back colour). The small one must never show, in either triangle order.
