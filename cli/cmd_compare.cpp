@@ -234,9 +234,9 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--points", a->points, "2D: the input points the indices refer to (required in 2D)");
   cmd->add_option("--report", a->report, "write a JSON report");
   cmd->add_option("--spacing", a->spacing, "sample spacing relative to the reference's bbox diagonal (default 0.002)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--max-samples", a->max_samples, "at most this many samples per side (default 1e6)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line");
   return {cmd, [a] { return run_compare(*a); }};
 }

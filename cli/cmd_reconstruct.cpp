@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `constrict reconstruct`: a simple polygon (2D) through all points. Validates every result.
 #include <cstdio>
-#include <memory>
+#include <filesystem>
 #include <future>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -549,8 +551,31 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   return 0;
 }
 
+// Options that contradict each other, or outputs that would overwrite each other, named before
+// the input is read.
+Status check_option_conflicts(const ReconstructArgs& a) {
+  if (a.topology == "auto" && a.stop_after != SIZE_MAX)
+    return {StatusCode::InvalidArgument,
+            "--stop-after stops the one constriction of --topology single; --topology auto reconstructs every part to the end (drop one of them)"};
+  std::error_code ec;
+  if (std::filesystem::is_directory(a.out, ec))
+    return {StatusCode::InvalidArgument, a.out + " is a directory; give -o a file name (for example " +
+                                             (std::filesystem::path(a.out) / "result").string() + ".off or .idx)"};
+  const std::pair<const char*, const std::string*> outs[] = {{"-o", &a.out}, {"--report", &a.report}, {"--body", &a.body}, {"--render", &a.render}};
+  for (std::size_t i = 0; i < std::size(outs); ++i)
+    for (std::size_t j = i + 1; j < std::size(outs); ++j) {
+      if (outs[i].second->empty() || outs[j].second->empty()) continue;
+      const auto p = std::filesystem::weakly_canonical(*outs[i].second, ec), q = std::filesystem::weakly_canonical(*outs[j].second, ec);
+      if (*outs[i].second == *outs[j].second || (!p.empty() && p == q))
+        return {StatusCode::InvalidArgument, std::string(outs[i].first) + " and " + outs[j].first + " name the same file (" +
+                                                 *outs[i].second + "); give each its own"};
+    }
+  return Status::ok();
+}
+
 int run_reconstruct(const ReconstructArgs& a) {
   const auto t0 = Clock::now();
+  if (Status s = check_option_conflicts(a); !s) return fail(s);
   Progress progress(!a.quiet);
   progress.phase("reading");
   PointSet pts;
@@ -585,16 +610,17 @@ Command add_reconstruct_command(CLI::App& app) {
   cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants, when the growth does not reach every point");
   cmd->add_flag("--no-grow", a->no_grow, "3D: no growth from the inside; constrict from the convex hull (docs/reconstruction-3d.md §4.7)");
   cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
-  cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete)");
+  cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete; --topology single)")
+      ->check(non_negative_integer());
   cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")
       ->check(CLI::IsMember({"gamma", "min-area-change", "boissonnat", "voronoi-skeleton"}));
-  cmd->add_option("--seed-limit", a->seed_limit, "voronoi-skeleton: try at most N seeds (0 = all)");
+  cmd->add_option("--seed-limit", a->seed_limit, "voronoi-skeleton: try at most N seeds (0 = all)")->check(non_negative_integer());
   cmd->add_option("--topology", a->topology,
                   "single (default: one polygon / one genus-0 surface) | auto (what the data show: 2D shells, holes, parts; 3D parts, inner shells, handles; docs/topology.md)")
       ->check(CLI::IsMember({"single", "auto"}));
   cmd->add_option("--topology-gap", a->topology_gap,
                   "auto: separate rings (2D) or surfaces (3D) only where parts are at least T local spacings apart (default 2)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};
 }

@@ -424,7 +424,7 @@ Command add_render_command(CLI::App& app) {
   cmd->add_flag("--wireframe", a->wireframe, "3D: draw the triangle edges");
   cmd->add_option("--up", a->up, "3D: model axis drawn upwards (default z)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_flag("--no-graph", a->no_graph, "2D: leave out the dashed Delaunay graph");
-  cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction");
+  cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction")->check(non_negative_integer());
   cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...");
   cmd->add_option("--animate", a->animate, "2D: write frames of the whole constriction to DIR (frame_NNNN.svg/png)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line");

@@ -2,7 +2,9 @@
 #include "common.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 namespace constrict::cli {
@@ -136,6 +138,47 @@ void Progress::run() {
       std::fprintf(stderr, "constrict: %6.1f s  %s\n", s, phase_.c_str());
     next += std::chrono::seconds(1);
   }
+}
+
+namespace {
+// A number as CLI11 reads it (strtod: also "inf", "1e400" -> inf), or false.
+bool option_number(const std::string& text, double& v) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  v = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+}  // namespace
+
+CLI::Validator non_negative_integer() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+          return "'" + text + "' is not a non-negative integer (0, 1, 2, ...)";
+        if (text.size() > 19) return "'" + text + "' is too large (at most 19 digits)";
+        return {};
+      },
+      "INT >= 0");
+}
+
+CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        if (!option_number(text, v) || !std::isfinite(v) || v < 0) return "'" + text + "' is not a finite number >= 0";
+        return {};
+      },
+      "NUMBER >= 0");
+}
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        if (!option_number(text, v) || !std::isfinite(v) || !(v > 0)) return "'" + text + "' is not a finite number > 0";
+        return {};
+      },
+      "NUMBER > 0");
 }
 
 }  // namespace constrict::cli

@@ -44,6 +44,11 @@ void add_input_options(CLI::App* cmd, InputArgs& in, bool columns = true);
 // check = false: the points as parsed (parse-level defects are still errors); for commands whose
 // library call checks its input itself (duplicates, too few, collinear, coplanar), so the O(N log N)
 // duplicate search does not run twice.
+/// Option checks with short messages (CLI11's ranges print the whole double range).
+CLI::Validator non_negative_integer();
+CLI::Validator non_negative_number();
+CLI::Validator positive_number();
+
 Status read_input(const InputArgs& in, PointSet& pts, ReadReport& rep, bool check = true);
 
 /// Output indices are the file's rows (docs/cli.md "Duplicates"): result point @p i is file row

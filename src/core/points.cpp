@@ -133,7 +133,18 @@ Status check_affine_span(const PointSet& points) {
   const double* c = points[ic];
   std::size_t id = ic + 1;
   while (id < n && orient3(a, b, c, points[id]) == 0) ++id;
-  if (id == n) return {StatusCode::Coplanar, "all " + plural(n, "point") + " are coplanar"};
+  if (id == n) {
+    // Points of a 2D outline written with a constant coordinate: say how to read them as 2D.
+    for (int k = 0; k < 3; ++k) {
+      std::size_t i = 1;
+      while (i < n && points[i][k] == a[k]) ++i;
+      if (i < n) continue;
+      static const char* const kHow[3] = {"read y, z as 2D points (--columns 2,3)", "read x, z as 2D points (--columns 1,3)",
+                                          "read them as 2D points (--dim 2)"};
+      return {StatusCode::Coplanar, "all " + plural(n, "point") + " are coplanar: every " + "xyz"[k] + " is the same; to reconstruct an outline " + kHow[k]};
+    }
+    return {StatusCode::Coplanar, "all " + plural(n, "point") + " are coplanar; a surface needs points off one plane"};
+  }
   return Status::ok();
 }
 

@@ -817,7 +817,7 @@ TEST_F(IoChecks, TooFewCollinearCoplanar) {
   EXPECT_TRUE(Contains(st.message(), "line.xy: all 5 points are collinear"));
   st = read("plane.xyz", "0 0 1\n1 0 1\n0 1 1\n5 7 1\n", p);
   EXPECT_EQ(st.code(), StatusCode::Coplanar);
-  EXPECT_TRUE(Contains(st.message(), "plane.xyz: all 4 points are coplanar"));
+  EXPECT_TRUE(Contains(st.message(), "plane.xyz: all 4 points are coplanar: every z is the same"));
   st = read("line.xyz", "0 0 0\n1 1 1\n2 2 2\n3 3 3\n", p);
   EXPECT_EQ(st.code(), StatusCode::Coplanar);
   EXPECT_TRUE(Contains(st.message(), "line.xyz: all 4 points are collinear (3D)"));

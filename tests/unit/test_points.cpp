@@ -156,10 +156,11 @@ TEST(PointsCheck, Collinear2D) {
 TEST(PointsCheck, Coplanar3D) {
   Status st = check_points(make(3, {0, 0, 2, 1, 0, 2, 0, 1, 2, 3, 4, 2, -1, 7, 2}));
   EXPECT_EQ(st.code(), StatusCode::Coplanar);
-  EXPECT_EQ(st.message(), "all 5 points are coplanar");
+  EXPECT_EQ(st.message(), "all 5 points are coplanar: every z is the same; to reconstruct an outline read them as 2D points (--dim 2)");
   // Tilted plane x + y + z = 1 with points that are collinear at the start.
   std::vector<double> c = {1, 0, 0, 0, 1, 0, 0.5, 0.5, 0, 0, 0, 1, 0.25, 0.25, 0.5};
   EXPECT_EQ(check_points(make(3, c)).code(), StatusCode::Coplanar);
+  EXPECT_EQ(check_points(make(3, c)).message(), "all 5 points are coplanar; a surface needs points off one plane");
   c.insert(c.end(), {1, 1, 1});
   EXPECT_TRUE(check_points(make(3, c)));
 }
