@@ -44,7 +44,9 @@ class GeoJsonPoints {
       const Json& g = j["geometry"];
       return g.is_null() ? Status::ok() : object(g, at + "/geometry", true, depth + 1);  // unlocated: no point
     }
-    if (!j.contains("coordinates")) return bad(at, type + " without \"coordinates\"");
+    // (The type is the file's text: quoted, so that a control character cannot break the line.)
+    const std::string shown = quote(type.data(), type.data() + type.size());
+    if (!j.contains("coordinates")) return bad(at, shown + " without \"coordinates\"");
     const Json& c = j["coordinates"];
     if (type == "Point") return position(c, at + "/coordinates");
     if (type == "MultiPoint") {
@@ -55,8 +57,8 @@ class GeoJsonPoints {
       }
       return Status::ok();
     }
-    return bad(at, "geometry type '" + type +
-                       "' is not a point set; only Point and MultiPoint are read (take the "
+    return bad(at, "geometry type " + shown +
+                       " is not a point set; only Point and MultiPoint are read (take the "
                        "vertices out of lines and polygons first)");
   }
 

@@ -432,6 +432,11 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
                     "columns can be chosen only for text input (XYZ/CSV/TXT), this is read as " +
                         std::string(to_string(format)));
   if (is_blank(data)) return error_in(StatusCode::EmptyInput, name, "empty file");
+  // PLY and OFF headers are lines ended by LF (or CRLF); a file with CR-only line ends (classic
+  // Mac) read as one line and gave a misleading message.
+  if ((format == PointFormat::Ply || format == PointFormat::Off) && data.find('\n') == std::string_view::npos &&
+      data.find('\r') != std::string_view::npos)
+    return error_in(StatusCode::ParseError, name, "the lines end in CR only (classic Mac); convert the line ends to LF");
 
   PointSet points;
   points.dim = options.dim == 0 ? 3 : options.dim;

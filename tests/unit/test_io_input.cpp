@@ -252,6 +252,9 @@ TEST(IoFormats, GeoJsonPoints) {
   EXPECT_EQ(code(R"({"type": "Point", "coordinates": [0, 1e400]})"), StatusCode::NonFinite);
   EXPECT_EQ(code("{\"type\": \"Point\",\n \"coordinates\": [0, x]}"), StatusCode::ParseError);
   EXPECT_EQ(code(R"({"type": "FeatureCollection", "features": []})"), StatusCode::EmptyInput);
+  // A type with an escaped line break is quoted in the message (found by fuzz_geojson).
+  EXPECT_EQ(code(R"({"type": "Poly\ngon"})"), StatusCode::ParseError);
+  EXPECT_EQ(code(R"({"type": "Poly\ngon", "coordinates": []})"), StatusCode::ParseError);
   Status st = read_points_from_buffer(
       R"({"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": {"type": "LineString", "coordinates": []}}]})",
       "l.geojson", PointFormat::Auto, {}, p);
@@ -308,6 +311,9 @@ TEST(IoFormats, MoreDataThanAnnouncedIsAnError) {
   EXPECT_NE(st.message().find("short.off:7: the header announces 4 vertices, but the line after them"), std::string::npos)
       << st.message();
   ASSERT_TRUE(read_points_from_buffer("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "ok.off", PointFormat::Auto, {}, p));
+  st = read_points_from_buffer("OFF\r4 0 0\r0 0 0\r1 0 0\r0 1 0\r0 0 1\r", "cr.off", PointFormat::Auto, {}, p);
+  EXPECT_EQ(st.code(), StatusCode::ParseError);
+  EXPECT_NE(st.message().find("CR only"), std::string::npos) << st.message();
   st = read_points_from_buffer("x,x,y\n0,1,2\n1,2,3\n4,5,7\n", "xxy.csv", PointFormat::Auto, {}, p);
   EXPECT_EQ(st.code(), StatusCode::ParseError);
   EXPECT_NE(st.message().find("xxy.csv:1: the header names 'x' twice (columns 1 and 2)"), std::string::npos) << st.message();
