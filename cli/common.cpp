@@ -161,24 +161,21 @@ CLI::Validator non_negative_integer() {
       "INT >= 0");
 }
 
-CLI::Validator non_negative_number() {
+namespace {
+// A finite number above 0 (strict) or at least 0.
+CLI::Validator finite_number_from_zero(bool strict) {
+  const std::string what = strict ? "a finite number > 0" : "a finite number >= 0";
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [strict, what](std::string& text) -> std::string {
         double v = 0;
-        if (!option_number(text, v) || !std::isfinite(v) || v < 0) return "'" + text + "' is not a finite number >= 0";
+        if (!option_number(text, v) || !std::isfinite(v) || v < 0 || (strict && v == 0)) return "'" + text + "' is not " + what;
         return {};
       },
-      "NUMBER >= 0");
+      strict ? "NUMBER > 0" : "NUMBER >= 0");
 }
+}  // namespace
 
-CLI::Validator positive_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double v = 0;
-        if (!option_number(text, v) || !std::isfinite(v) || !(v > 0)) return "'" + text + "' is not a finite number > 0";
-        return {};
-      },
-      "NUMBER > 0");
-}
+CLI::Validator non_negative_number() { return finite_number_from_zero(false); }
+CLI::Validator positive_number() { return finite_number_from_zero(true); }
 
 }  // namespace constrict::cli
