@@ -675,6 +675,18 @@ TEST(Surfaces3Property, NoisySpotGetsNoSmallTunnelHandle) {
   EXPECT_EQ(r.genus, 0);
 }
 
+// A region that closes several loops at once and leaves long faces must close long ones
+// (handles3.cpp, kSeveralLoopMin). Regression file (hostile handle sweep, 2026-12-05): a mug
+// (a cup with walls about 8 spacings thick and one handle), 20 000 points drawn uniformly at random
+// with a density changing 4x across it and normal noise of 0.25 spacings, written with 5 decimals.
+// The growth leaves cracks in the noisy wall; one region a few spacings wide closed 8 loops of
+// 18 spacings through them and left 71 of its 629 long faces: genus 9 before the rule. (The
+// handle itself is cut by the same cracks and stays open: genus 0, no invented handle.)
+TEST(Surfaces3Property, NoisyRandomMugGetsNoHandlesThroughItsWall) {
+  const Surfaces3Result r = run_regression_file("mug_random_noisy_wall.xyz", "noisy random mug");
+  EXPECT_LE(r.genus, 1) << "handles that are not there";
+}
+
 // A noisy sample whose loop closing ends with a pinched point only after the single toggles: the
 // peel leaves 7 bad points, and the toggles used to settle by taking back the tetrahedra that
 // closed the loop (a valid genus-0 state, so the region was undone: genus 0). They are now kept
