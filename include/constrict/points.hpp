@@ -61,6 +61,12 @@ constexpr int kRescaleExponent = 64;
 /// every coordinate is 0. @pre finite coordinates. O(N).
 int max_coordinate_exponent(const PointSet& points) noexcept;
 
+/// A copy of @p points with every coordinate times 2^@p e (std::ldexp: exact unless a result
+/// overflows or becomes subnormal). For measurements and pictures of data far from magnitude 1;
+/// the engines use exact_power_of_two_scale, which refuses a scaling that would lose bits.
+/// @note O(N), deterministic.
+PointSet scaled_by_power_of_two(const PointSet& points, int e);
+
 /// A copy of @p in scaled by 2^-e, e = max_coordinate_exponent(in), so that the largest
 /// |coordinate| lies in [1/2, 1) -- only when every coordinate scales exactly, i.e.
 /// ldexp(ldexp(x, -e), e) == x for each x (scaling up never loses bits; scaling down loses them

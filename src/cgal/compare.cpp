@@ -138,14 +138,6 @@ int common_exponent(const PointSet& a, const PointSet& b) {
   return e > kRescaleExponent || e < -kRescaleExponent ? e : 0;
 }
 
-PointSet scaled_by_two_to(const PointSet& p, int e) {
-  PointSet s;
-  s.dim = p.dim;
-  s.coords.resize(p.coords.size());
-  std::transform(p.coords.begin(), p.coords.end(), s.coords.begin(), [e](double x) { return std::ldexp(x, e); });
-  return s;
-}
-
 // Spacing that honours both the wanted relative spacing and the sample budget.
 template <class CountAt>
 double choose_spacing(double h, std::size_t budget, CountAt&& count_at) {
@@ -272,8 +264,8 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   const int e = common_exponent(result_points, reference_points);
   PointSet result_scaled, reference_scaled;
   if (e != 0) {
-    result_scaled = scaled_by_two_to(result_points, -e);
-    reference_scaled = scaled_by_two_to(reference_points, -e);
+    result_scaled = scaled_by_power_of_two(result_points, -e);
+    reference_scaled = scaled_by_power_of_two(reference_points, -e);
   }
   // A, B: the geometry (scaled if far from 1); A0: the coordinates as given, for the matching.
   const Mesh A{e != 0 ? result_scaled : result_points, result}, B{e != 0 ? reference_scaled : reference_points, reference};

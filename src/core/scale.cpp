@@ -29,6 +29,15 @@ int max_coordinate_exponent(const PointSet& points) noexcept {
   return e;
 }
 
+PointSet scaled_by_power_of_two(const PointSet& points, int e) {
+  PointSet s;
+  s.dim = points.dim;
+  s.coords.resize(points.coords.size());
+  std::transform(points.coords.begin(), points.coords.end(), s.coords.begin(),
+                 [e](double x) { return std::ldexp(x, e); });
+  return s;
+}
+
 Status exact_power_of_two_scale(const PointSet& in, PointSet& out, int& exponent) {
   exponent = 0;
   out = PointSet{};
@@ -59,9 +68,7 @@ Status exact_power_of_two_scale(const PointSet& in, PointSet& out, int& exponent
                                            "largest to 0, or move the data nearer the origin's scale"};
     }
   }
-  out.coords.resize(in.coords.size());
-  std::transform(in.coords.begin(), in.coords.end(), out.coords.begin(),
-                 [e](double x) { return std::ldexp(x, -e); });
+  out = scaled_by_power_of_two(in, -e);
   exponent = e;
   return Status::ok();
 }

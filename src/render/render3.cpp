@@ -116,11 +116,7 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   // Far from 1 in magnitude the normals' cross products overflow or underflow (a blank or flat
   // picture): the picture of the points times 2^-e (e their largest exponent) is the same.
   if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
-    PointSet scaled;
-    scaled.dim = points.dim;
-    scaled.coords.resize(points.coords.size());
-    std::transform(points.coords.begin(), points.coords.end(), scaled.coords.begin(), [e](double x) { return std::ldexp(x, -e); });
-    return render_sheet3(scaled, panels, o, out);
+    return render_sheet3(scaled_by_power_of_two(points, -e), panels, o, out);
   }
   const UpFrame at(points, o.up_axis);
   std::vector<char> used(points.size(), 0);
