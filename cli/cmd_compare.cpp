@@ -93,9 +93,13 @@ int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
     return fail({StatusCode::InvalidArgument, a.result + ": unknown mesh format (use .off, .ply, .obj or .stl)"});
   if (Status s = read_mesh(a.result, rp, rm); !s) return fail(s);
   if (Status s = read_mesh(a.reference, bp, bm); !s) return fail(s);
+  // STL stores 32-bit floats: its vertices are matched to the other mesh's by float rounding.
+  DistanceOptions match = o;
+  match.match_single_precision = lower_ext(a.result) == "stl" || lower_ext(a.reference) == "stl";
   MeshDistance d;
-  if (Status s = compare_meshes3(rp, rm, bp, bm, d, o); !s) return fail(s);
+  if (Status s = compare_meshes3(rp, rm, bp, bm, d, match); !s) return fail(s);
   j["dimension"] = 3;
+  j["vertex_matching"] = match.match_single_precision ? "float32" : "exact";
   j["identical"] = d.identical;
   j["reference_triangles"] = d.reference_triangles;
   j["result_triangles"] = d.result_triangles;
@@ -151,8 +155,23 @@ int run_compare(const CompareArgs& a) {
 
 }  // namespace
 
-Status read_rings_result(const std::string& path, const PointSet& pts, std::vector<std::vector<int>>& rings) {
-  rings.clear();
+namespace {
+
+// A result visits each point at most once: a repeated index would be counted as recovered edges
+// twice over (and is no simple polygon), so it is refused, naming the index.
+Status check_no_repeated_index(const std::string& path, const std::vector<std::vector<int>>& rings, std::size_t n) {
+  std::vector<char> seen(n, 0);
+  for (const auto& ring : rings)
+    for (const int i : ring) {
+      if (seen[static_cast<std::size_t>(i)])
+        return {StatusCode::ParseError, path + ": index " + std::to_string(i) +
+                                            " appears twice; a result visits each point at most once"};
+      seen[static_cast<std::size_t>(i)] = 1;
+    }
+  return Status::ok();
+}
+
+Status read_rings_any(const std::string& path, const PointSet& pts, std::vector<std::vector<int>>& rings) {
   const std::string e = lower_ext(path);
   if (e != "gt" && e != "rings") {
     rings.emplace_back();
@@ -166,6 +185,21 @@ Status read_rings_result(const std::string& path, const PointSet& pts, std::vect
   for (const auto& c : r.closed)
     if (c.size() < 3) return {StatusCode::InvalidArgument, path + ": a ring needs at least 3 indices"};
   rings = r.closed;
+  return Status::ok();
+}
+
+}  // namespace
+
+Status read_rings_result(const std::string& path, const PointSet& pts, std::vector<std::vector<int>>& rings) {
+  rings.clear();
+  if (Status s = read_rings_any(path, pts, rings); !s) {
+    rings.clear();
+    return s;
+  }
+  if (Status s = check_no_repeated_index(path, rings, pts.size()); !s) {
+    rings.clear();
+    return s;
+  }
   return Status::ok();
 }
 

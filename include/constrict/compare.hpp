@@ -26,6 +26,10 @@ struct DistanceOptions {
   /// Upper bound on the samples per side; the spacing grows when it would be exceeded
   /// (default 1e6: about a second per side on 2 cores).
   std::size_t max_samples = 1000000;
+  /// Match the two meshes' vertices by their coordinates rounded to 32-bit floats (where they fit)
+  /// instead of exactly: for a mesh read from STL, which stores floats, against one in doubles.
+  /// Distances are measured on the coordinates as given either way.
+  bool match_single_precision = false;
 };
 
 /// Distances between a result mesh A and a reference mesh B (3D), both directions.

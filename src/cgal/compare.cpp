@@ -249,6 +249,13 @@ struct PosHash {
 };
 PosKey key_of(const double* p) { return {{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0}}; }
 
+// The nearest float where one is finite (else the double itself): STL's 32-bit vertices.
+double to_single(double x) {
+  const float f = static_cast<float>(x);
+  return std::isfinite(f) ? static_cast<double>(f) + 0.0 : x + 0.0;
+}
+PosKey single_key_of(const double* p) { return {{to_single(p[0]), to_single(p[1]), to_single(p[2])}}; }
+
 std::array<int, 3> sorted(std::array<int, 3> t) {
   std::sort(t.begin(), t.end());
   return t;
@@ -286,16 +293,19 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
       }
   d.bbox_diagonal = dist3(lo, hi);
 
-  // Matching by exact vertex positions.
+  // Matching by exact vertex positions (or their float rounding).
+  const auto key = [&options](const double* p) {
+    return options.match_single_precision ? single_key_of(p) : key_of(p);
+  };
   std::unordered_map<PosKey, int, PosHash> ids;
   ids.reserve(result_points.size());
-  for (std::size_t i = 0; i < result_points.size(); ++i) ids.emplace(key_of(result_points[i]), static_cast<int>(i));
+  for (std::size_t i = 0; i < result_points.size(); ++i) ids.emplace(key(result_points[i]), static_cast<int>(i));
   std::vector<int> map(reference_points.size(), -1);
   std::vector<char> used(reference_points.size(), 0);
   for (const auto& f : reference.triangles)
     for (int v : f) used[static_cast<std::size_t>(v)] = 1;
   for (std::size_t i = 0; i < reference_points.size(); ++i) {
-    const auto it = ids.find(key_of(reference_points[i]));
+    const auto it = ids.find(key(reference_points[i]));
     if (it != ids.end()) map[i] = it->second;
     if (used[i] && it != ids.end()) ++d.matched_vertices;
   }
@@ -304,7 +314,7 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   std::vector<std::array<int, 3>> canon_a, canon_b;
   canon_a.reserve(result.triangles.size());
   for (const auto& f : result.triangles)
-    canon_a.push_back(sorted({{ids.at(key_of(A0.p(f[0]))), ids.at(key_of(A0.p(f[1]))), ids.at(key_of(A0.p(f[2])))}}));
+    canon_a.push_back(sorted({{ids.at(key(A0.p(f[0]))), ids.at(key(A0.p(f[1]))), ids.at(key(A0.p(f[2])))}}));
   rt = canon_a;
   std::sort(rt.begin(), rt.end());
   rt.erase(std::unique(rt.begin(), rt.end()), rt.end());
@@ -326,9 +336,11 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   for (const auto& t : bt)
     if (std::binary_search(rt.begin(), rt.end(), t)) ++common;
   std::vector<char> exact_a(result.triangles.size(), 0), exact_b(reference.triangles.size(), 0);
-  for (std::size_t i = 0; i < result.triangles.size(); ++i)
+  // Shared triangles are measured at distance 0 only when shared exactly: matched by rounding,
+  // they are apart by the rounding, and that is measured.
+  for (std::size_t i = 0; i < result.triangles.size() && !options.match_single_precision; ++i)
     exact_a[i] = std::binary_search(bt.begin(), bt.end(), canon_a[i]);
-  for (std::size_t i = 0; i < reference.triangles.size(); ++i)
+  for (std::size_t i = 0; i < reference.triangles.size() && !options.match_single_precision; ++i)
     exact_b[i] = canon_b[i][0] >= 0 && std::binary_search(rt.begin(), rt.end(), canon_b[i]);
   d.reference_triangles = reference.triangles.size();
   d.result_triangles = result.triangles.size();

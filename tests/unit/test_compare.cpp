@@ -84,6 +84,31 @@ TEST(CompareMeshes3, MatchesTrianglesByPositionNotByIndex) {
   EXPECT_EQ(d.triangle_precision, 1.0);
 }
 
+TEST(CompareMeshes3, SinglePrecisionMatchingForStl) {
+  // A cube at coordinates no float holds (0.1 + ...), and its copy rounded to floats, as an STL
+  // result of it would be: exact matching finds no vertex; float matching finds all, and the
+  // distance is the rounding only.
+  PointSet p;
+  TriMesh3 m;
+  cube(0.1, p, m);
+  for (double& c : p.coords) c = c * 0.3 + 0.1;
+  PointSet q = p;
+  for (double& c : q.coords) c = static_cast<double>(static_cast<float>(c));
+  ASSERT_NE(p.coords, q.coords);
+  MeshDistance d;
+  ASSERT_TRUE(compare_meshes3(q, m, p, m, d, fast()));
+  EXPECT_EQ(d.matched_vertices, 0u);
+  EXPECT_EQ(d.recovered_triangles, 0u);
+  DistanceOptions o = fast();
+  o.match_single_precision = true;
+  ASSERT_TRUE(compare_meshes3(q, m, p, m, d, o));
+  EXPECT_EQ(d.matched_vertices, 8u);
+  EXPECT_EQ(d.recovered_triangles, 12u);
+  EXPECT_TRUE(d.identical);
+  EXPECT_GT(d.hausdorff, 0.0);  // the rounding is measured, not taken as a shared triangle
+  EXPECT_LT(d.hausdorff, 1e-7);
+}
+
 TEST(CompareMeshes3, ParallelCopyAtKnownDistance) {
   // A square of two triangles and its copy lifted by 0.25 along its normal: every point is at
   // exactly 0.25 from the other copy.
