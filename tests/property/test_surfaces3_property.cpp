@@ -687,6 +687,26 @@ TEST(Surfaces3Property, NoisyRandomMugGetsNoHandlesThroughItsWall) {
   EXPECT_LE(r.genus, 1) << "handles that are not there";
 }
 
+// On an even sample a closing region may leave long faces only if it takes nearly all of them
+// away and closes a long loop (handles3.cpp, kCutLeftShare). Regression file (decimated-mesh
+// sweep, 2026-12-05): the 10 000 vertices of a genus-3 pretzel (three tori of tube 0.4 in a row,
+// blended) meshed densely and decimated by edge collapse (Lindstrom-Turk), rotated, written with
+// 7 digits. Decimation leaves long triangles where the surface is gently curved: closing the
+// third handle's cut took 52 long faces down to 1 and was undone by the even-sample rule
+// (genus 2).
+TEST(Surfaces3Property, DecimatedPretzelKeepsItsThirdHandle) {
+  const Surfaces3Result r = run_regression_file("pretzel3_decimated.xyz", "decimated pretzel");
+  EXPECT_EQ(r.genus, 3);
+  int long_loops = 0;
+  for (const Handle3Change& c : r.mesh.handle_changes)
+    if (c.kind == Handle3Change::Kind::CloseLoop && c.bridges_after > 0) {
+      EXPECT_GE(c.loop_spacings, 16.0) << "a closing that leaves long faces closes a long loop";
+      EXPECT_LE(8 * c.bridges_after, c.bridges_before);
+      ++long_loops;
+    }
+  EXPECT_EQ(long_loops, 1);
+}
+
 // A noisy sample whose loop closing ends with a pinched point only after the single toggles: the
 // peel leaves 7 bad points, and the toggles used to settle by taking back the tetrahedra that
 // closed the loop (a valid genus-0 state, so the region was undone: genus 0). They are now kept
