@@ -227,9 +227,10 @@ struct Handle3Change {
   /// its tetrahedra, the points on it and its widest tetrahedron's bridge ratio (kept: large and wide).
   std::size_t cavity_tetrahedra = 0, cavity_points = 0;
   double cavity_width = 0;
-  /// Kept by the thin-tube rule (no bridge face before or after): the shortest loop it closes, in
-  /// nearest-neighbour spacings, measured up to the rule's minimum of 16 (so 16 means 16 or more);
-  /// 0 for the other rules.
+  /// Kept by a rule that asks for a long loop (the thin-tube and noisy-tube rules, a pinch,
+  /// several loops, or long faces left on an even sample): the shortest loop it closes, in
+  /// nearest-neighbour spacings, measured up to that rule's minimum (16, 48 or 100: the minimum
+  /// means that much or more); 0 for the other rules.
   double loop_spacings = 0;
   /// Its region became valid only through a move of several tetrahedra at a pinched point.
   bool pinched = false;
