@@ -192,15 +192,10 @@ Status read_rings_any(const std::string& path, const PointSet& pts, std::vector<
 
 Status read_rings_result(const std::string& path, const PointSet& pts, std::vector<std::vector<int>>& rings) {
   rings.clear();
-  if (Status s = read_rings_any(path, pts, rings); !s) {
-    rings.clear();
-    return s;
-  }
-  if (Status s = check_no_repeated_index(path, rings, pts.size()); !s) {
-    rings.clear();
-    return s;
-  }
-  return Status::ok();
+  Status s = read_rings_any(path, pts, rings);
+  if (s) s = check_no_repeated_index(path, rings, pts.size());
+  if (!s) rings.clear();
+  return s;
 }
 
 // A 2D polygon result as input indices: .gt (one closed curve), .idx (one index per line) or

@@ -338,10 +338,12 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   std::vector<char> exact_a(result.triangles.size(), 0), exact_b(reference.triangles.size(), 0);
   // Shared triangles are measured at distance 0 only when shared exactly: matched by rounding,
   // they are apart by the rounding, and that is measured.
-  for (std::size_t i = 0; i < result.triangles.size() && !options.match_single_precision; ++i)
-    exact_a[i] = std::binary_search(bt.begin(), bt.end(), canon_a[i]);
-  for (std::size_t i = 0; i < reference.triangles.size() && !options.match_single_precision; ++i)
-    exact_b[i] = canon_b[i][0] >= 0 && std::binary_search(rt.begin(), rt.end(), canon_b[i]);
+  if (!options.match_single_precision) {
+    for (std::size_t i = 0; i < result.triangles.size(); ++i)
+      exact_a[i] = std::binary_search(bt.begin(), bt.end(), canon_a[i]);
+    for (std::size_t i = 0; i < reference.triangles.size(); ++i)
+      exact_b[i] = canon_b[i][0] >= 0 && std::binary_search(rt.begin(), rt.end(), canon_b[i]);
+  }
   d.reference_triangles = reference.triangles.size();
   d.result_triangles = result.triangles.size();
   d.recovered_triangles = common;

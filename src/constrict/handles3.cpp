@@ -499,13 +499,14 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       // one needed a pinch).
       const bool wide_cut = dF == 4 && !pinched && kCutLeftShare * after.faces <= before.faces &&
                             after.worst <= kCutLeftWorstLongLoop * before.worst;
+      const bool even = *uneven < kUnevenSample;
       bool cut = false;
-      if (*uneven < kUnevenSample && wide_cut) {
+      if (even && wide_cut) {
         const double need = after.worst <= kCutLeftWorst * before.worst ? kThinLoopMin : kCutLongLoop;
         if (loop < need) loop = shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : need);
         cut = loop >= need;
       }
-      if (*uneven < kUnevenSample && !cut) {
+      if (even && !cut) {
         if (debug)
           std::fprintf(stderr, "handle close: %d long faces left (worst %.2f -> %.2f) on an even sample (%.2f): undone\n",
                        after.faces, before.worst, after.worst, *uneven);
