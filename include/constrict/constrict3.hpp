@@ -262,6 +262,14 @@ struct Mesh3Result {
       false;  ///< the carve, fill or handle pass stopped at its work bound (points along curves in space)
   std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
+  /// The growth reached every point but took at least 1/kThinWallShare of its tetrahedra against
+  /// their labels (a wall about a spacing thick, whose inside the labels cannot see: the surface
+  /// zigzags between its two sides), so the variant constrictions from the hull ran as well
+  /// (docs/reconstruction-3d.md §4.7, "Thin walls"); default variants only (not with --fast),
+  /// and only for a genus-0 growth of one surface (the handle stage's loops and cavities stay).
+  static constexpr std::size_t kThinWallShare = 32;
+  bool grow_checked = false;
+  bool grow_replaced = false;             ///< ... and the smallest of their surfaces, smaller than the growth's, won
   std::size_t filled = 0;                 ///< tetrahedra added by the fill pass after the growth
   std::size_t handle_added = 0;           ///< tetrahedra the handle stage added (closing loops)
   std::size_t handle_removed = 0;         ///< ... and removed (opening tunnels)

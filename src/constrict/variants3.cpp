@@ -36,20 +36,31 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     r.cavity_capped = r.cavity_capped || failed_growth.cavity_capped;
     r.ms_grow = failed_growth.ms_grow;
   };
+  // A complete growth that took many tetrahedra against their labels (a thin wall): kept, and
+  // compared with the variants below.
+  std::unique_ptr<Mesh3Result> grown;
   if (base.can_grow()) {
     Mesh3Result rg;
     if (Status sg = single(true, rg); !sg) return sg;
     if (rg.method == Method3::Grow) {
-      result = std::move(rg);
-      if (options.validate) validate_result(base, result);
-      return Status::ok();
+      if (options.validate) validate_result(base, rg);
+      // (A growth whose handle stage closed a loop or sealed a cavity is kept: the variants give
+      // genus 0 and one surface, and the auto topology asked for what the labels show.)
+      if (rg.grown_outside * Mesh3Result::kThinWallShare < rg.grown || rg.genus != 0 || rg.surfaces != 1) {
+        result = std::move(rg);
+        return Status::ok();
+      }
+      rg.grow_checked = true;
+      grown = std::make_unique<Mesh3Result>(std::move(rg));
+      base.reset_to_hull();
+    } else {
+      failed_growth.grow_unreached = rg.grow_unreached;
+      failed_growth.cavity_capped = rg.cavity_capped;
+      failed_growth.ms_grow = rg.ms_grow;
     }
     base.opt.grow = false;  // the variants below start from the hull (reset by the growth stage)
-    failed_growth.grow_unreached = rg.grow_unreached;
-    failed_growth.cavity_capped = rg.cavity_capped;
-    failed_growth.ms_grow = rg.ms_grow;
   }
-  if (!base.keys.dg && base.body.n_onb == base.body.n) {
+  if (!grown && !base.keys.dg && base.body.n_onb == base.body.n) {
     if (Status sh = single(false, result); !sh) return sh;
     keep_growth_facts(result);
     if (options.validate) validate_result(base, result);
@@ -84,8 +95,22 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     summary.push_back({cand[i].size_bias, cand[i].label_weight, res[i].surface_area, res[i].complete,
                        res[i].ms_constrict + res[i].ms_fallback + res[i].ms_sculpt + res[i].ms_carve + res[i].ms_refine});
   const double ms_runs = ms_since(tv);
+  // The thin-wall check: the growth stays unless a complete variant has a smaller surface (a
+  // zigzag between a wall's two sides has about 1.4 times the area; docs/reconstruction-3d.md §4.7).
+  if (grown && !(res[best].complete && res[best].surface_area < grown->surface_area)) {
+    result = std::move(*grown);
+    result.candidates = std::move(summary);
+    result.ms_variants = ms_runs;
+    return Status::ok();
+  }
   result = std::move(res[best]);
   keep_growth_facts(result);
+  if (grown) {
+    result.grown = grown->grown;
+    result.grown_outside = grown->grown_outside;
+    result.ms_grow = grown->ms_grow;
+    result.grow_checked = result.grow_replaced = true;
+  }
   result.candidates = std::move(summary);
   result.ms_variants = ms_runs;
   result.ms_setup = base.ms_setup;

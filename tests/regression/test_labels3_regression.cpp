@@ -10,8 +10,11 @@
 // (volume 49.86 instead of about 51.8; rounding the file to 6 digits hides it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
@@ -47,6 +50,47 @@ TEST(Labels3Regression, AllFlatHullStillSeeds) {
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());
   EXPECT_EQ(r.method, Method3::Grow);
+}
+
+// A wall about a spacing and a half thick (docs/reconstruction-3d.md §4.7, "Thin walls"). File:
+// tests/data/regression/thin_plate_growth_zigzag.xyz, one of the two plates of bench/near_parts3.py
+// (family plates, N 3 000, gap 4, seed 3), as the auto topology gives it to the engine: 1 515 blue-noise
+// points of a box 14.8 x 7.4 x 0.59 (half sides 2 x 1 x 0.08, scaled by 3.7, rotated), spacing about
+// 0.4. Its labels see no inside: the growth reached every point but took 854 of its 1 515
+// tetrahedra against their labels, and its surface zigzagged between the plate's two faces
+// (volume 11.7, area 341, mean width 3V/A 0.18 median edges). The constriction from the hull,
+// which now runs beside such a growth, gives the plate (volume 63.1, area 239).
+TEST(Labels3Regression, ThinPlateGrowthAgainstItsLabelsIsReplacedByTheConstriction) {
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/thin_plate_growth_zigzag.xyz", ro, p).is_ok());
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
+  ASSERT_TRUE(r.valid());
+  EXPECT_TRUE(r.grow_checked);
+  EXPECT_TRUE(r.grow_replaced);
+  EXPECT_GE(r.grown_outside * Mesh3Result::kThinWallShare, r.grown);
+  // The box's volume is 14.8 * 7.4 * 0.59 = 64.6; an inscribed polyhedron through its samples a
+  // little less. The zigzag had 11.7.
+  EXPECT_GT(r.volume, 55.0);
+  EXPECT_LT(r.volume, 64.7);
+  // Mean width 3V/A in median surface edges: a plate 1.5 spacings thick has about 1.8.
+  std::vector<double> edges;
+  for (const auto& t : r.mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const double* a = p[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
+      const double* b = p[static_cast<std::size_t>(t[static_cast<std::size_t>((i + 1) % 3)])];
+      edges.push_back(std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+    }
+  std::nth_element(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2), edges.end());
+  EXPECT_GT(3 * r.volume / r.surface_area / edges[edges.size() / 2], 1.2);
+  // --fast (one variant) keeps the growth: the check belongs to the variant selection.
+  Mesh3Result f;
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options::fast(), f).is_ok());
+  ASSERT_TRUE(f.valid());
+  EXPECT_FALSE(f.grow_checked);
+  EXPECT_EQ(f.method, Method3::Grow);
 }
 
 }  // namespace
