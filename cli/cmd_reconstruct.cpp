@@ -350,6 +350,7 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
                    {"parts", sr.parts},
                    {"part_sizes", sr.part_sizes},
                    {"small_parts_merged", sr.small_parts_merged},
+                   {"patches_joined", sr.patches_joined},
                    {"parts_split_by_labels", sr.parts_split_by_labels},
                    {"repaired_tetrahedra", sr.repaired_tetrahedra},
                    {"repair_capped", sr.repair_capped},

@@ -302,6 +302,9 @@ struct Surfaces3Result {
   /// Parts kept apart at a gap narrower than topology_gap (but at least 3/4 of it) because no
   /// tetrahedra labelled inside join them: two parts that nearly touch (docs/topology.md).
   std::size_t parts_split_by_labels = 0;
+  /// Small parts joined to a neighbour as patches of its surface (docs/topology.md, "Decimated
+  /// meshes"): at a gap below 1.6 topology_gap, tetrahedra labelled inside between them, no void.
+  std::size_t patches_joined = 0;
   /// Tetrahedra toggled to repair the parts' common body where their own surfaces were not
   /// Delaunay faces of all points (noisy nested parts; docs/topology.md §"3D", step 3).
   std::size_t repaired_tetrahedra = 0;
@@ -321,7 +324,9 @@ struct Surfaces3Result {
 /// Reconstructs closed surfaces through all points (3D). Single: reconstruct3(). Auto (docs/topology.md
 /// §"3D"): (1) parts: components of the Delaunay edges shorter than topology_gap local spacings
 /// (exact); between 3/4 of that and topology_gap the engine's labels decide (parts that nearly
-/// touch stay apart unless tetrahedra labelled inside join them); (2) each part's surface by reconstruct3() on its points, with handles when the labels
+/// touch stay apart unless tetrahedra labelled inside join them; a part at most a quarter of a
+/// neighbour's size, closer than 1.6 topology_gap, with tetrahedra labelled inside and outside
+/// between them, is a patch of that neighbour's surface and joins it); (2) each part's surface by reconstruct3() on its points, with handles when the labels
 /// show them (Constrict3Options::handles); (3) with several parts, the body: the Delaunay
 /// tetrahedra of all points inside an odd number of the surfaces (when a surface is not made of
 /// Delaunay faces of all points: edge flips, then for parts that are not apart that body repaired

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // reconstruct_surfaces3(): the 3D ladder of topology.hpp (docs/topology.md §"3D") -- parts by the
 // exact gap rule on the Delaunay edges (between 3/4 of its threshold and the threshold the engine's
-// labels decide: parts that nearly touch); one part -> reconstruct3() (with handles in Auto); several
+// labels decide: parts that nearly touch; a small part that the labels show to be a patch of its
+// neighbour's surface joins it); one part -> reconstruct3() (with handles in Auto); several
 // -> one reconstruct3() per part, then the body of all of them from the Delaunay tetrahedralization
 // of all points by the parity of the surfaces around each tetrahedron (inner shells become
 // cavities), roles and parents from the nesting tree. Any step that does not hold exactly (a part
@@ -366,6 +367,102 @@ Parts split_by_labels(const PointSet& pts, Delaunay3& dt, const std::vector<int>
   out.long_edges.erase(std::unique(out.long_edges.begin(), out.long_edges.end()), out.long_edges.end());
   for (const auto& e : out.long_edges) out.min_gap = std::min(out.min_gap, gap_ratio(pts, nn, e[0], e[1]));
   split = out.points.size() - parts.points.size();
+  return out;
+}
+
+// ---- patches of one surface ----------------------------------------------------------------------
+
+// A dense patch of a surface (a fillet or a rounded corner of a decimated machined part, whose flat
+// faces around it are sparse: long triangles) can lie more than T local spacings from the rest of
+// its own surface; it is not an object of its own. Such a part joins its neighbour when, at a gap
+// below kPatchGap · T, (1) it is much smaller (kPatchShare), (2) tetrahedra labelled inside span
+// it and the neighbour (at least kPatchSideShare of its points on them: the object's inside joins
+// them, as between the pieces of split_by_labels), and (3) tetrahedra labelled outside span them
+// too (as large a share of its points on them): a patch lies on the surface, with the object on one side
+// and the exterior on the other, while an inner shell is surrounded by the object (every
+// tetrahedron between it and the outer shell inside) and a separate part by the exterior.
+// Measured: docs/topology.md, "Decimated meshes".
+constexpr double kPatchGap = 1.6;
+constexpr std::size_t kPatchShare = 4;
+constexpr double kPatchSideShare = 0.1;
+
+bool edge_shorter(const PointSet& pts, const std::vector<int>& nn, int p, int q, double g) {
+  const double* a[2] = {pts[uz(p)], pts[uz(q)]};
+  const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
+  return compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, g) < 0;
+}
+
+Parts join_patches(const PointSet& pts, Delaunay3& dt, const std::vector<int>& nn, Parts parts, double gap,
+                   std::size_t& joined_count) {
+  joined_count = 0;
+  const std::size_t k = parts.points.size();
+  if (k < 2) return parts;
+  // Candidate pairs (small, large) with a Delaunay edge below kPatchGap · gap between them.
+  std::set<std::pair<int, int>> cand;
+  for (const auto& e : parts.long_edges) {
+    int a = parts.part_of[uz(e[0])], b = parts.part_of[uz(e[1])];
+    if (a == b) continue;
+    if (parts.points[uz(a)].size() > parts.points[uz(b)].size()) std::swap(a, b);
+    if (parts.points[uz(a)].size() * kPatchShare > parts.points[uz(b)].size()) continue;
+    if (cand.count({a, b})) continue;
+    if (edge_shorter(pts, nn, e[0], e[1], kPatchGap * gap)) cand.insert({a, b});
+  }
+  if (cand.empty()) return parts;
+  const std::vector<float> label = detail::circumball_labels3(pts, dt);
+  // Per candidate pair: its small part's points on tetrahedra spanning the two, labelled inside
+  // (first) and outside (second).
+  std::map<std::pair<int, int>, std::array<std::vector<int>, 2>> spanning;
+  for (std::size_t t = 0; t < dt.tets.size(); ++t) {
+    const auto& v = dt.tets[t];
+    int pa = parts.part_of[uz(v[0])], pb = pa;
+    bool two = true;
+    for (int x : v) {
+      const int q = parts.part_of[uz(x)];
+      if (q == pa || q == pb) continue;
+      if (pb == pa) pb = q;
+      else two = false;
+    }
+    if (!two || pa == pb || label[t] == 0) continue;
+    for (const auto& pr : {std::make_pair(pa, pb), std::make_pair(pb, pa)}) {
+      auto it = cand.find(pr);
+      if (it == cand.end()) continue;
+      std::vector<int>& on = spanning[pr][label[t] < 0 ? 0 : 1];
+      for (int x : v)
+        if (parts.part_of[uz(x)] == pr.first) on.push_back(x);
+    }
+  }
+  UnionFind uf(static_cast<int>(k));
+  const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;  // (docs/cli.md)
+  for (const auto& pr : cand) {
+    std::array<std::size_t, 2> on{};
+    for (int side = 0; side < 2; ++side) {
+      std::vector<int>& v = spanning[pr][uz(side)];
+      std::sort(v.begin(), v.end());
+      on[uz(side)] = static_cast<std::size_t>(std::unique(v.begin(), v.end()) - v.begin());
+    }
+    const std::size_t n = parts.points[uz(pr.first)].size();
+    const bool both = static_cast<double>(on[0]) >= kPatchSideShare * static_cast<double>(n) &&
+                      static_cast<double>(on[1]) >= kPatchSideShare * static_cast<double>(n);
+    if (debug)
+      std::fprintf(stderr, "patch: part of %zu points beside one of %zu: %zu on inside and %zu on outside tetrahedra between them: %s\n",
+                   n, parts.points[uz(pr.second)].size(), on[0], on[1], both ? "joined" : "apart");
+    if (both && uf.find(pr.first) != uf.find(pr.second)) {
+      uf.join(pr.first, pr.second);
+      ++joined_count;
+    }
+  }
+  if (joined_count == 0) return parts;
+  UnionFind up(pts.size());
+  std::vector<int> first(k, -1);
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    int& f = first[uz(uf.find(parts.part_of[v]))];
+    if (f < 0) f = static_cast<int>(v);
+    up.join(f, static_cast<int>(v));
+  }
+  Parts out = collect_parts(pts, up);
+  for (const auto& e : parts.long_edges)
+    if (out.part_of[uz(e[0])] != out.part_of[uz(e[1])]) out.long_edges.push_back(e);
+  for (const auto& e : out.long_edges) out.min_gap = std::min(out.min_gap, gap_ratio(pts, nn, e[0], e[1]));
   return out;
 }
 
@@ -1373,6 +1470,7 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   Parts fine;
   Parts parts = find_parts(work, dt, nn, o.topology_gap, kNarrowGap * o.topology_gap, o.min_part_points, r.small_parts_merged, fine);
   parts = split_by_labels(work, dt, nn, std::move(parts), fine, o.min_part_points, r.parts_split_by_labels);
+  parts = join_patches(work, dt, nn, std::move(parts), o.topology_gap, r.patches_joined);
   r.parts = parts.points.size();
   for (const auto& p : parts.points) r.part_sizes.push_back(p.size());
   r.min_gap_spacings = parts.min_gap;

@@ -707,6 +707,66 @@ TEST(Surfaces3Property, DecimatedPretzelKeepsItsThirdHandle) {
   EXPECT_EQ(long_loops, 1);
 }
 
+// Patches of one surface (surfaces3.cpp join_patches; docs/topology.md, "Decimated meshes"). The
+// vertices of decimated machined parts are dense at fillets and rounded corners and sparse on the
+// flat faces around them (long triangles), so a fillet can lie more than T local spacings from the
+// rest of its own surface: a part of its own. Regression files from the decimated-mesh sweep
+// (CGAL's Surface_mesher mesh of an implicit shape, decimated by edge collapse, rotated and
+// shuffled, 17 digits): a plate 3 x 1.6 x 0.3 with two holes and rounded edges, 1 499 vertices
+// (Lindstrom-Turk), where a 19-point corner became a second surface; and an L-bracket with a hole
+// in each leg, 999 vertices (Garland-Heckbert), where a 147-point fillet did, and the bracket got
+// genus 1 for 2.
+TEST(Surfaces3Property, DecimatedPlateCornerIsNoPartOfItsOwn) {
+  const Surfaces3Result r = run_regression_file("plate2_decimated_corner_patch.xyz", "decimated plate");
+  EXPECT_EQ(r.genus, 2);
+  EXPECT_EQ(r.parts, 1u);
+  EXPECT_EQ(r.patches_joined, 1u);
+}
+
+TEST(Surfaces3Property, DecimatedBracketFilletIsNoPartOfItsOwn) {
+  const Surfaces3Result r = run_regression_file("lbracket2_decimated_fillet_patch.xyz", "decimated bracket");
+  EXPECT_EQ(r.genus, 2);
+  EXPECT_EQ(r.patches_joined, 1u);
+}
+
+// ... but an inner shell sampled more sparsely than the outer one, within that gap of it, is no
+// patch: every tetrahedron between the shells is labelled inside (the object's wall), none outside.
+// And small separate objects beside a big one: only tetrahedra labelled outside between them.
+// Fibonacci spheres (deterministic, even).
+TEST(Surfaces3Property, SparseInnerShellAndSmallPartsAreNoPatches) {
+  const auto fib = [](PointSet& p, int n, double r, double cx, double cy, double cz) {
+    for (int i = 0; i < n; ++i) {
+      const double t = (i + 0.5) / n, phi = std::acos(1 - 2 * t), th = M_PI * (1 + std::sqrt(5.0)) * (i + 0.5);
+      p.coords.insert(p.coords.end(), {cx + r * std::cos(th) * std::sin(phi), cy + r * std::sin(th) * std::sin(phi), cz + r * std::cos(phi)});
+    }
+  };
+  for (const auto& [ri, ni] : {std::pair<double, int>{0.7, 300}, {0.65, 150}, {0.6, 200}}) {
+    PointSet p;
+    p.dim = 3;
+    fib(p, 3000, 1.0, 0, 0, 0);
+    fib(p, ni, ri, 0.01, 0.02, -0.03);
+    SCOPED_TRACE("inner shell r " + std::to_string(ri) + ", " + std::to_string(ni) + " points");
+    const Surfaces3Result r = run_auto(p);
+    expect_closed_oriented(r, "hollow ball");
+    ASSERT_EQ(r.surfaces.size(), 2u);
+    EXPECT_EQ(r.patches_joined, 0u);
+    int inner = 0;
+    for (const Surface3& s : r.surfaces) inner += s.role == SurfaceRole::Inner;
+    EXPECT_EQ(inner, 1);
+  }
+  // A ball of 3 000 points (spacing about 0.065) with balls of 20 and 40 points 0.15 to 0.25 from it.
+  PointSet p;
+  p.dim = 3;
+  fib(p, 3000, 1.0, 0, 0, 0);
+  fib(p, 20, 0.1, 1.25, 0, 0);
+  fib(p, 40, 0.14, 0, 1.35, 0);
+  fib(p, 20, 0.1, 0, 0, -1.27);
+  const Surfaces3Result r = run_auto(p);
+  expect_closed_oriented(r, "ball and small balls");
+  EXPECT_EQ(r.surfaces.size(), 4u);
+  EXPECT_EQ(r.patches_joined, 0u);
+}
+
 // A noisy sample whose loop closing ends with a pinched point only after the single toggles: the
 // peel leaves 7 bad points, and the toggles used to settle by taking back the tetrahedra that
 // closed the loop (a valid genus-0 state, so the region was undone: genus 0). They are now kept
