@@ -133,6 +133,8 @@ int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
 
 int run_compare(const CompareArgs& a) {
   const auto t0 = Clock::now();
+  if (Status s = check_distinct_files({{"RESULT", &a.result}, {"REFERENCE", &a.reference}, {"--points", &a.points}}, {{"--report", &a.report}}); !s)
+    return fail(s);
   DistanceOptions o;
   o.relative_spacing = a.spacing;
   o.max_samples = a.max_samples;

@@ -21,6 +21,7 @@ struct GraphArgs {
 
 int run_graph(const GraphArgs& a) {
   const auto t0 = Clock::now();
+  if (Status s = check_distinct_files({{"INPUT", &a.in.path}}, {{"-o", &a.out}, {"--report", &a.report}}); !s) return fail(s);
   PointSet pts;
   ReadReport rep;
   if (Status s = read_input(a.in, pts, rep); !s) return fail(s);

@@ -562,16 +562,7 @@ Status check_option_conflicts(const ReconstructArgs& a) {
   if (std::filesystem::is_directory(a.out, ec))
     return {StatusCode::InvalidArgument, a.out + " is a directory; give -o a file name (for example " +
                                              (std::filesystem::path(a.out) / "result").string() + ".off or .idx)"};
-  const std::pair<const char*, const std::string*> outs[] = {{"-o", &a.out}, {"--report", &a.report}, {"--body", &a.body}, {"--render", &a.render}};
-  for (std::size_t i = 0; i < std::size(outs); ++i)
-    for (std::size_t j = i + 1; j < std::size(outs); ++j) {
-      if (outs[i].second->empty() || outs[j].second->empty()) continue;
-      const auto p = std::filesystem::weakly_canonical(*outs[i].second, ec), q = std::filesystem::weakly_canonical(*outs[j].second, ec);
-      if (*outs[i].second == *outs[j].second || (!p.empty() && p == q))
-        return {StatusCode::InvalidArgument, std::string(outs[i].first) + " and " + outs[j].first + " name the same file (" +
-                                                 *outs[i].second + "); give each its own"};
-    }
-  return Status::ok();
+  return check_distinct_files({{"INPUT", &a.in.path}}, {{"-o", &a.out}, {"--report", &a.report}, {"--body", &a.body}, {"--render", &a.render}});
 }
 
 int run_reconstruct(const ReconstructArgs& a) {

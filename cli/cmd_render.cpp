@@ -318,6 +318,7 @@ Status check_dimension_options(const RenderArgs& a, int dim) {
 }
 
 int run_render(const RenderArgs& a) {
+  if (Status s = check_distinct_files({{"INPUT", &a.in.path}, {"--points", &a.points}}, {{"-o", &a.out}}); !s) return fail(s);
   const std::string oe = lower_ext(a.out);
   if (oe != "png" && oe != "svg") return fail({StatusCode::InvalidArgument, a.out + ": the picture is .png or .svg"});
   if (a.views < 0 || a.columns < 0) return fail({StatusCode::InvalidArgument, "--views and --columns must be >= 0"});

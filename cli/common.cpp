@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 namespace constrict::cli {
@@ -68,6 +69,32 @@ std::string lower_ext(const std::string& path) {
 }
 
 bool is_mesh_ext(const std::string& ext) { return ext == "off" || ext == "ply" || ext == "obj" || ext == "stl"; }
+
+namespace {
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  std::error_code ec1, ec2;
+  if (std::filesystem::equivalent(a, b, ec1)) return true;  // both exist: hard links, symlinks
+  const auto p = std::filesystem::weakly_canonical(a, ec1), q = std::filesystem::weakly_canonical(b, ec2);
+  return !ec1 && !ec2 && !p.empty() && p == q;
+}
+}  // namespace
+
+Status check_distinct_files(std::initializer_list<NamedPath> inputs, std::initializer_list<NamedPath> outputs) {
+  const std::vector<NamedPath> out(outputs), in(inputs);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i].second->empty()) continue;
+    for (const NamedPath& x : in)
+      if (!x.second->empty() && same_file(*out[i].second, *x.second))
+        return {StatusCode::InvalidArgument, std::string(out[i].first) + " names the input " + x.first + " (" + *x.second +
+                                                 "): it would be overwritten; give the output another name"};
+    for (std::size_t j = i + 1; j < out.size(); ++j)
+      if (!out[j].second->empty() && same_file(*out[i].second, *out[j].second))
+        return {StatusCode::InvalidArgument, std::string(out[i].first) + " and " + out[j].first + " name the same file (" +
+                                                 *out[i].second + "); give each its own"};
+  }
+  return Status::ok();
+}
 
 bool parse_list(const std::string& text, std::size_t count, std::vector<double>& out) {
   out.clear();

@@ -9,9 +9,11 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <initializer_list>
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "constrict/io.hpp"
@@ -68,6 +70,13 @@ bool parse_list(const std::string& text, std::size_t count, std::vector<double>&
 std::string lower_ext(const std::string& path);
 /// True for the mesh extensions the library reads and writes: off, ply, obj, stl (lower case).
 bool is_mesh_ext(const std::string& ext);
+
+/// A named file path of a command ("-o", "--report", "INPUT", ...).
+using NamedPath = std::pair<const char*, const std::string*>;
+/// InvalidArgument when two of @p outputs, or an output and one of @p inputs, name the same file
+/// (the same path after resolving ".." and links, or the same existing file): a run must not
+/// overwrite its own input or one output with another. Empty paths are skipped.
+Status check_distinct_files(std::initializer_list<NamedPath> inputs, std::initializer_list<NamedPath> outputs);
 
 Status write_report(const std::string& path, const nlohmann::json& j);
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -86,8 +87,20 @@ py::array_t<double> to_array(const PointSet& p) {
   return out;
 }
 // (F, K) index array -> rows of K ints, each in [0, n).
+// Index arrays must hold integers: a float array was cast silently (2.7 -> 2), and a float list
+// gave pybind11's generic cast error.
+void check_integer_dtype(const py::handle& obj, const char* what) {
+  const py::array a = py::array::ensure(obj);
+  if (!a) raise({StatusCode::InvalidArgument, std::string(what) + " must be an array or a sequence of integer indices"});
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u' && !(a.size() == 0 && kind == 'f'))  // (an empty list is float64)
+    raise({StatusCode::InvalidArgument, std::string(what) + " must hold integer indices, not " +
+                                            py::str(a.dtype()).cast<std::string>()});
+}
+
 template <std::size_t K>
 std::vector<std::array<int, K>> to_rows(const py::handle& obj, std::size_t n, const char* what) {
+  check_integer_dtype(obj, what);
   const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!t || t.ndim() != 2 || t.shape(1) != static_cast<py::ssize_t>(K))
     raise({StatusCode::InvalidArgument, std::string(what) + " must have shape (F, " + std::to_string(K) + ")"});
@@ -103,7 +116,19 @@ std::vector<std::array<int, K>> to_rows(const py::handle& obj, std::size_t n, co
     }
   return rows;
 }
-std::vector<int> to_ids(const py::handle& obj) { return obj.cast<std::vector<int>>(); }
+std::vector<int> to_ids(const py::handle& obj) {
+  check_integer_dtype(obj, "indices");
+  const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!t || t.ndim() != 1) raise({StatusCode::InvalidArgument, "indices must be one-dimensional"});
+  std::vector<int> out(static_cast<std::size_t>(t.shape(0)));
+  const std::int64_t* d = t.data();
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (d[i] < std::numeric_limits<int>::min() || d[i] > std::numeric_limits<int>::max())
+      raise({StatusCode::InvalidArgument, "index " + std::to_string(d[i]) + " out of range"});
+    out[i] = static_cast<int>(d[i]);
+  }
+  return out;
+}
 
 py::array_t<std::int64_t> ids(const std::vector<int>& v) {
   py::array_t<std::int64_t> out(static_cast<py::ssize_t>(v.size()));
@@ -175,7 +200,14 @@ bool parse_method(const std::string& s, Criterion& c) {
            "method must be gamma, min-area-change, boissonnat or voronoi-skeleton, got '" + s + "'"});
   return false;
 }
-std::size_t parse_stop_after(const py::object& v) { return v.is_none() ? SIZE_MAX : v.cast<std::size_t>(); }
+std::size_t parse_stop_after(const py::object& v) {
+  if (v.is_none()) return SIZE_MAX;
+  // (bool is an int in Python; a float or a negative number is refused by name, not by pybind11's
+  // generic cast error.)
+  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v) || v.cast<py::int_>() < py::int_(0))
+    raise({StatusCode::InvalidArgument, "stop_after must be None or an integer >= 0, not " + py::repr(v).cast<std::string>()});
+  return v.cast<std::size_t>();
+}
 
 py::dict skeleton_stats(const VoronoiSkeletonStats& s, std::size_t seed_limit) {
   py::dict d;

@@ -207,6 +207,11 @@ class Reconstruct3(unittest.TestCase):
         self.assertEqual(sorted(set(tri.ravel().tolist())), list(range(len(v))))
         ok, reason = constrict.validate_surface(v, tri)
         self.assertTrue(ok, reason)
+        self.assertTrue(constrict.validate_surface(v, tri.tolist())[0])
+        # Float indices are refused, not truncated (2.7 -> 2 passed as the same surface).
+        for bad in (tri + 0.7, tri.astype(float)):
+            with self.assertRaisesRegex(constrict.Error, "integer indices"):
+                constrict.validate_surface(v, bad)
         # The body: its volume is the enclosed volume (divergence theorem on the surface).
         a, b, c = v[tri[:, 0]], v[tri[:, 1]], v[tri[:, 2]]
         enclosed = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
@@ -277,6 +282,12 @@ class Keywords(unittest.TestCase):
             lambda: constrict.reconstruct2(pts2, method="voronoi-skeleton", stop_after=3),
             lambda: constrict.reconstruct2(pts2, method="nearest"),
             lambda: constrict.reconstruct2(pts2, refine="sometimes"),
+            # (the third hostile-input sweep: auto ignored stop_after, or stopped one part early;
+            # a negative or fractional stop_after gave pybind11's generic cast error)
+            lambda: constrict.reconstruct2(pts2, topology="auto", stop_after=3),
+            lambda: constrict.reconstruct2(pts2, stop_after=-1),
+            lambda: constrict.reconstruct2(pts2, stop_after=2.5),
+            lambda: constrict.reconstruct3(pts3, stop_after=True),
         ]
         for i, f in enumerate(bad):
             with self.assertRaises(constrict.Error, msg=i) as ctx:

@@ -40,10 +40,11 @@ using SegTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitiv
 constexpr std::size_t kGrain = 256;
 // A triangle (segment) is cut into at most kMaxGrid pieces per side, whatever the spacing.
 constexpr double kMaxGrid = 1e6;
-// choose_spacing() widens the spacing by kSpacingGrowth until the samples fit the budget, at most
-// kSpacingSteps times (1.25^200 ~ 1e19: far past any budget's need).
+// choose_spacing() widens the spacing by kSpacingGrowth until the samples fit the budget, or the
+// spacing exceeds the bounding-box diagonal (every element then has its fewest samples: more
+// elements than the budget). (It stopped after 200 steps, 1.25^200 ~ 1e19, and a relative spacing
+// below about 1e-19 then sampled 10^12 points per triangle: a hang.)
 constexpr double kSpacingGrowth = 1.25;
-constexpr int kSpacingSteps = 200;
 // FNV-1a over the coordinates' bit patterns, plus a final mix of the high bits.
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
 constexpr std::uint64_t kFnvPrime = 1099511628211ull;
@@ -140,8 +141,10 @@ int common_exponent(const PointSet& a, const PointSet& b) {
 
 // Spacing that honours both the wanted relative spacing and the sample budget.
 template <class CountAt>
-double choose_spacing(double h, std::size_t budget, CountAt&& count_at) {
-  for (int it = 0; it < kSpacingSteps && count_at(h) > budget; ++it) h *= kSpacingGrowth;
+double choose_spacing(double h, double diagonal, std::size_t budget, CountAt&& count_at) {
+  // (Among subnormals h * 1.25 can round back to h: then the next double up.)
+  while (h > 0 && std::isfinite(h) && h <= diagonal && count_at(h) > budget)
+    h = std::max(h * kSpacingGrowth, std::nextafter(h, std::numeric_limits<double>::infinity()));
   return h;
 }
 
@@ -213,14 +216,36 @@ Status check_mesh(const PointSet& pts, const TriMesh3& m, const char* what) {
 // The tree's triangles. CGAL's distance acceleration keeps one reference point per triangle, its
 // first vertex; many equal ones (a polygon face read as a fan: 50 000 triangles from one vertex)
 // make its Kd-tree split once per point, a recursion that overflowed the stack. Each triangle
-// therefore starts at its vertex of the fewest triangles (the first such).
+// therefore starts at its vertex of the fewest triangles (the first such). A triangle repeated
+// (the same three positions: 300 000 copies of one face overflowed the stack the same way) is in
+// the tree once; it adds nothing to a distance.
 std::vector<Tri3> triangles_of(const Mesh& a) {
   std::vector<std::uint32_t> valence(a.pts.size(), 0);
   for (const auto& f : a.m.triangles)
     for (int v : f) ++valence[static_cast<std::size_t>(v)];
+  // Each triangle's corners, sorted: equal keys are the same triangle.
+  using Key = std::array<double, 9>;
+  std::vector<std::pair<Key, std::size_t>> keys;
+  keys.reserve(a.m.triangles.size());
+  for (std::size_t i = 0; i < a.m.triangles.size(); ++i) {
+    std::array<std::array<double, 3>, 3> c{};
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t j = 0; j < 3; ++j) c[k][j] = a.p(a.m.triangles[i][k])[j] + 0.0;
+    std::sort(c.begin(), c.end());
+    Key key{};
+    for (std::size_t j = 0; j < 9; ++j) key[j] = c[j / 3][j % 3];
+    keys.emplace_back(key, i);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> repeat(a.m.triangles.size(), 0);
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].first == keys[i - 1].first) repeat[keys[i].second] = 1;  // (the first in file order stays)
+  std::vector<std::pair<Key, std::size_t>>().swap(keys);
   std::vector<Tri3> out;
   out.reserve(a.m.triangles.size());
-  for (const auto& f : a.m.triangles) {
+  for (std::size_t i = 0; i < a.m.triangles.size(); ++i) {
+    if (repeat[i]) continue;
+    const auto& f = a.m.triangles[i];
     int first = 0;
     for (int k = 1; k < 3; ++k)
       if (valence[static_cast<std::size_t>(f[uk(k)])] < valence[static_cast<std::size_t>(f[uk(first)])]) first = k;
@@ -356,8 +381,8 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   prepare(tree_a);
   prepare(tree_b);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
-  d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count3(A, h); });
-  d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count3(B, h); });
+  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count3(A, h); });
+  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count3(B, h); });
   const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
   const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
   put_sides(ab, ba, d);
@@ -478,8 +503,8 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
   prepare(ta);
   prepare(tb);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
-  d.spacing_result = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sa, h); });
-  d.spacing_reference = choose_spacing(h0, options.max_samples, [&](double h) { return count2(sb, h); });
+  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count2(sa, h); });
+  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count2(sb, h); });
   const Side ab = sample2(sa, tb, d.spacing_result, shared_segments(sa, sb));
   const Side ba = sample2(sb, ta, d.spacing_reference, shared_segments(sb, sa));
   put_sides(ab, ba, d);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -69,6 +70,9 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   r.topology = o.topology;
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
+  if (o.topology == Topology2::Auto && o.polygon.stop_after != SIZE_MAX)
+    return {StatusCode::InvalidArgument,
+            "stop_after stops the one constriction of the single topology; the auto topology reconstructs every part to the end (drop one of them)"};
   // Duplicates: the engine's triangulation finds them (and check_points() names them then).
   if (Status s = detail::check_points_deferred(points); !s) return s;
   // The inference runs on the engine's own triangulation (one triangulation, not two): its

@@ -202,6 +202,39 @@ TEST(CompareMeshes3, SampleBudgetCoarsensTheSpacing) {
   EXPECT_GT(d.spacing_result, 1e-3 * std::sqrt(3.0));
 }
 
+// One face repeated 300 000 times overflowed the stack the same way (one reference point each,
+// all equal; hostile-input sweep, third round): a repeated triangle is in the distance tree once.
+TEST(CompareMeshes3, RepeatedFaceIsInTheTreeOnce) {
+  PointSet p;
+  TriMesh3 m;
+  cube(0, p, m);
+  TriMesh3 many = m;
+  for (int i = 0; i < 300000; ++i) many.triangles.push_back(m.triangles[0]);
+  DistanceOptions o;
+  o.max_samples = 100000;
+  MeshDistance d;
+  ASSERT_TRUE(compare_meshes3(p, many, p, m, d, o));
+  EXPECT_EQ(d.hausdorff, 0.0);
+  EXPECT_EQ(d.recovered_triangles, m.triangles.size());
+}
+
+// A relative spacing far below any budget (1e-30) stopped widening after 200 steps (1.25^200 ~
+// 1e19) and sampled 10^12 points per triangle: the budget now always holds.
+TEST(CompareMeshes3, TinySpacingStillKeepsTheBudget) {
+  PointSet p;
+  TriMesh3 m;
+  cube(0, p, m);
+  for (double spacing : {1e-30, 1e-300, 5e-324}) {
+    DistanceOptions o;
+    o.relative_spacing = spacing;
+    o.max_samples = 1000;
+    MeshDistance d;
+    ASSERT_TRUE(compare_meshes3(p, m, p, m, d, o)) << spacing;
+    EXPECT_LE(d.samples_result, 1000u) << spacing;
+    EXPECT_LE(d.samples_reference, 1000u) << spacing;
+  }
+}
+
 TEST(CompareMeshes3, RejectsBadInput) {
   PointSet p;
   TriMesh3 m;
