@@ -69,6 +69,9 @@ constexpr double kTinyRingGap = 8.0;
 constexpr double kTinyRingFatness = 0.5;
 /// The CLI's single mode infers the topology (for its note) up to this many points.
 constexpr std::size_t kNoteMaxPoints = 20000;
+/// ... and stops it past this much work per input point (Rings2Options::infer_work_limit): the
+/// 178 shared 2D and topology sets need at most 3.85 (s2d_Snail_e0.5; most 1-2).
+constexpr std::size_t kNoteWorkPerPoint = 8;
 
 /// Options of reconstruct_rings2() and infer_rings2().
 struct Rings2Options {
@@ -81,6 +84,11 @@ struct Rings2Options {
   /// (Rings2Result::inferred). Off by default (single mode costs what it did); the CLI turns it on
   /// up to kNoteMaxPoints points.
   bool infer_in_single = false;
+  /// 0, or a bound on the inference's work: N per round of joins plus the points of the part
+  /// polygons it makes. Past it the inference stops with RingsDecision::Capped. The CLI sets
+  /// kNoteWorkPerPoint · N for the single mode's note: 2 000 separate small rings took a note of
+  /// 64 s beside a polygon of 70 ms (a part polygon made again for every thin part joined to it).
+  std::size_t infer_work_limit = 0;
   /// Tell an open arc without its polygon (RingsInference::open_parts): a part next to no bounded
   /// region that is fat against its walls or bounded by other parts too. false: make every part's
   /// polygon and test that (slower on large noisy input; the same decisions on every set
@@ -103,6 +111,7 @@ enum class RingsDecision {
               ///< their nearest part since 2026-12-03, like open arcs)
   Crossing,   ///< the rings of the parts would meet (validate_rings2() failed): not accepted
   Rings,      ///< several parts, each a ring, disjoint: the multi-ring answer
+  Capped,     ///< stopped at Rings2Options::infer_work_limit (the single mode's note only)
 };
 const char* to_string(RingsDecision decision) noexcept;
 

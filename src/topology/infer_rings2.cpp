@@ -707,6 +707,7 @@ const char* to_string(RingsDecision d) noexcept {
     case RingsDecision::SmallPart: return "small-part";
     case RingsDecision::Crossing: return "crossing";
     case RingsDecision::Rings: return "rings";
+    case RingsDecision::Capped: return "capped";
   }
   return "?";
 }
@@ -850,6 +851,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
   std::vector<int> cycle;
+  std::size_t polygon_work = 0;  // N per round and the points of the part polygons made (Rings2Options::infer_work_limit)
   for (;;) {
     // The rings of the parts: a clean crust cycle as it is, otherwise reconstruct2()'s polygon.
     out.parts_polygon = 0;
@@ -934,6 +936,12 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       ++out.open_parts;
       debug_open_part(parts[k].size(), k, parts.size());
     }
+    polygon_work += points.size();  // the round itself: its regions and links are O(N)
+    for (const std::size_t k : need) polygon_work += parts[k].size();
+    if (options.infer_work_limit > 0 && polygon_work > options.infer_work_limit) {
+      out.decision = RingsDecision::Capped;
+      return Status::ok();
+    }
     // The polygons of the others are independent: on both cores (each the same whatever the threads).
     tbb::parallel_for(std::size_t{0}, need.size(), [&](std::size_t i) {
       const std::size_t k = need[i];
@@ -978,7 +986,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     rings = std::move(next_rings);
     known = std::move(next_known);
     if (parts.size() == 1) {
-      out.decision = RingsDecision::OneCurve;
+          out.decision = RingsDecision::OneCurve;
       out.parts_polygon = 0;
       return Status::ok();
     }
