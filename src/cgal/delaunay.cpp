@@ -496,17 +496,33 @@ void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMe
 }
 
 // CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
+// While every point so far lies on one line, CGAL's triangulation has dimension 1 and locates each
+// new point by a walk along that line: when the first points in this order are collinear and the
+// first point off their line comes late (199 999 points on a line and one off it: 36 s, against
+// 0.1 s at 10^5 where it came early), that is quadratic. So when the first three are collinear,
+// the first point off their line (exact) is inserted first; otherwise the order is the sorted one.
 void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
+  std::size_t first_off = items.size();  // inserted before the others (items.size(): none)
+  if (items.size() > 3 && CGAL::orientation(items[0].first, items[1].first, items[2].first) == CGAL::COLLINEAR) {
+    std::size_t b = 1;
+    while (b < items.size() && items[b].first == items[0].first) ++b;
+    for (std::size_t k = b + 1; k < items.size(); ++k)
+      if (CGAL::orientation(items[0].first, items[b].first, items[k].first) != CGAL::COLLINEAR) {
+        first_off = k;
+        break;
+      }
+  }
   DT2::Face_handle hint;
-  int rank = 0;
-  for (const auto& it : items) {
-    const DT2::Vertex_handle v = dt.insert(it.first, hint);
+  const auto insert = [&](std::size_t k) {
+    const DT2::Vertex_handle v = dt.insert(items[k].first, hint);
     if (v != DT2::Vertex_handle()) {
-      v->info() = rank;
+      v->info() = static_cast<int>(k);
       hint = v->face();
     }
-    ++rank;
-  }
+  };
+  if (first_off < items.size()) insert(first_off);
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (k != first_off) insert(k);
 }
 
 // ---- 2D on both cores: two halves triangulated side by side, then joined -----------------------
@@ -593,14 +609,42 @@ struct Half2 {
 // Inserts the points of ranks [first, first + count) (coordinates in @p ranked) in rank order,
 // with hints; vertex info = the rank.
 void insert_ranked(DT2& dt, const PointSet& ranked, std::size_t first, std::size_t count) {
+  const auto p = [&](std::size_t k) { return K::Point_2(ranked.coords[2 * k], ranked.coords[2 * k + 1]); };
+  const std::size_t end = first + count;
+  std::size_t first_off = end;  // (as in insert_sorted: the first point off the first ones' line, first)
+  if (count > 3 && CGAL::orientation(p(first), p(first + 1), p(first + 2)) == CGAL::COLLINEAR) {
+    std::size_t b = first + 1;
+    while (b < end && p(b) == p(first)) ++b;
+    for (std::size_t k = b + 1; k < end; ++k)
+      if (CGAL::orientation(p(first), p(b), p(k)) != CGAL::COLLINEAR) {
+        first_off = k;
+        break;
+      }
+  }
   DT2::Face_handle hint;
-  for (std::size_t k = first; k < first + count; ++k) {
-    const DT2::Vertex_handle v = dt.insert(K::Point_2(ranked.coords[2 * k], ranked.coords[2 * k + 1]), hint);
+  const auto insert = [&](std::size_t k) {
+    const DT2::Vertex_handle v = dt.insert(p(k), hint);
     if (v != DT2::Vertex_handle()) {
       v->info() = static_cast<int>(k);
       hint = v->face();
     }
-  }
+  };
+  if (first_off < end) insert(first_off);
+  for (std::size_t k = first; k < end; ++k)
+    if (k != first_off) insert(k);
+}
+
+// Do the points @p ids span an area (three of them not on one line; exact)?
+bool has_area(const PointSet& points, const std::vector<int>& ids) {
+  const auto p = [&](std::size_t k) {
+    const double* c = points[static_cast<std::size_t>(ids[k])];
+    return K::Point_2(c[0], c[1]);
+  };
+  std::size_t j = 1;
+  while (j < ids.size() && p(j) == p(0)) ++j;
+  for (std::size_t k = j + 1; k < ids.size(); ++k)
+    if (CGAL::orientation(p(0), p(j), p(k)) != CGAL::COLLINEAR) return true;
+  return false;
 }
 
 // The halves of @p subset (indices into @p points, ascending) at the median x: each sorted in
@@ -620,6 +664,12 @@ bool build_halves(const PointSet& points, const std::vector<int>& subset, Half2&
   right.reserve(m / 2 + 1);
   for (const int i : subset) (points[static_cast<std::size_t>(i)][0] <= mx ? left : right).push_back(i);
   if (left.size() < 3 || right.size() < 3) return false;
+  // A half on one line would be triangulated in dimension 1, where CGAL locates each point by a
+  // walk along the line: quadratic (199 999 collinear points and one off the line took 39 s here,
+  // 124 ms at 10^5 without the split). Such a half has no area: the sequential insertion runs.
+  bool flat[2] = {false, false};
+  tbb::parallel_invoke([&] { flat[0] = !has_area(points, left); }, [&] { flat[1] = !has_area(points, right); });
+  if (flat[0] || flat[1]) return false;
   const std::size_t nl = left.size();
   ranked.dim = 2;
   detail::resize_big(ranked.coords, 2 * m);

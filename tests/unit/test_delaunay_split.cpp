@@ -189,5 +189,34 @@ TEST(DelaunaySplit2, CurvesAreLeftToTheSequentialConstruction) {
   EXPECT_TRUE(st.is_ok());
 }
 
+// Points on a line and one off it (the third hostile-input sweep): while every point inserted so
+// far is on one line CGAL's triangulation has dimension 1 and locates by a walk along the line, so
+// when the point off the line came late in the sorted order the construction was quadratic
+// (199 999 + 1 points: 36 s). Now that point is inserted first; the triangulation is the fan from
+// it (n - 2 triangles), through both the sequential and the split paths.
+TEST(DelaunaySplit2, PointsOnALineAndOneOffItAreNotQuadratic) {
+  const std::size_t n = 150001;
+  PointSet p;
+  p.dim = 2;
+  for (std::size_t i = 0; i + 1 < n; ++i) p.coords.insert(p.coords.end(), {static_cast<double>(i), 0.0});
+  p.coords.insert(p.coords.end(), {0.5 * static_cast<double>(n), 1.0});
+  // (shuffled by a fixed permutation: the file order must not matter)
+  std::uint64_t s = 12345;
+  for (std::size_t i = n - 1; i > 0; --i) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const std::size_t j = static_cast<std::size_t>((s >> 33) % (i + 1));
+    std::swap(p.coords[2 * i], p.coords[2 * j]);
+    std::swap(p.coords[2 * i + 1], p.coords[2 * j + 1]);
+  }
+  Delaunay2 dt;
+  PointSet ranked;
+  std::vector<int> id;
+  ASSERT_TRUE(detail::build_delaunay2_ranked(p, dt, ranked, id).is_ok());
+  EXPECT_EQ(dt.triangles.size(), n - 2);
+  Delaunay2 local;
+  ASSERT_TRUE(build_delaunay2(p, local).is_ok());
+  EXPECT_EQ(local.triangles.size(), n - 2);
+}
+
 }  // namespace
 }  // namespace constrict
