@@ -325,6 +325,26 @@ def _invalid(message: str):
     return err
 
 
+def _check_types(**options: Any) -> None:
+    """Refuses a keyword of the wrong type with one short line (pybind11's own TypeError printed
+    the whole internal signature and the point array): strings, flags, counts and numbers."""
+    for name, value in options.items():
+        if name in ("fallback", "method", "topology"):
+            ok, want = isinstance(value, str), "a string"
+        elif name in ("merge_duplicates", "grow", "fast", "validate_self_intersections"):
+            ok, want = isinstance(value, (bool, np.bool_)), "True or False"
+        elif name == "seed_limit":
+            ok = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value >= 0
+            want = "an integer >= 0"
+        elif name == "topology_gap":
+            ok = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+            want = "a number"
+        else:
+            continue
+        if not ok:
+            raise _invalid(f"{name} must be {want}, not {value!r}")
+
+
 def _with_skeleton(d: Dict[str, Any]) -> Dict[str, Any]:
     """The CLI's report fields of the Voronoi skeleton, added to the library's report."""
     if d["skeleton"] is not None:
@@ -389,6 +409,8 @@ def reconstruct2(
         TypeError: a keyword reconstruct2 does not take (e.g. grow, which is 3D only).
     """
     _reject("reconstruct2", unknown)
+    _check_types(fallback=fallback, method=method, topology=topology, topology_gap=topology_gap,
+                 seed_limit=seed_limit, merge_duplicates=merge_duplicates)
     ref = _refine_name(refine)
     if topology != "single" or topology_gap != 2.0:
         if merge_duplicates:
@@ -465,6 +487,9 @@ def reconstruct3(
         TypeError: a keyword reconstruct3 does not take.
     """
     _reject("reconstruct3", unknown)
+    _check_types(fallback=fallback, method=method, topology=topology, topology_gap=topology_gap,
+                 seed_limit=seed_limit, merge_duplicates=merge_duplicates, grow=grow, fast=fast,
+                 validate_self_intersections=validate_self_intersections)
     ref = _refine_name(refine)
     _skeleton_options(method, seed_limit, fallback=(fallback, "auto"), refine=(ref, "auto"),
                       stop_after=(stop_after, None), grow=(grow, True), fast=(fast, False))

@@ -288,6 +288,13 @@ class Keywords(unittest.TestCase):
             lambda: constrict.reconstruct2(pts2, stop_after=-1),
             lambda: constrict.reconstruct2(pts2, stop_after=2.5),
             lambda: constrict.reconstruct3(pts3, stop_after=True),
+            # wrong types: one short line, not pybind11's signature dump
+            lambda: constrict.reconstruct2(pts2, topology=None),
+            lambda: constrict.reconstruct3(pts3, fallback=None),
+            lambda: constrict.reconstruct2(pts2, seed_limit=-1),
+            lambda: constrict.reconstruct3(pts3, merge_duplicates="no"),
+            lambda: constrict.reconstruct3(pts3, grow="no"),
+            lambda: constrict.reconstruct2(pts2, topology="auto", topology_gap="2"),
         ]
         for i, f in enumerate(bad):
             with self.assertRaises(constrict.Error, msg=i) as ctx:
