@@ -495,34 +495,43 @@ void fill_local(const std::vector<std::pair<Point, int>>& items, detail::LocalMe
   });
 }
 
-// CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
+// The first of the points p(0), ..., p(n - 1) off the line through p(0) and the first point that
+// differs from it (exact), or n when they are all on one line.
+template <class At>
+std::size_t first_off_line(std::size_t n, const At& p) {
+  std::size_t b = 1;
+  while (b < n && p(b) == p(0)) ++b;
+  for (std::size_t k = b + 1; k < n; ++k)
+    if (CGAL::orientation(p(0), p(b), p(k)) != CGAL::COLLINEAR) return k;
+  return n;
+}
+
+// CGAL's hinted insertion of p(0), ..., p(n - 1) in this order; vertex info = info0 + the index.
 // While every point so far lies on one line, CGAL's triangulation has dimension 1 and locates each
 // new point by a walk along that line: when the first points in this order are collinear and the
 // first point off their line comes late (199 999 points on a line and one off it: 36 s, against
 // 0.1 s at 10^5 where it came early), that is quadratic. So when the first three are collinear,
-// the first point off their line (exact) is inserted first; otherwise the order is the sorted one.
-void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
-  std::size_t first_off = items.size();  // inserted before the others (items.size(): none)
-  if (items.size() > 3 && CGAL::orientation(items[0].first, items[1].first, items[2].first) == CGAL::COLLINEAR) {
-    std::size_t b = 1;
-    while (b < items.size() && items[b].first == items[0].first) ++b;
-    for (std::size_t k = b + 1; k < items.size(); ++k)
-      if (CGAL::orientation(items[0].first, items[b].first, items[k].first) != CGAL::COLLINEAR) {
-        first_off = k;
-        break;
-      }
-  }
+// the first point off their line is inserted first; otherwise the order is the given one.
+template <class At>
+void insert_in_order(DT2& dt, std::size_t n, const At& p, int info0) {
+  const std::size_t first =
+      n > 3 && CGAL::orientation(p(0), p(1), p(2)) == CGAL::COLLINEAR ? first_off_line(n, p) : n;
   DT2::Face_handle hint;
   const auto insert = [&](std::size_t k) {
-    const DT2::Vertex_handle v = dt.insert(items[k].first, hint);
+    const DT2::Vertex_handle v = dt.insert(p(k), hint);
     if (v != DT2::Vertex_handle()) {
-      v->info() = static_cast<int>(k);
+      v->info() = info0 + static_cast<int>(k);
       hint = v->face();
     }
   };
-  if (first_off < items.size()) insert(first_off);
-  for (std::size_t k = 0; k < items.size(); ++k)
-    if (k != first_off) insert(k);
+  if (first < n) insert(first);
+  for (std::size_t k = 0; k < n; ++k)
+    if (k != first) insert(k);
+}
+
+// CGAL's hinted insertion in the spatially sorted order; vertex info = the insertion rank.
+void insert_sorted(DT2& dt, const std::vector<std::pair<K::Point_2, int>>& items) {
+  insert_in_order(dt, items.size(), [&](std::size_t k) { return items[k].first; }, 0);
 }
 
 // ---- 2D on both cores: two halves triangulated side by side, then joined -----------------------
@@ -609,29 +618,9 @@ struct Half2 {
 // Inserts the points of ranks [first, first + count) (coordinates in @p ranked) in rank order,
 // with hints; vertex info = the rank.
 void insert_ranked(DT2& dt, const PointSet& ranked, std::size_t first, std::size_t count) {
-  const auto p = [&](std::size_t k) { return K::Point_2(ranked.coords[2 * k], ranked.coords[2 * k + 1]); };
-  const std::size_t end = first + count;
-  std::size_t first_off = end;  // (as in insert_sorted: the first point off the first ones' line, first)
-  if (count > 3 && CGAL::orientation(p(first), p(first + 1), p(first + 2)) == CGAL::COLLINEAR) {
-    std::size_t b = first + 1;
-    while (b < end && p(b) == p(first)) ++b;
-    for (std::size_t k = b + 1; k < end; ++k)
-      if (CGAL::orientation(p(first), p(b), p(k)) != CGAL::COLLINEAR) {
-        first_off = k;
-        break;
-      }
-  }
-  DT2::Face_handle hint;
-  const auto insert = [&](std::size_t k) {
-    const DT2::Vertex_handle v = dt.insert(p(k), hint);
-    if (v != DT2::Vertex_handle()) {
-      v->info() = static_cast<int>(k);
-      hint = v->face();
-    }
-  };
-  if (first_off < end) insert(first_off);
-  for (std::size_t k = first; k < end; ++k)
-    if (k != first_off) insert(k);
+  insert_in_order(
+      dt, count, [&](std::size_t k) { return K::Point_2(ranked.coords[2 * (first + k)], ranked.coords[2 * (first + k) + 1]); },
+      static_cast<int>(first));
 }
 
 // Do the points @p ids span an area (three of them not on one line; exact)?
@@ -640,11 +629,7 @@ bool has_area(const PointSet& points, const std::vector<int>& ids) {
     const double* c = points[static_cast<std::size_t>(ids[k])];
     return K::Point_2(c[0], c[1]);
   };
-  std::size_t j = 1;
-  while (j < ids.size() && p(j) == p(0)) ++j;
-  for (std::size_t k = j + 1; k < ids.size(); ++k)
-    if (CGAL::orientation(p(0), p(j), p(k)) != CGAL::COLLINEAR) return true;
-  return false;
+  return first_off_line(ids.size(), p) < ids.size();
 }
 
 // The halves of @p subset (indices into @p points, ascending) at the median x: each sorted in

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -237,6 +238,13 @@ Parts settle_parts(const PointSet& pts, const std::vector<int>& nn, UnionFind& u
   }
 }
 
+// Is the Delaunay edge pq shorter than g · rms(spacing at p, spacing at q) (compare_gap3, exact)?
+bool edge_shorter(const PointSet& pts, const std::vector<int>& nn, int p, int q, double g) {
+  const double* a[2] = {pts[uz(p)], pts[uz(q)]};
+  const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
+  return compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, g) < 0;
+}
+
 // Parts: components of the Delaunay edges shorter than gap local spacings, then settle_parts().
 // And in the same pass over the edges the parts of the narrower rule (narrow · gap; split_by_labels).
 Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int>& nn, double gap, double narrow,
@@ -251,13 +259,8 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
   for (std::size_t v = 0; v < pts.size(); ++v) s2[v] = len2(pts[v], pts[uz(nn[v])]);
   const auto shorter = [&](int p, int q, double g) {
     bool ok = false;
-    int c = detail::gap_filtered(2.0 * len2(pts[uz(p)], pts[uz(q)]), s2[uz(p)] + s2[uz(q)], g, 2, 3, ok);
-    if (!ok) {
-      const double* a[2] = {pts[uz(p)], pts[uz(q)]};
-      const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
-      c = compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, g);
-    }
-    return c < 0;
+    const int c = detail::gap_filtered(2.0 * len2(pts[uz(p)], pts[uz(q)]), s2[uz(p)] + s2[uz(q)], g, 2, 3, ok);
+    return ok ? c < 0 : edge_shorter(pts, nn, p, q, g);
   };
   for_tet_edges(dt, [&](int p, int q) {
     if (uf_fine.find(p) == uf_fine.find(q)) return;
@@ -279,6 +282,28 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
   std::size_t merged_fine = 0;
   fine = settle_parts(pts, nn, uf_fine, std::move(long_fine), min_points, merged_fine);
   return settle_parts(pts, nn, uf, std::move(long_edges), min_points, merged);
+}
+
+// The parts whose points share a group (group(v) < groups), ordered as collect_parts() orders
+// them, with the edges of @p edge_lists that run between two of them and their smallest gap.
+template <class Group>
+Parts regroup(const PointSet& pts, const std::vector<int>& nn, std::size_t groups, const Group& group,
+              std::initializer_list<const std::vector<std::array<int, 2>>*> edge_lists) {
+  UnionFind uf(pts.size());
+  std::vector<int> first(groups, -1);
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    int& f = first[uz(group(v))];
+    if (f < 0) f = static_cast<int>(v);
+    uf.join(f, static_cast<int>(v));
+  }
+  Parts out = collect_parts(pts, uf);
+  for (const std::vector<std::array<int, 2>>* edges : edge_lists)
+    for (const auto& e : *edges)
+      if (out.part_of[uz(e[0])] != out.part_of[uz(e[1])]) out.long_edges.push_back(e);
+  std::sort(out.long_edges.begin(), out.long_edges.end());
+  out.long_edges.erase(std::unique(out.long_edges.begin(), out.long_edges.end()), out.long_edges.end());
+  for (const auto& e : out.long_edges) out.min_gap = std::min(out.min_gap, gap_ratio(pts, nn, e[0], e[1]));
+  return out;
 }
 
 // ---- parts that nearly touch ------------------------------------------------------------------
@@ -348,24 +373,12 @@ Parts split_by_labels(const PointSet& pts, Delaunay3& dt, const std::vector<int>
                    piece_size[uz(pair.first)], piece_size[uz(pair.second)], na, nb, join ? "joined" : "apart");
     if (join) joined.join(pair.first, pair.second);
   }
-  UnionFind uf(pts.size());
-  std::vector<int> first(piece_size.size(), -1);
-  for (std::size_t v = 0; v < pts.size(); ++v) {
-    int& f = first[uz(joined.find(piece[v]))];
-    if (f < 0) f = static_cast<int>(v);
-    uf.join(f, static_cast<int>(v));
-  }
-  Parts out = collect_parts(pts, uf);
+  // The Delaunay edges between the new parts: the gap rule's long edges and the narrower rule's.
+  Parts out = regroup(pts, nn, piece_size.size(), [&](std::size_t v) { return joined.find(piece[v]); },
+                      {&std::as_const(parts).long_edges, &fine.long_edges});
   if (out.points.size() <= parts.points.size()) return parts;
   for (const auto& p : out.points)
     if (!solid_part(pts, p, min_points)) return parts;
-  // The Delaunay edges between the new parts: the gap rule's long edges and the narrower rule's.
-  for (const std::vector<std::array<int, 2>>* edges : {&std::as_const(parts).long_edges, &fine.long_edges})
-    for (const auto& e : *edges)
-      if (out.part_of[uz(e[0])] != out.part_of[uz(e[1])]) out.long_edges.push_back(e);
-  std::sort(out.long_edges.begin(), out.long_edges.end());
-  out.long_edges.erase(std::unique(out.long_edges.begin(), out.long_edges.end()), out.long_edges.end());
-  for (const auto& e : out.long_edges) out.min_gap = std::min(out.min_gap, gap_ratio(pts, nn, e[0], e[1]));
   split = out.points.size() - parts.points.size();
   return out;
 }
@@ -385,12 +398,6 @@ Parts split_by_labels(const PointSet& pts, Delaunay3& dt, const std::vector<int>
 constexpr double kPatchGap = 1.6;
 constexpr std::size_t kPatchShare = 4;
 constexpr double kPatchSideShare = 0.1;
-
-bool edge_shorter(const PointSet& pts, const std::vector<int>& nn, int p, int q, double g) {
-  const double* a[2] = {pts[uz(p)], pts[uz(q)]};
-  const double* b[2] = {pts[uz(nn[uz(p)])], pts[uz(nn[uz(q)])]};
-  return compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, g) < 0;
-}
 
 Parts join_patches(const PointSet& pts, Delaunay3& dt, const std::vector<int>& nn, Parts parts, double gap,
                    std::size_t& joined_count) {
@@ -452,18 +459,7 @@ Parts join_patches(const PointSet& pts, Delaunay3& dt, const std::vector<int>& n
     }
   }
   if (joined_count == 0) return parts;
-  UnionFind up(pts.size());
-  std::vector<int> first(k, -1);
-  for (std::size_t v = 0; v < pts.size(); ++v) {
-    int& f = first[uz(uf.find(parts.part_of[v]))];
-    if (f < 0) f = static_cast<int>(v);
-    up.join(f, static_cast<int>(v));
-  }
-  Parts out = collect_parts(pts, up);
-  for (const auto& e : parts.long_edges)
-    if (out.part_of[uz(e[0])] != out.part_of[uz(e[1])]) out.long_edges.push_back(e);
-  for (const auto& e : out.long_edges) out.min_gap = std::min(out.min_gap, gap_ratio(pts, nn, e[0], e[1]));
-  return out;
+  return regroup(pts, nn, k, [&](std::size_t v) { return uf.find(parts.part_of[v]); }, {&std::as_const(parts).long_edges});
 }
 
 // ---- assembling the body of several parts --------------------------------------------------------
