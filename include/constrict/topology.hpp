@@ -57,14 +57,16 @@ constexpr double kDefaultTopologyGap = 2.0;
 constexpr double kMinRingFatness = 1.0;
 constexpr double kMaxRingEdge = 50.0;
 /// A part of at most kTinyRingPoints points has no region fat by that measure (a regular n-gon
-/// has 2|A|/Σ|e|² = cot(π/n)/2: 0.5 for a square, 0.87 for a hexagon), so it was always joined
-/// to its nearest part, however far: a speck of a CT slice's contours 10 spacings off became a
-/// bridge. Such a part is a ring of its own when every other part is at least kTinyRingGap local
-/// spacings away and its polygon has more than kTinyRingFatness times the regular n-gon's value
-/// (docs/topology.md, "Tiny rings"). The gap is far above kDefaultTopologyGap: in a random
-/// sample along a curve, a run of a few points with gaps of 8 spacings on both sides has a
-/// probability of about e^-16 per point.
-constexpr std::size_t kTinyRingPoints = 8;
+/// has 2|A|/Σ|e|² = cot(π/n)/2: 0.5 for a square, 0.87 for a hexagon, 1.87 for 12 points, but its
+/// interior is cut by its own short diagonals), so it was always joined to its nearest part,
+/// however far: a speck of a CT slice's contours 10 spacings off became a bridge. Such a part
+/// always gets its polygon (the kMinRingFatness rule); and any part, of any size, whose every
+/// link to another part is at least kTinyRingGap local spacings long is a ring when its polygon
+/// has more than kTinyRingFatness times the regular n-gon's value (up to kTinyRingPoints points;
+/// kMinRingFatness from there) (docs/topology.md, "Tiny rings", "Archipelagos"). The gap is far
+/// above kDefaultTopologyGap: in a random sample along a curve, a run of a few points with gaps
+/// of 8 spacings on both sides has a probability of about e^-16 per point.
+constexpr std::size_t kTinyRingPoints = 12;
 constexpr double kTinyRingGap = 8.0;
 constexpr double kTinyRingFatness = 0.5;
 /// The CLI's single mode infers the topology (for its note) up to this many points.
@@ -141,6 +143,10 @@ struct RingsInference {
   /// to no bounded region that is fat or bounded by other parts too (an open arc;
   /// compare_region_fatness2 on the regions their walls enclose). Counted over all rounds.
   std::size_t open_parts = 0;
+  /// Joins taken back: a thin part joined an accepted ring and the two made a thin part (two
+  /// rings across a gap, not one curve), so the thin part is a ring of its own (docs/topology.md,
+  /// "Archipelagos"). Counted over all rounds.
+  std::size_t joins_undone = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the
   /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data

@@ -776,13 +776,17 @@ bool has_chord(const PointSet& pts, const std::vector<int>& ring, double factor)
   return false;
 }
 
-// kTinyRingFatness times a regular m-gon's 2|A|/Σ|e|² = cot(π/m)/2 (3 <= m <= kTinyRingPoints),
-// as constants (a library's tan need not be correctly rounded; these are the same everywhere).
-double tiny_ring_fatness(std::size_t m) {
-  static_assert(kTinyRingPoints == 8 && kTinyRingFatness == 0.5, "the table is for 3..8 points at half the n-gon");
-  constexpr std::array<double, 9> t{0, 0, 0, 0.1443375672974065, 0.25, 0.3440954801177934, 0.43301270189221935,
-                                    0.5191303491430842, 0.6035533905932737};
-  return t[std::min(m, kTinyRingPoints)];
+// The fatness an isolated part's polygon must pass: kTinyRingFatness times a regular m-gon's
+// 2|A|/Σ|e|² = cot(π/m)/2 while that is below kMinRingFatness (3 <= m <= kTinyRingPoints), else
+// kMinRingFatness, the rule of every other part. As constants (a library's tan need not be
+// correctly rounded; these are the same everywhere).
+double isolated_ring_fatness(std::size_t m) {
+  static_assert(kTinyRingPoints == 12 && kTinyRingFatness == 0.5 && kMinRingFatness == 1.0,
+                "the table is for 3..12 points at half the n-gon (from 13 on half the n-gon is over 1)");
+  constexpr std::array<double, 13> t{0, 0, 0, 0.1443375672974065, 0.25, 0.3440954801177934, 0.43301270189221935,
+                                     0.5191303491430842, 0.6035533905932737, 0.6868693548636556, 0.7694208842938135,
+                                     0.8514218097223124, 0.9330127018922194};
+  return m <= kTinyRingPoints ? t[m] : kMinRingFatness;
 }
 
 // For each part k, the part across its smallest gap (Gaps::ratio; equal gaps: the
@@ -850,6 +854,14 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
+  // A part that the last round made by joining thin parts to an accepted ring: what it was made
+  // of (each constituent's points, its ring when it was accepted), to take the join back.
+  struct Constituent {
+    std::vector<int> points, ring;
+    bool accepted;
+  };
+  std::vector<std::vector<Constituent>> made_of(parts.size());
+  bool undone = false;  // the last round took joins back: the regions are made again
   std::vector<int> cycle;
   std::size_t polygon_work = 0;  // N per round and the points of the part polygons made (Rings2Options::infer_work_limit)
   for (;;) {
@@ -891,13 +903,14 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       std::vector<char> again(kLevels, first ? 1 : 0);
       tbb::parallel_for(std::uint8_t{0}, kLevels, [&](std::uint8_t level) {
         if (!first && level > 0)
-          again[level] = !incremental || regions_changed(points, adj, wall_level, level, part_of, built_part_of,
+          again[level] = !incremental || undone || regions_changed(points, adj, wall_level, level, part_of, built_part_of,
                                                          enclosures[level]->unbounded(), joinable, components[level]);
         if (!again[level]) return;
         enclosures[level].emplace(points, adj, wall_level, level, part_of);
         if (incremental) components[level] = wall_components(points, adj, wall_level, level, part_of);
       });
       built_part_of = part_of;
+      undone = false;
     }
     std::vector<char> encl(parts.size(), !test_open);
     for (const auto& level : enclosures) {
@@ -906,28 +919,29 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || e[k];
     }
     // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no
-    // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one.
-    // Tiny parts far from every other part (kTinyRingPoints, kTinyRingGap): their links to
-    // other parts, each tested exactly against the tiny-ring gap.
-    std::vector<char> tiny(parts.size(), 0), line(parts.size(), 0);
+    // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one. But a
+    // part far from every other part (kTinyRingGap) gets its polygon whatever its regions: a small
+    // ring's interior is cut by its own short diagonals (walls), and a small ring's polygon is
+    // judged against the regular m-gon (isolated_ring_fatness). Its links to other parts, each
+    // tested exactly against the gap.
+    std::vector<char> isolated(parts.size(), 0), line(parts.size(), 0);
     {
       bool any = false;
       for (const std::size_t k : todo) {
-        const std::size_t m = parts[k].size();
         line[k] = collinear(points, parts[k]) ? 1 : 0;
-        tiny[k] = m >= 3 && m <= kTinyRingPoints && !line[k] ? 1 : 0;
-        any = any || tiny[k];
+        isolated[k] = parts[k].size() >= 3 && !line[k] ? 1 : 0;
+        any = any || isolated[k];
       }
       if (any)
         for (const auto& [g, e] : links) {
           const int rp = ring_of[static_cast<std::size_t>(e[0])], rq = ring_of[static_cast<std::size_t>(e[1])];
-          if (rp == rq || !(tiny[static_cast<std::size_t>(rp)] || tiny[static_cast<std::size_t>(rq)])) continue;
-          if (gaps.shorter(e[0], e[1], kTinyRingGap)) tiny[static_cast<std::size_t>(rp)] = tiny[static_cast<std::size_t>(rq)] = 0;
+          if (rp == rq || !(isolated[static_cast<std::size_t>(rp)] || isolated[static_cast<std::size_t>(rq)])) continue;
+          if (gaps.shorter(e[0], e[1], kTinyRingGap)) isolated[static_cast<std::size_t>(rp)] = isolated[static_cast<std::size_t>(rq)] = 0;
         }
     }
     std::vector<std::size_t> need;
     for (const std::size_t k : todo) {
-      if (!line[k] && (encl[k] || tiny[k])) {
+      if (!line[k] && (encl[k] || isolated[k] || parts[k].size() <= kTinyRingPoints)) {
         need.push_back(k);
         continue;
       }
@@ -957,10 +971,78 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
       // from the last round passed already: a thin one joined another part.)
       thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(),
-                                      tiny[k] ? tiny_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
+                                      isolated[k] ? isolated_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
                 has_chord(points, rings[k], kMaxRingEdge);
       any_thin = any_thin || thin[k];
       debug_part(points, rings[k], k, parts.size(), thin[k]);
+    }
+    // A thin part made by joining thin parts to an accepted ring is two rings across a gap, not
+    // one curve (a noisy arc of the ring's own curve leaves it fat): the join is taken back and
+    // each thin constituent is a ring of its own, when it has a polygon (else the joins stand).
+    // Every constituent is then known, so nothing else changes and the round is made again.
+    {
+      std::vector<std::size_t> undo;
+      for (std::size_t k = 0; k < parts.size(); ++k)
+        if (thin[k] && !made_of[k].empty()) undo.push_back(k);
+      std::vector<char> can(undo.size(), 1);
+      tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
+        for (Constituent& c : made_of[undo[i]]) {
+          if (!c.accepted && (collinear(points, c.points) || !part_polygon(points, c.points, options.polygon, c.ring))) {
+            can[i] = 0;
+            break;
+          }
+          // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of
+          // a noisy band (a clean crust cycle of a few points) with the band's arcs joined to it
+          // is not two rings.
+          if (compare_ring_fatness2(points.coords.data(), c.ring.data(), c.ring.size(), isolated_ring_fatness(c.ring.size())) <= 0) {
+            can[i] = 0;
+            break;
+          }
+        }
+      });
+      std::vector<std::vector<int>> next;
+      std::vector<std::vector<int>> next_rings;
+      bool any_undone = false;
+      std::vector<char> split(parts.size(), 0);
+      for (std::size_t i = 0; i < undo.size(); ++i)
+        if (can[i]) {
+          split[undo[i]] = 1;
+          any_undone = true;
+          for (const Constituent& c : made_of[undo[i]]) polygon_work += c.accepted ? 0 : c.points.size();
+        }
+      if (any_undone) {
+        std::vector<std::pair<std::vector<int>, std::vector<int>>> all;  // (points, ring)
+        for (std::size_t k = 0; k < parts.size(); ++k) {
+          if (!split[k]) {
+            all.emplace_back(std::move(parts[k]), std::move(rings[k]));
+            continue;
+          }
+          for (Constituent& c : made_of[k]) {
+            ++out.joins_undone;
+            all.emplace_back(std::move(c.points), std::move(c.ring));
+          }
+        }
+        // The parts again in their canonical order (group_parts: by the lexicographically
+        // smallest point); every one is known but those that were not evaluated this round.
+        for (std::size_t j = 0; j < all.size(); ++j)
+          for (int v : all[j].first) part_of[static_cast<std::size_t>(v)] = static_cast<int>(j);
+        std::vector<std::vector<int>> regrouped = group_parts(points, part_of);
+        std::vector<std::vector<int>> regrouped_rings(regrouped.size());
+        std::vector<char> regrouped_known(regrouped.size(), 0);
+        for (std::size_t j = 0; j < regrouped.size(); ++j) {
+          auto& src = all[static_cast<std::size_t>(part_of[static_cast<std::size_t>(regrouped[j].front())])];
+          regrouped_rings[j] = std::move(src.second);
+          regrouped_known[j] = regrouped_rings[j].empty() ? 0 : 1;
+        }
+        for (std::size_t j = 0; j < regrouped.size(); ++j)
+          for (int v : regrouped[j]) part_of[static_cast<std::size_t>(v)] = static_cast<int>(j);
+        parts = std::move(regrouped);
+        rings = std::move(regrouped_rings);
+        known = std::move(regrouped_known);
+        made_of.assign(parts.size(), {});
+        undone = true;
+        continue;
+      }
     }
     if (!any_thin) break;
     // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
@@ -975,6 +1057,23 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     std::vector<std::vector<int>> next = group_parts(points, part_of);
     std::vector<std::vector<int>> next_rings(next.size());
     std::vector<char> next_known(next.size(), 0);
+    std::vector<std::vector<Constituent>> next_made_of(next.size());
+    {
+      // Which old parts each new one is made of (a join of thin parts to an accepted ring only).
+      std::vector<int> new_of_root(parts.size(), -1);
+      for (std::size_t j = 0; j < next.size(); ++j)
+        new_of_root[static_cast<std::size_t>(joined.find(ring_of[static_cast<std::size_t>(next[j].front())]))] = static_cast<int>(j);
+      std::vector<char> has_ring(next.size(), 0), has_thin(next.size(), 0);
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
+        (thin[k] ? has_thin : has_ring)[j] = 1;
+      }
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
+        if (has_ring[j] && has_thin[j] && members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))] > 1)
+          next_made_of[j].push_back(Constituent{parts[k], thin[k] ? std::vector<int>{} : rings[k], !thin[k]});
+      }
+    }
     for (std::size_t j = 0; j < next.size(); ++j) {
       const std::size_t old = static_cast<std::size_t>(ring_of[static_cast<std::size_t>(next[j].front())]);
       if (members[static_cast<std::size_t>(joined.find(static_cast<int>(old)))] == 1) {
@@ -985,6 +1084,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     parts = std::move(next);
     rings = std::move(next_rings);
     known = std::move(next_known);
+    made_of = std::move(next_made_of);
     if (parts.size() == 1) {
           out.decision = RingsDecision::OneCurve;
       out.parts_polygon = 0;

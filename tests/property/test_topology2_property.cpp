@@ -708,5 +708,72 @@ TEST(Topology2Property, OpenArcTestAgreesWithThePolygonRule) {
   EXPECT_GT(open, 0u);   // and some were found open
 }
 
+
+// Archipelagos (docs/topology.md, "Archipelagos"): 25 small islands of 8-16 points (jittered
+// angles, stretched up to 1.6:1, 0.05 noise), 4-12 spacings apart on a grid, alone and inside a
+// lake. A small ring's interior is cut by its own short diagonals, so the region test called
+// most of them open arcs; one joined a neighbour, the pair was thin and joined the next, until
+// up to 18 islands made one ring with bridges across every gap. Now every island is its own ring.
+TEST(Topology2Property, ArchipelagoOfSmallIslandsKeepsEveryIsland) {
+  for (double gap : {4.0, 6.0, 12.0})
+    for (int lake = 0; lake <= 1; ++lake)
+      for (unsigned seed = 1; seed <= 2; ++seed) {
+        SCOPED_TRACE("gap " + std::to_string(gap) + " lake " + std::to_string(lake) + " seed " + std::to_string(seed));
+        std::mt19937 rng(seed * 7919 + static_cast<unsigned>(gap) * 31 + static_cast<unsigned>(lake));
+        std::uniform_real_distribution<double> u(0, 1);
+        std::normal_distribution<double> noise(0, 0.05);
+        std::vector<std::vector<std::array<double, 2>>> islands;
+        double rad = 0;
+        for (int k = 0; k < 25; ++k) {
+          const int m = 8 + static_cast<int>(u(rng) * 9);  // 8..16
+          const double r = 0.5 / std::sin(M_PI / m), e = 1 + 0.6 * u(rng), a0 = 2 * M_PI * u(rng), th = 2 * M_PI * u(rng);
+          std::vector<std::array<double, 2>> pts;
+          for (int i = 0; i < m; ++i) {
+            const double a = a0 + 2 * M_PI * (i + 0.7 * u(rng) - 0.35) / m;
+            const double x = r * e * std::cos(a) + noise(rng), y = r / e * std::sin(a) + noise(rng);
+            pts.push_back({x * std::cos(th) - y * std::sin(th), x * std::sin(th) + y * std::cos(th)});
+            rad = std::max(rad, std::hypot(pts.back()[0], pts.back()[1]));
+          }
+          islands.push_back(pts);
+        }
+        const double d = 2 * rad + gap;
+        PointSet p;
+        p.dim = 2;
+        std::vector<std::set<int>> truth;
+        for (int k = 0; k < 25; ++k) {
+          std::set<int> ring;
+          for (const auto& q : islands[static_cast<std::size_t>(k)]) {
+            ring.insert(static_cast<int>(p.size()));
+            p.coords.insert(p.coords.end(), {q[0] + (k / 5) * d, q[1] + (k % 5) * d});
+          }
+          truth.push_back(ring);
+        }
+        if (lake) {
+          const double c = 2 * d, R = c * std::sqrt(2.0) + rad + gap + 2;
+          const int n = static_cast<int>(2 * M_PI * R);
+          std::set<int> ring;
+          for (int i = 0; i < n; ++i) {
+            const double t = 2 * M_PI * (i + 0.4 * u(rng) - 0.2) / n;
+            ring.insert(static_cast<int>(p.size()));
+            p.coords.insert(p.coords.end(), {c + R * std::cos(t), c + R * std::sin(t)});
+          }
+          truth.push_back(ring);
+        }
+        const Rings2Result a = run(p, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        RingsCheck bc;
+        EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
+        std::vector<std::set<int>> got;
+        for (const Ring2& r : a.rings) got.emplace_back(r.indices.begin(), r.indices.end());
+        std::sort(got.begin(), got.end());
+        std::sort(truth.begin(), truth.end());
+        EXPECT_EQ(got, truth) << a.rings.size() << " rings for " << truth.size() << " islands";
+        for (const Ring2& r : a.rings)
+          if (r.indices.size() <= 16) {
+            EXPECT_EQ(r.role, lake ? RingRole::Hole : RingRole::Shell);
+          }
+      }
+}
+
 }  // namespace
 }  // namespace constrict
