@@ -161,19 +161,28 @@ using detail::UnionFind;
 class Gaps {
  public:
   // The crust edges across a gap are marked once (both ends' slots; on both cores).
-  Gaps(const PointSet& pts, const NnCrust& crust, double t) : pts_(pts), crust_(crust), t_(t), across_(crust.slots(), 0) {
+  Gaps(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, double t)
+      : pts_(pts), crust_(crust), t_(t), across_(crust.slots(), 0), corner_(pts.size(), 0) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t p = range.begin(); p != range.end(); ++p) corner_[p] = corner_jump(adj, static_cast<int>(p)) ? 1 : 0;
+    });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t p = range.begin(); p != range.end(); ++p)
         for (const int* r = crust.begin(static_cast<int>(p)); r != crust.end(static_cast<int>(p)); ++r)
           across_[crust.slot(r)] = across_gap(static_cast<int>(p), *r) ? 1 : 0;
     });
   }
-  // A crust edge that is itself a gap: chosen by one end only, as its half-neighbour, and longer
-  // than 2t times the spacing of the other end's own choices (the root mean square of their
-  // lengths). A point moved off its curve by noise finds no half-neighbour on its own curve and
-  // takes one across the gap to the next curve; that edge would make the spacing at the gap as
-  // wide as the gap. (A nearest-neighbour edge is never one: an outlier keeps its spacing.)
-  bool across_gap(int p, int r) const {
+  // Does the crust edge pq join p and q into one piece? A mutual crust edge does, unless it leaves
+  // a corner at both ends (corner_jump: two small polygons took each other's vertices).
+  bool joins(int p, int q) const { return crust_.mutual(p, q) && !(corner_at(p, q) && corner_at(q, p)); }
+  // A crust edge that is itself a gap: one that leaves its chooser's ring at a corner
+  // (corner_jump), or one chosen by one end only, as its half-neighbour, and longer than 2t times
+  // the spacing of the other end's own choices (the root mean square of their lengths). A point
+  // moved off its curve by noise finds no half-neighbour on its own curve and takes one across the
+  // gap to the next curve; that edge would make the spacing at the gap as wide as the gap. (A
+  // nearest-neighbour edge is never one: an outlier keeps its spacing.)
+  bool across_gap(int p, int r) const { return corner_at(p, r) || corner_at(r, p) || one_sided_gap(p, r); }
+  bool one_sided_gap(int p, int r) const {
     const int o = crust_.unwilling_end(p, r);
     if (o < 0) return false;
     const int from = o == p ? r : p;
@@ -260,10 +269,33 @@ class Gaps {
     for (const double x : l) sum += x;
     return std::sqrt(len2(at(p), at(q)) / (sum / static_cast<double>(l.size())));
   }
+  // p's half-neighbour leaves p's own ring at a corner: at a vertex of at most 90° the NN-crust's
+  // half-neighbour (beyond 90° from the nearest neighbour a) cannot be the ring's other
+  // neighbour. So when p has another Delaunay neighbour c, more than t times nearer than the
+  // half-neighbour r (the gap rule's own ratio), that turns away from a (c farther from a than from p: the angle at p is the
+  // largest of the triangle a p c, at least 60°), c is p's ring neighbour and r lies beyond a
+  // gap. (On a curve sampled unevenly the second-nearest point lies past the nearest, nearer to
+  // it than to p: no corner.) Exact (compare_gap2, compare_distance2).
+  bool corner_jump(const Adjacency& adj, int p) const {
+    const auto& ch = crust_.choices(p);
+    const int a = ch[0], r = ch[1];
+    if (a < 0 || r < 0) return false;
+    const std::size_t p_ = static_cast<std::size_t>(p);
+    for (std::size_t k = adj.start[p_]; k < adj.start[p_ + 1]; ++k) {
+      const int c = adj.nbr[k];
+      if (c == a || c == r) continue;
+      const double* x[1] = {at(p)};
+      const double* y[1] = {at(c)};
+      if (compare_gap2(at(p), at(r), x, y, 1, t_) > 0 && compare_distance2(at(c), at(a), at(p)) >= 0) return true;
+    }
+    return false;
+  }
+  bool corner_at(int p, int r) const { return corner_[static_cast<std::size_t>(p)] && crust_.choices(p)[1] == r; }
   const PointSet& pts_;
   const NnCrust& crust_;
   double t_;  // the gap threshold (across_gap)
   std::vector<char> across_;  // per crust slot: across_gap()
+  std::vector<char> corner_;  // per point: corner_jump()
 };
 
 // The parts: components of the mutual crust edges and of the Delaunay edges shorter than
@@ -272,7 +304,7 @@ class Gaps {
 // links: the Delaunay edges between pieces with their ratio (Gaps::ratio), ascending; every edge
 // between two parts is one of them.
 using Links = std::vector<std::pair<double, std::array<int, 2>>>;
-std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnCrust& crust, const Gaps& gaps, double gap,
+std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const Gaps& gaps, double gap,
                             Links& links, RingsInference& out) {
   const std::size_t n = pts.size();
   UnionFind pieces(n), parts(n);
@@ -282,7 +314,7 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const NnC
         if (adj.nbr[k] > static_cast<int>(p)) f(static_cast<int>(p), adj.nbr[k]);
   };
   for_edges([&](int p, int q) {
-    if (crust.mutual(p, q)) {
+    if (gaps.joins(p, q)) {
       pieces.join(p, q);
       parts.join(p, q);
     }
@@ -353,7 +385,7 @@ std::array<int, 2> edge_ends(const Adjacency& adj, std::size_t e) {
 // For each Delaunay edge (as 3t + i, from the triangle that takes it), the first level at which it
 // is a wall if its ends are in one part: 0 mutual crust or shorter than the threshold (never
 // between two parts), 1 and 2 shorter than 2 and 4 times it; kLevels: never. Exact (compare_gap2).
-std::vector<std::uint8_t> wall_levels(const Adjacency& adj, const NnCrust& crust, const Gaps& gaps, double gap) {
+std::vector<std::uint8_t> wall_levels(const Adjacency& adj, const Gaps& gaps, double gap) {
   std::vector<std::uint8_t> level(3 * adj.triangles.size(), kLevels);
   double factors[kLevels];
   for (std::uint8_t k = 0; k < kLevels; ++k) factors[k] = kSealFactors[k] * gap;
@@ -362,7 +394,7 @@ std::vector<std::uint8_t> wall_levels(const Adjacency& adj, const NnCrust& crust
       const int u = adj.neighbors[e / 3][e % 3];
       if (u >= 0 && static_cast<std::size_t>(u) < e / 3) continue;
       const auto [a, b] = edge_ends(adj, e);
-      level[e] = crust.mutual(a, b) ? 0 : static_cast<std::uint8_t>(gaps.first_shorter(a, b, factors, kLevels));
+      level[e] = gaps.joins(a, b) ? 0 : static_cast<std::uint8_t>(gaps.first_shorter(a, b, factors, kLevels));
     }
   });
   return level;
@@ -838,9 +870,9 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
   const NnCrust crust(points, adj);
   for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
-  Gaps gaps(points, crust, gap);
+  Gaps gaps(points, adj, crust, gap);
   Links links;
-  std::vector<int> part_of = find_parts(points, adj, crust, gaps, gap, links, out);
+  std::vector<int> part_of = find_parts(points, adj, gaps, gap, links, out);
   std::vector<std::vector<int>> parts = group_parts(points, part_of);
   out.parts = parts.size();
   if (parts.size() == 1) return Status::ok();  // OneCurve
@@ -889,7 +921,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (test_open) {
       const bool first = enclosures.empty();
       if (first) {
-        wall_level = wall_levels(adj, crust, gaps, gap);
+        wall_level = wall_levels(adj, gaps, gap);
         enclosures.resize(kLevels);
         for (std::uint8_t level = 0; level < kLevels; ++level) components.emplace_back(incremental ? points.size() : 0);
         // The edges that a join can make walls: between two parts, at a level > 0.
