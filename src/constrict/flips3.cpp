@@ -4,6 +4,7 @@
 // with two surface faces (the paper's two-face rule, seed paper §4.2) or add back a removed one
 // with two faces on the surface (its exact reverse).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -29,6 +30,12 @@ constexpr std::size_t kFlipsPerPoint = 8, kFlipsExtra = 100;
 // noisy and handle sets use at most 40 per tetrahedron; 1 000 points on a helix, whose edges lie in
 // hundreds of tetrahedra, used 20 000 (4 s; 2 000 points: 22 s).
 constexpr std::size_t kRingWorkPerTet = 256, kRingWorkFloor = std::size_t{1} << 22;
+// A flip whose edge lies in more tetrahedra than this is not tried. Every tetrahedron's gain is
+// evaluated before the first flip, and each walks around its edge: on 10^5 points on a line and
+// two off it (one edge in 10^5 tetrahedra, all of them candidates) that was 10^10 steps, 67 s.
+// Edges of the shared, topology and handle sets lie in at most a few dozen; the helix above in
+// hundreds.
+constexpr int kMaxFlipRing = 1024;
 
 class Flips3 {
  public:
@@ -83,6 +90,7 @@ class Flips3 {
         if (gx > 0) heap_.push({gx, x, b_.ver[uz(x)]}, b_.tets);
       }
     }
+    s_.long_rings += long_rings_.load();
   }
 
  private:
@@ -127,17 +135,34 @@ class Flips3 {
     const double e_new = face_energy_of(t, oi[0]) + face_energy_of(t, oi[1]);
     const double gain = e_old - e_new;
     if (!(gain > kRelativeGain * e_old)) return -1;
-    if (a) {
-      if (b_.edge_on_boundary(t, si[0], si[1])) return -1;
-    } else if (b_.edge_touches_body(t, si[0], si[1])) {
-      return -1;
-    }
-    return gain;
+    return edge_free(t, si[0], si[1], a) ? gain : -1;
+  }
+  // In the body: is the edge off the surface (the walk around it meets no tetrahedron outside the
+  // body)? Removed: does it touch no body tetrahedron (both ways round an open ring)? False also
+  // when the ring has more than kMaxFlipRing tetrahedra.
+  bool edge_free(int t, int i, int j, bool alive) const {
+    int steps = 0;
+    bool hit = false, hull = false, long_ring = false;
+    const auto step = [&](int nx) {
+      if (++steps > kMaxFlipRing) return long_ring = true;
+      if (nx < 0) {  // the convex hull: on the surface for a body tetrahedron
+        hull = true;
+        hit = alive;
+        return true;
+      }
+      hit = alive ? !b_.alive(nx) : b_.alive(nx);
+      return hit;
+    };
+    b_.walk_edge(t, i, j, 0, step);
+    if (!alive && !hit && !long_ring && hull) b_.walk_edge(t, i, j, 1, step);
+    if (long_ring) long_rings_.fetch_add(1, std::memory_order_relaxed);
+    return !hit && !long_ring;
   }
 
   Body3& b_;
   Refine3 energy_;
   Flips3Stats& s_;
+  mutable std::atomic<std::size_t> long_rings_{0};  // (flip_gain runs on both cores at first)
   TetHeap heap_;
 };
 

@@ -243,6 +243,28 @@ TEST(Stages3, CarveAndFlipsKeepEveryPointOnAValidSurface) {
   EXPECT_LT(mesh_area(p, b.surface()), a0);
 }
 
+// Points on a line and two off it: one edge (the two off the line) lies in every tetrahedron, and
+// every tetrahedron is a flip candidate whose test walks around that edge. Such a candidate is
+// not tried past kMaxFlipRing tetrahedra around its edge (the walks made 10^5 points take 67 s),
+// and the surface stays valid; on an ordinary sample none is skipped.
+TEST(Stages3, FlipsSkipEdgesInVeryManyTetrahedra) {
+  PointSet p;
+  p.dim = 3;
+  for (int i = 0; i < 3000; ++i) p.coords.insert(p.coords.end(), {double(i), 0.0, 0.0});
+  p.coords.insert(p.coords.end(), {0.0, 1.0, 0.0, 0.0, 0.0, 1.0});
+  Body3 b = start_body(p);
+  detail::Flips3Stats fl;
+  detail::flip_pass3(b, Refine3::Circumradius, fl);  // (by area no flip gains: the walk is not reached)
+  expect_valid_body(b, false, "flipped");
+  EXPECT_GT(fl.long_rings, 0u);
+  const PointSet q = shell(500, 4);
+  Body3 c = start_body(q);
+  detail::Flips3Stats fq;
+  detail::flip_pass3(c, Refine3::Circumradius, fq);
+  expect_valid_body(c, false, "flipped");
+  EXPECT_EQ(fq.long_rings, 0u);
+}
+
 // Integer points on the sphere x² + y² + z² = r2 (exactly cospherical: every Delaunay
 // tetrahedron is one of many of the same circumsphere), and the lattice points on the surface of
 // the cube [0, k]³ (coplanar and cospherical groups): degenerate inputs for the stages' counts.

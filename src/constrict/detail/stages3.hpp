@@ -215,6 +215,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
 struct Flips3Stats {
   std::size_t added = 0, removed = 0;
   bool capped = false;  // a pass stopped at its work bound (flips3.cpp)
+  std::size_t long_rings = 0;  // candidates not tried: their edge lies in over kMaxFlipRing tetrahedra
 };
 // Energy-decreasing surface edge flips through Delaunay tetrahedra, best first, for one energy
 // (Refine3::Area or Refine3::Circumradius).
