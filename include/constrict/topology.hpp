@@ -69,6 +69,9 @@ constexpr double kMaxRingEdge = 50.0;
 constexpr std::size_t kTinyRingPoints = 12;
 constexpr double kTinyRingGap = 8.0;
 constexpr double kTinyRingFatness = 0.5;
+/// Two parts whose rings meet are joined and made again, at most this many times per inference
+/// (docs/topology.md, "Archipelagos"); then the rings are refused (RingsDecision::Crossing).
+constexpr std::size_t kMaxCrossingJoins = 64;
 /// The CLI's single mode infers the topology (for its note) up to this many points.
 constexpr std::size_t kNoteMaxPoints = 20000;
 /// ... and stops it past this much work per input point (Rings2Options::infer_work_limit): the
@@ -125,6 +128,8 @@ struct RingsCheck {
   bool oriented = false;    ///< shells counter-clockwise, holes clockwise
   bool nested = false;      ///< each parent is the innermost ring containing the ring; roles by depth
   std::string reason;       ///< one line; empty when valid
+  /// When two edges meet: their rings (the same ring when it is not simple); -1 otherwise.
+  int met_a = -1, met_b = -1;
 };
 
 /// What the data show (infer_rings2()).
@@ -147,6 +152,9 @@ struct RingsInference {
   /// rings across a gap, not one curve), so the thin part is a ring of its own (docs/topology.md,
   /// "Archipelagos"). Counted over all rounds.
   std::size_t joins_undone = 0;
+  /// Pairs of parts whose rings met (crossed or touched), joined into one part and made again
+  /// (at most kMaxCrossingJoins; past it the decision is Crossing). Counted over all rounds.
+  std::size_t crossings_joined = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the
   /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data

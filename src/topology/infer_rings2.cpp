@@ -1076,13 +1076,35 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         continue;
       }
     }
-    if (!any_thin) break;
-    // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
-    // rings of parts that did not change are kept).
-    const std::vector<int> nearest = nearest_parts(points, links, ring_of, parts.size());
     UnionFind joined(parts.size());
-    for (std::size_t k = 0; k < parts.size(); ++k)
-      if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
+    if (!any_thin) {
+      // Every part is a ring: nested, oriented and checked. Two parts whose rings meet are
+      // interleaved, not apart: they are joined and made again (kMaxCrossingJoins), the others kept.
+      std::vector<std::vector<int>> nested = rings;  // (kept: a repair goes on with them)
+      nest(points, nested, out);
+      report_gaps(adj, gaps, ring_of, out);
+      if (validate_rings2(points, out.rings, &out.check)) {
+        out.decision = RingsDecision::Rings;
+        return Status::ok();
+      }
+      const int a = out.check.met_a, b = out.check.met_b;
+      if (a < 0 || b < 0 || a == b || out.crossings_joined >= kMaxCrossingJoins) {
+        out.decision = RingsDecision::Crossing;
+        return Status::ok();
+      }
+      const auto part_of_ring = [&](int r) { return ring_of[static_cast<std::size_t>(out.rings[static_cast<std::size_t>(r)].indices.front())]; };
+      joined.join(part_of_ring(a), part_of_ring(b));
+      ++out.crossings_joined;
+      out.rings.clear();
+      out.check = RingsCheck{};
+      out.min_gap_spacings = std::numeric_limits<double>::infinity();
+    } else {
+      // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
+      // rings of parts that did not change are kept).
+      const std::vector<int> nearest = nearest_parts(points, links, ring_of, parts.size());
+      for (std::size_t k = 0; k < parts.size(); ++k)
+        if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
+    }
     std::vector<std::size_t> members(parts.size(), 0);
     for (std::size_t k = 0; k < parts.size(); ++k) ++members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))];
     for (std::size_t v = 0; v < points.size(); ++v) part_of[v] = joined.find(ring_of[v]);
@@ -1123,10 +1145,6 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       return Status::ok();
     }
   }
-  nest(points, rings, out);
-  report_gaps(adj, gaps, ring_of, out);
-  out.decision = validate_rings2(points, out.rings, &out.check) ? RingsDecision::Rings : RingsDecision::Crossing;
-  return Status::ok();
 }
 
 }  // namespace constrict

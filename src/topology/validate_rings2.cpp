@@ -237,7 +237,13 @@ Status validate(const PointSet& points, const std::vector<Ring2>& rings, RingsCh
   } else {
     met = Sweep(E).run(e, f);
   }
-  if (met) return fail(d, pair_reason(E, e, f));
+  if (met) {
+    if (d) {
+      d->met_a = E.ring_of[e];
+      d->met_b = E.ring_of[f];
+    }
+    return fail(d, pair_reason(E, e, f));
+  }
   if (d) d->simple = true;
   if (Status s = check_orientation(E, d); !s) return s;
   return check_nesting(E, d, !brute);

@@ -776,5 +776,41 @@ TEST(Topology2Property, ArchipelagoOfSmallIslandsKeepsEveryIsland) {
       }
 }
 
+// Random polygons (5-10 points at sorted uniform angles on a circle of radius 1-1.2) on a 10 x 10
+// grid 10 apart: the parts' polygons sometimes meet (an irregular polygon's part joined to its
+// neighbour's wraps around a third), and the whole inference used to be refused for the single
+// polygon (decision crossing). Now two parts whose rings meet are joined and made again: never
+// refused, always valid (brute force), and the repair runs on some of the seeds.
+TEST(Topology2Property, MeetingRingsAreJoinedNotRefused) {
+  std::size_t repaired = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::uniform_int_distribution<int> size(5, 10);
+    PointSet p;
+    p.dim = 2;
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) {
+        const int m = size(rng);
+        std::vector<double> a(static_cast<std::size_t>(m));
+        for (double& t : a) t = 2 * M_PI * u(rng);
+        std::sort(a.begin(), a.end());
+        for (double t : a) {
+          const double r = 1 + 0.2 * u(rng);
+          p.coords.insert(p.coords.end(), {10.0 * i + r * std::cos(t), 10.0 * j + r * std::sin(t)});
+        }
+      }
+    const Rings2Result a = run(p, Topology2::Auto);
+    ASSERT_TRUE(a.valid()) << a.check.reason;
+    EXPECT_NE(a.inferred.decision, RingsDecision::Crossing) << a.inferred.check.reason;
+    EXPECT_LE(a.inferred.crossings_joined, kMaxCrossingJoins);
+    RingsCheck bc;
+    EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
+    repaired += a.inferred.crossings_joined;
+  }
+  EXPECT_GT(repaired, 0u);
+}
+
 }  // namespace
 }  // namespace constrict
