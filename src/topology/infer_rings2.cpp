@@ -1045,8 +1045,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       if (any_undone) {
         std::vector<std::pair<std::vector<int>, std::vector<int>>> all;  // (points, ring)
         for (std::size_t k = 0; k < parts.size(); ++k) {
-          if (!split[k]) {
-            all.emplace_back(std::move(parts[k]), std::move(rings[k]));
+          if (!split[k]) {  // (a thin part's polygon is no ring: it is evaluated again, and joins)
+            all.emplace_back(std::move(parts[k]), thin[k] ? std::vector<int>{} : std::move(rings[k]));
             continue;
           }
           for (Constituent& c : made_of[k]) {
