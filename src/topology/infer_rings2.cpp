@@ -272,10 +272,10 @@ class Gaps {
   // p's half-neighbour leaves p's own ring at a corner: at a vertex of at most 90° the NN-crust's
   // half-neighbour (beyond 90° from the nearest neighbour a) cannot be the ring's other
   // neighbour. So when p has another Delaunay neighbour c, more than t times nearer than the
-  // half-neighbour r (the gap rule's own ratio), that turns away from a (c farther from a than from p: the angle at p is the
-  // largest of the triangle a p c, at least 60°), c is p's ring neighbour and r lies beyond a
-  // gap. (On a curve sampled unevenly the second-nearest point lies past the nearest, nearer to
-  // it than to p: no corner.) Exact (compare_gap2, compare_distance2).
+  // half-neighbour r (the gap rule's own ratio), that turns away from a (c at least as far from a
+  // as from p: the angle at p is the largest of the triangle a p c, at least 60°), c is p's ring
+  // neighbour and r lies beyond a gap. (On a curve sampled unevenly the second-nearest point lies
+  // past the nearest, nearer to it than to p: no corner.) Exact (compare_gap2, compare_distance2).
   bool corner_jump(const Adjacency& adj, int p) const {
     const auto& ch = crust_.choices(p);
     const int a = ch[0], r = ch[1];
@@ -1032,8 +1032,6 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
           }
         }
       });
-      std::vector<std::vector<int>> next;
-      std::vector<std::vector<int>> next_rings;
       bool any_undone = false;
       std::vector<char> split(parts.size(), 0);
       for (std::size_t i = 0; i < undo.size(); ++i)
