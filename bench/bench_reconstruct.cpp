@@ -123,7 +123,9 @@ BENCHMARK(BM_Surfaces3Auto)->Apply(sizes3);
 // sweeps of 2026-12-04; docs/reconstruction-3d.md §4.10): the passes stop at their work bounds.
 // Before the bounds: thin rod 2 000 points 10 s, circle and axis (auto) more than 10 minutes,
 // circle and axis point 77 s (auto). Kinds: 0 thin rod, 1 circle and its axis (800 + 800),
-// 2 circle and one point on its axis (4 000); range(1): 0 single, 1 auto.
+// 2 circle and one point on its axis (4 000), 3 10^5 points on a line and two off it (one edge in
+// every tetrahedron: the refinement's edge walks, 67 s before kMaxFlipRing, 2026-12-05);
+// range(1): 0 single, 1 auto.
 PointSet hostile3(int kind) {
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(-1e-3, 1e-3);
@@ -146,6 +148,11 @@ PointSet hostile3(int kind) {
     }
     add(g(rng), g(rng), 0.7 + g(rng));
   }
+  if (kind == 3) {
+    for (int i = 0; i < 100000; ++i) add(i, 0, 0);
+    add(0, 1, 0);
+    add(0, 0, 1);
+  }
   return p;
 }
 
@@ -160,8 +167,23 @@ void BM_Hostile3(benchmark::State& state) {
     state.counters["carve_capped"] = r.mesh.carve_capped;
     state.counters["repair_capped"] = r.repair_capped;
   }
-  static const char* const names[] = {"thin rod", "circle and axis", "circle and axis point"};
+  static const char* const names[] = {"thin rod", "circle and axis", "circle and axis point", "line and two points"};
   state.SetLabel(std::string(names[state.range(0)]) + (state.range(1) ? ", auto" : ", single"));
 }
-BENCHMARK(BM_Hostile3)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Hostile3)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// A 2D fan: 2·10^5 points on a line and one off it, whose Delaunay neighbours are all the others
+// (the refinement's neighbour lists: insertion-sorted, quadratic, 11 s until 2026-12-05).
+void BM_Hostile2Fan(benchmark::State& state) {
+  PointSet p;
+  p.dim = 2;
+  for (int i = 0; i < 200000; ++i) p.coords.insert(p.coords.end(), {double(i), 0.0});
+  p.coords.insert(p.coords.end(), {100000.0, 7.0});
+  for (auto _ : state) {
+    Polygon2Result r;
+    if (!reconstruct2(p, Constrict2Options{}, r) || !r.valid()) state.SkipWithError("reconstruct2 failed");
+    state.counters["ms_refine"] = r.ms_refine;
+  }
+}
+BENCHMARK(BM_Hostile2Fan)->Unit(benchmark::kMillisecond)->Iterations(1);
 }  // namespace
