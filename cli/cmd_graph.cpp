@@ -45,8 +45,7 @@ int run_graph(const GraphArgs& a) {
   if (Status s = spec.validate(); !s) return fail(s);
   // Check the output format before the (possibly long) computation.
   const GraphFormat fmt = graph_format_from_path(a.out);
-  if (fmt == GraphFormat::Auto)
-    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension (use .csv, .json, .svg, .off, .ply or .obj)"});
+  if (Status s = check_graph_format(a.out, pts.dim, fmt); !s) return fail(s);
 
   GammaFaces faces;
   GraphStats stats;

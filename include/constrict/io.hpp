@@ -152,6 +152,11 @@ enum class GraphFormat { Auto, Csv, Json, Svg, Off, Ply, Obj };
 /// Format from a file name's extension (.csv .json .svg .off .ply .obj); Auto if unknown.
 GraphFormat graph_format_from_path(const std::string& path) noexcept;
 
+/// Can a graph of points of this dimension be written in this format (Auto: by extension)?
+/// InvalidArgument with write_graph()'s message if not (an unknown extension, SVG in 3D, OFF in
+/// 2D): the CLI asks before it builds the graph.
+Status check_graph_format(const std::string& path, int dim, GraphFormat format = GraphFormat::Auto);
+
 /// Writes a graph.
 /// - .csv: header, then one face per row: `i,j,gamma_a,gamma_b,delta` (2D) or
 ///   `i,j,k,gamma_a,gamma_b,delta` (3D); 0-based input indices ascending; values in shortest

@@ -163,20 +163,33 @@ GraphFormat graph_format_from_path(const std::string& path) noexcept {
   return GraphFormat::Auto;
 }
 
+Status check_graph_format(const std::string& path, int dim, GraphFormat format) {
+  if (format == GraphFormat::Auto) format = graph_format_from_path(path);
+  switch (format) {
+    case GraphFormat::Auto:
+      return {StatusCode::InvalidArgument, path + ": unknown output extension (use .csv, .json, .svg, .off, .ply or .obj)"};
+    case GraphFormat::Svg:
+      if (dim != 2) return {StatusCode::InvalidArgument, path + ": SVG output is for 2D graphs; use .off, .ply or .obj in 3D"};
+      break;
+    case GraphFormat::Off:
+      if (dim != 3) return {StatusCode::InvalidArgument, path + ": OFF cannot store the edges of a 2D graph; use .obj, .ply, .svg or .csv"};
+      break;
+    default: break;
+  }
+  return Status::ok();
+}
+
 Status write_graph(const std::string& path, const PointSet& points, const GammaFaces& faces,
                    const std::string& description, GraphFormat format) {
   if (format == GraphFormat::Auto) format = graph_format_from_path(path);
   if (faces.dim != points.dim)
     return {StatusCode::InvalidArgument, "write_graph: face dimension does not match the points"};
+  if (Status s = check_graph_format(path, points.dim, format); !s) return s;
   switch (format) {
     case GraphFormat::Csv: return write_file(path, to_csv(faces));
     case GraphFormat::Json: return write_file(path, to_json(points, faces, description));
-    case GraphFormat::Svg:
-      if (points.dim != 2) return {StatusCode::InvalidArgument, path + ": SVG output is for 2D graphs; use .off, .ply or .obj in 3D"};
-      return write_file(path, to_svg(points, faces, description));
-    case GraphFormat::Off:
-      if (points.dim != 3) return {StatusCode::InvalidArgument, path + ": OFF cannot store the edges of a 2D graph; use .obj, .ply, .svg or .csv"};
-      return write_file(path, to_off(points, faces));
+    case GraphFormat::Svg: return write_file(path, to_svg(points, faces, description));
+    case GraphFormat::Off: return write_file(path, to_off(points, faces));
     case GraphFormat::Ply: return write_file(path, to_ply(points, faces, description));
     case GraphFormat::Obj: return write_file(path, to_obj(points, faces, description));
     case GraphFormat::Auto: break;
