@@ -7,9 +7,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "constrict/render.hpp"
@@ -103,6 +105,25 @@ void shade_band(const std::vector<Screen>& tris, const std::vector<std::int64_t>
                 const RenderOptions3& o, double half, Image& out);
 void draw_separators(const Sheet& g, const RenderOptions3& o, Image& out);
 
+// A triangle repeated with the same orientation (the same vertices from the same cyclic start
+// up) projects to the same pixels, depth and colour, and the first of them wins every pixel
+// (the depth test is strict): the others are not drawn. (A mesh of one face repeated 3·10^5
+// times, each covering the picture, took minutes.) Same picture.
+void skip_repeats(const TriMesh3& mesh, char* live) {
+  const auto& T = mesh.triangles;
+  std::vector<std::pair<std::array<int, 3>, std::size_t>> keys;
+  keys.reserve(T.size());
+  for (std::size_t t = 0; t < T.size(); ++t) {
+    if (!live[t]) continue;
+    const auto& v = T[t];
+    const int k = v[0] <= v[1] && v[0] <= v[2] ? 0 : v[1] <= v[2] ? 1 : 2;  // rotate the smallest first
+    keys.push_back({{v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>((k + 1) % 3)], v[static_cast<std::size_t>((k + 2) % 3)]}, t});
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].first == keys[i - 1].first) live[keys[i].second] = 0;
+}
+
 }  // namespace
 
 Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, const RenderOptions3& o, Image& out) {
@@ -137,6 +158,7 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   for (int p = 0; p < P; ++p) {
     const std::size_t base = first[static_cast<std::size_t>(p)];
     project_panel(panels[static_cast<std::size_t>(p)], cell_of(sheet, p), at, frame, o, tris.data() + base, live.data() + base);
+    skip_repeats(*panels[static_cast<std::size_t>(p)].mesh, live.data() + base);
   }
 
   const int nb = (H + kBand - 1) / kBand;
