@@ -2,6 +2,8 @@
 // Body3: the shared state of the 3D stages (detail/body3.hpp, docs/architecture.md).
 #include "constrict/detail/body3.hpp"
 
+#include <limits>
+
 #include "constrict/predicates.hpp"
 #include "core/detail/first_index.hpp"
 #include "core/detail/ordered_pack.hpp"
@@ -22,31 +24,31 @@ int Body3::local_index(int t, int vertex) const {
 }
 
 bool Body3::edge_on_boundary(int t, int i, int j) const {
-  bool on = false;
-  walk_edge(t, i, j, 0, [&](int nx) {
-    on = !alive(nx);
-    return on;
-  });
-  return on;
+  return edge_blocked_within(t, i, j, true, std::numeric_limits<int>::max()) == 1;
 }
 
 bool Body3::edge_touches_body(int t, int i, int j) const {
-  bool hit = false, hull = false;
-  walk_edge(t, i, j, 0, [&](int nx) {
+  return edge_blocked_within(t, i, j, false, std::numeric_limits<int>::max()) == 1;
+}
+
+int Body3::edge_blocked_within(int t, int i, int j, bool body, int limit) const {
+  int steps = 0;
+  bool hit = false, hull = false, too_long = false;
+  // body: a tetrahedron not in the body (the convex hull too) puts the edge on the surface;
+  // otherwise one in the body touches it.
+  const auto step = [&](int nx) {
+    if (++steps > limit) return too_long = true;
     if (nx < 0) {
       hull = true;
+      hit = body;
       return true;
     }
-    hit = alive(nx);
+    hit = body ? !alive(nx) : alive(nx);
     return hit;
-  });
-  if (!hit && hull)  // the ring is open at the hull: walk the other way too
-    walk_edge(t, i, j, 1, [&](int nx) {
-      if (nx < 0) return true;
-      hit = alive(nx);
-      return hit;
-    });
-  return hit;
+  };
+  walk_edge(t, i, j, 0, step);
+  if (!body && !hit && !too_long && hull) walk_edge(t, i, j, 1, step);  // open at the hull: the other way too
+  return too_long ? -1 : hit ? 1 : 0;
 }
 
 void Body3::edge_ring(int t, int i, int j, std::vector<int>& out) const {

@@ -135,28 +135,9 @@ class Flips3 {
     const double e_new = face_energy_of(t, oi[0]) + face_energy_of(t, oi[1]);
     const double gain = e_old - e_new;
     if (!(gain > kRelativeGain * e_old)) return -1;
-    return edge_free(t, si[0], si[1], a) ? gain : -1;
-  }
-  // In the body: is the edge off the surface (the walk around it meets no tetrahedron outside the
-  // body)? Removed: does it touch no body tetrahedron (both ways round an open ring)? False also
-  // when the ring has more than kMaxFlipRing tetrahedra.
-  bool edge_free(int t, int i, int j, bool alive) const {
-    int steps = 0;
-    bool hit = false, hull = false, long_ring = false;
-    const auto step = [&](int nx) {
-      if (++steps > kMaxFlipRing) return long_ring = true;
-      if (nx < 0) {  // the convex hull: on the surface for a body tetrahedron
-        hull = true;
-        hit = alive;
-        return true;
-      }
-      hit = alive ? !b_.alive(nx) : b_.alive(nx);
-      return hit;
-    };
-    b_.walk_edge(t, i, j, 0, step);
-    if (!alive && !hit && !long_ring && hull) b_.walk_edge(t, i, j, 1, step);
-    if (long_ring) long_rings_.fetch_add(1, std::memory_order_relaxed);
-    return !hit && !long_ring;
+    const int blocked = b_.edge_blocked_within(t, si[0], si[1], a, kMaxFlipRing);
+    if (blocked < 0) long_rings_.fetch_add(1, std::memory_order_relaxed);
+    return blocked == 0 ? gain : -1;
   }
 
   Body3& b_;

@@ -1064,9 +1064,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
           regrouped_rings[j] = std::move(src.second);
           regrouped_known[j] = regrouped_rings[j].empty() ? 0 : 1;
         }
-        for (std::size_t j = 0; j < regrouped.size(); ++j)
-          for (int v : regrouped[j]) part_of[static_cast<std::size_t>(v)] = static_cast<int>(j);
-        parts = std::move(regrouped);
+        parts = std::move(regrouped);  // (part_of keeps its labels: one per part, as after a join)
         rings = std::move(regrouped_rings);
         known = std::move(regrouped_known);
         made_of.assign(parts.size(), {});

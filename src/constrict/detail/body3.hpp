@@ -107,6 +107,9 @@ struct Body3 {
   bool edge_on_boundary(int t, int i, int j) const;
   // Is that edge an edge of some body tetrahedron other than t? (Both ways round an open ring.)
   bool edge_touches_body(int t, int i, int j) const;
+  // Either question (body: edge_on_boundary, else edge_touches_body), but the walks stop after
+  // `limit` tetrahedra: -1 then (undecided), else 1 (yes) or 0 (no).
+  int edge_blocked_within(int t, int i, int j, bool body, int limit) const;
   // The tetrahedra around that edge, any state but replaced, t first.
   void edge_ring(int t, int i, int j, std::vector<int>& out) const;
   // side kAlive: is the body one face-connected piece? kOutside: does every tetrahedron outside
