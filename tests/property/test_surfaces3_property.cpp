@@ -20,8 +20,10 @@
 #include <vector>
 
 #include "constrict/constrict3.hpp"
+#include "constrict/delaunay.hpp"
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
+#include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
 #include "surfaces3_gen.hpp"
 
@@ -393,6 +395,95 @@ TEST(Surfaces3Property, BodyCheckRejectsBrokenBodies) {
   EXPECT_EQ(kind(validate_body3(moved, mv_mesh(m), mv_body(twice))), kind(validate_body3(s.points, m, twice)));
   EXPECT_FALSE(validate_body3(moved, mv_mesh(m), mv_body(fewer)).is_ok());
   EXPECT_FALSE(validate_body3(moved, mv_mesh(missing), mv_body(body)).is_ok());
+}
+
+// validate_body3 against its definition on small random bodies, each face's occurrences collected
+// in a std::map (the Delaunay tetrahedralization of random points and its hull, then one random
+// fault or none): the same verdict, and a fault of the kind the definition finds.
+TEST(Surfaces3Property, BodyCheckMatchesItsDefinition) {
+  constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // opposite vertex i, outward
+  using Face = std::array<int, 3>;
+  const auto uz = [](int i) { return static_cast<std::size_t>(i); };
+  const auto sorted = [](Face f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  const auto even = [](const Face& f) { return ((f[0] > f[1]) + (f[0] > f[2]) + (f[1] > f[2])) % 2 == 0; };
+  // The fault kinds of the definition (empty: a valid body).
+  const auto brute = [&](const PointSet& p, const TriMesh3& m, const std::vector<std::array<int, 4>>& body) {
+    std::set<std::string> faults;
+    for (const auto& t : body)
+      if (orient3(p[uz(t[0])], p[uz(t[1])], p[uz(t[2])], p[uz(t[3])]) <= 0) return std::set<std::string>{"body tetrahedron not positively oriented"};
+    std::map<Face, std::vector<std::pair<bool, bool>>> occ;  // (from a tetrahedron, even)
+    for (const auto& t : body)
+      for (const auto& fo : kFaceOut) {
+        const Face f{{t[uz(fo[0])], t[uz(fo[1])], t[uz(fo[2])]}};
+        occ[sorted(f)].push_back({true, even(f)});
+      }
+    for (const auto& f : m.triangles) occ[sorted(f)].push_back({false, even(f)});
+    for (const auto& [f, list] : occ) {
+      int tets = 0, tris = 0;
+      bool tet_even[2] = {false, false}, tri_even = false;
+      for (const auto& [is_tet, e] : list) {
+        if (is_tet && tets < 2) tet_even[tets] = e;
+        if (!is_tet) tri_even = e;
+        (is_tet ? tets : tris) += 1;
+      }
+      if (tris > 1) faults.insert("surface triangle appears twice");
+      else if (tets > 2) faults.insert("face shared by more than two body tetrahedra");
+      else if (tets == 2 && tris) faults.insert("surface triangle lies inside the body");
+      else if (tets == 2 && tet_even[0] == tet_even[1]) faults.insert("face has body tetrahedra on the same side");
+      else if (tets == 1 && !tris) faults.insert("free face of the body is not a surface triangle");
+      else if (tets == 1 && tri_even != tet_even[0]) faults.insert("surface triangle is not oriented out of the body");
+      else if (tets == 0 && tris) faults.insert("surface triangle is not a face of the body");
+    }
+    return faults;
+  };
+  const auto kind = [](const std::string& msg) {  // the message without the face's ids
+    const auto a = msg.find(" ("), b = msg.find(')');
+    return a == std::string::npos ? msg : msg.substr(0, a) + msg.substr(b + 1);
+  };
+  int faulty = 0;
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int n = 8 + static_cast<int>(rng() % 120);
+    PointSet p;
+    p.dim = 3;
+    for (int i = 0; i < 3 * n; ++i) p.coords.push_back(u(rng));
+    Delaunay3 dt;
+    ASSERT_TRUE(build_delaunay3(p, dt).is_ok());
+    auto body = dt.tets;
+    TriMesh3 m;
+    for (std::size_t t = 0; t < dt.tets.size(); ++t)
+      for (int i = 0; i < 4; ++i)
+        if (dt.neighbors[t][uz(i)] < 0)
+          m.triangles.push_back({{dt.tets[t][uz(kFaceOut[i][0])], dt.tets[t][uz(kFaceOut[i][1])], dt.tets[t][uz(kFaceOut[i][2])]}});
+    const std::size_t T = body.size(), F = m.triangles.size();
+    const int fault = static_cast<int>(rng() % 9);
+    switch (fault) {
+      case 0: break;
+      case 1: body.erase(body.begin() + static_cast<std::ptrdiff_t>(rng() % T)); break;
+      case 2: body.push_back(body[rng() % T]); break;
+      case 3: { auto& t = body[rng() % T]; std::swap(t[0], t[1]); break; }
+      case 4: { auto& f = m.triangles[rng() % F]; std::swap(f[1], f[2]); break; }
+      case 5: m.triangles.erase(m.triangles.begin() + static_cast<std::ptrdiff_t>(rng() % F)); break;
+      case 6: m.triangles.push_back(m.triangles[rng() % F]); break;
+      case 7: { const auto& t = body[rng() % T]; m.triangles.push_back({{t[0], t[1], t[2]}}); break; }  // an inner face
+      case 8: m.triangles.erase(m.triangles.begin() + static_cast<std::ptrdiff_t>(rng() % F)); body.erase(body.begin()); break;
+    }
+    std::rotate(body.begin(), body.begin() + static_cast<std::ptrdiff_t>(rng() % body.size()), body.end());
+    const std::set<std::string> expected = brute(p, m, body);
+    const Status got = validate_body3(p, m, body);
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", fault " + std::to_string(fault) + ": " + got.message());
+    EXPECT_EQ(got.is_ok(), expected.empty());
+    if (!got.is_ok()) {
+      EXPECT_EQ(expected.count(kind(got.message())), 1u);
+      ++faulty;
+    }
+  }
+  std::printf("BodyCheckMatchesItsDefinition: seeds 1-60, %d faulty bodies\n", faulty);
+  EXPECT_GE(faulty, 40);
 }
 
 // A handle's cut in a noisy sample: the points near the cut lie a little inside the tube, and
