@@ -26,6 +26,7 @@
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/ordered_pack.hpp"
+#include "core/detail/tet_order.hpp"
 #include "core/detail/union_find.hpp"
 
 namespace constrict {
@@ -151,6 +152,7 @@ void Constrictor3::Impl::ensure_hull_start() {
     // Same builder, same input: the same tetrahedra in the same order (checked).
     auto dg = std::make_shared<DelaunayGamma3>();
     const Status st = delaunay_gamma3(*body.pts, *dg, false);
+    if (st.is_ok() && tets_ordered) detail::order_tets_by_vertex(dg->dt, &dg->simplex_face);
     CONSTRICT_CHECK(st.is_ok() && dg->dt.tets.size() == body.T0 &&
                         std::equal(dg->dt.tets.begin(), dg->dt.tets.end(), body.tets.begin()),
                     "the γ pass did not reproduce the tetrahedralization");
@@ -496,8 +498,10 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     // (Not after a rescaling: CGAL's spatial sort of the scaled copy may insert in another order.)
     if (shared_dt && scale_exp == 0 && shared_dt->n_vertices == body.n && order_is_identity()) {
       dt = std::move(*shared_dt);
-    } else if (Status st = build_delaunay3(*body.pts, dt); !st) {
-      return st;
+    } else {
+      if (Status st = build_delaunay3(*body.pts, dt); !st) return st;
+      detail::order_tets_by_vertex(dt);
+      tets_ordered = true;
     }
     shared_dt.reset();
     body.tets = std::move(dt.tets);
@@ -507,6 +511,8 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     // The DT faces only: the co-spherical completion (every triple of a co-spherical cluster) is
     // part of the γ graph, not of the tetrahedralization the constriction carves.
     if (Status st = delaunay_gamma3(*body.pts, *dg, false); !st) return st;
+    detail::order_tets_by_vertex(dg->dt, &dg->simplex_face);
+    tets_ordered = true;
     body.tets = std::move(dg->dt.tets);
     body.nbr = std::move(dg->dt.neighbors);
     dg->dt = Delaunay3{};

@@ -7,8 +7,10 @@
 // on many threads at once.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +19,7 @@
 
 #include "cgal/detail/delaunay_local.hpp"
 #include "constrict/delaunay.hpp"
+#include "core/detail/tet_order.hpp"
 #include "test_fixtures.hpp"
 
 namespace constrict {
@@ -133,6 +136,54 @@ TEST(DelaunayExport3, QuadraticTetrahedralizationsAreRefusedEarly) {
     q.coords.insert(q.coords.end(), {r * std::cos(phi), r * std::sin(phi), z});
   }
   EXPECT_TRUE(build_delaunay3(q, dt).is_ok());
+}
+
+// The engine's tetrahedra by their smallest vertex (core/detail/tet_order.hpp): the same
+// tetrahedra, keys ascending, CGAL's order kept among equal keys, neighbours that name each other
+// across their shared face, rows of a side array moved along, and the same arrays on one thread
+// and on many.
+TEST(TetOrder, SortsByTheSmallestVertexStablyWithItsNeighbours) {
+  for (int kind = 0; kind < 3; ++kind)
+    for (std::size_t n : {std::size_t{5}, std::size_t{300}, std::size_t{20000}}) {
+      const std::string what = "kind " + std::to_string(kind) + ", " + std::to_string(n) + " points";
+      const PointSet p = sample(n, kind, 7 + n);
+      Delaunay3 dt;
+      ASSERT_TRUE(build_delaunay3(p, dt).is_ok()) << what;
+      const Delaunay3 before = dt;
+      std::vector<std::array<int, 4>> rows(dt.tets.size());
+      for (std::size_t t = 0; t < rows.size(); ++t) rows[t] = {{static_cast<int>(t), 0, 0, 0}};  // its old index
+      detail::order_tets_by_vertex(dt, &rows);
+      Delaunay3 one = before;
+      {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+        detail::order_tets_by_vertex(one);
+      }
+      EXPECT_TRUE(one.tets == dt.tets && one.neighbors == dt.neighbors) << what << ": thread count";
+      const auto key = [](const std::array<int, 4>& t) { return *std::min_element(t.begin(), t.end()); };
+      const auto T = static_cast<int>(dt.tets.size());
+      int bad = 0;
+      for (int t = 0; t < T; ++t) {
+        const auto ut = static_cast<std::size_t>(t);
+        const int old = rows[ut][0];
+        bad += dt.tets[ut] != before.tets[static_cast<std::size_t>(old)];  // the row moved with it
+        if (t > 0) {
+          const int k0 = key(dt.tets[ut - 1]), k1 = key(dt.tets[ut]);
+          bad += k0 > k1 || (k0 == k1 && rows[ut - 1][0] > old);  // ascending, stable
+        }
+        for (int i = 0; i < 4; ++i) {
+          const int u = dt.neighbors[ut][static_cast<std::size_t>(i)];
+          const int was = before.neighbors[static_cast<std::size_t>(old)][static_cast<std::size_t>(i)];
+          if (u < 0) {
+            bad += was >= 0;
+            continue;
+          }
+          bad += rows[static_cast<std::size_t>(u)][0] != was;  // the same neighbour, renumbered
+          const auto& nu = dt.neighbors[static_cast<std::size_t>(u)];
+          bad += std::count(nu.begin(), nu.end(), t) != 1;
+        }
+      }
+      EXPECT_EQ(bad, 0) << what;
+    }
 }
 
 }  // namespace

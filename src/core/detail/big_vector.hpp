@@ -76,4 +76,50 @@ class BigArray {
   std::size_t size_ = 0;
 };
 
+/// A fixed-size array of trivially copyable T (zero-filled) whose storage comes from the system and
+/// goes back to it when the array is destroyed (mmap / munmap on POSIX systems). For temporaries
+/// made after a large structure was freed: malloc serves them from that structure's free chunks,
+/// and what is freed there stays counted in the process's memory until reused (the 10^6 star's
+/// peak rose 16 MB from two such 30 MB arrays).
+template <class T>
+class OsArray {
+ public:
+  OsArray() = default;
+  explicit OsArray(std::size_t n) : size_(n) {
+    if (n == 0) return;
+#if defined(__linux__)
+    void* p = mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p != MAP_FAILED) {
+      data_ = static_cast<T*>(p);
+      mapped_ = true;
+#if defined(MADV_HUGEPAGE)
+      if (n * sizeof(T) >= (std::size_t{4} << 20) && huge_pages_enabled()) (void)madvise(p, n * sizeof(T), MADV_HUGEPAGE);
+#endif
+      return;
+    }
+#endif
+    data_ = new T[n]();
+  }
+  OsArray(const OsArray&) = delete;
+  OsArray& operator=(const OsArray&) = delete;
+  ~OsArray() {
+#if defined(__linux__)
+    if (mapped_) {
+      (void)munmap(data_, size_ * sizeof(T));
+      return;
+    }
+#endif
+    delete[] data_;
+  }
+  T& operator[](std::size_t i) noexcept { return data_[i]; }
+  const T& operator[](std::size_t i) const noexcept { return data_[i]; }
+  T* data() noexcept { return data_; }
+  std::size_t size() const noexcept { return size_; }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+  bool mapped_ = false;
+};
+
 }  // namespace constrict::detail
