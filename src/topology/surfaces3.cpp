@@ -33,6 +33,7 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
@@ -205,7 +206,9 @@ Parts collect_parts(const PointSet& pts, UnionFind& uf) {
 // shortest Delaunay edge, until none is left; then the parts, with the edges between them.
 Parts settle_parts(const PointSet& pts, const std::vector<int>& nn, UnionFind& uf, std::vector<std::array<int, 2>> long_edges,
                    std::size_t min_points, std::size_t& merged) {
-  std::sort(long_edges.begin(), long_edges.end());
+  // (Millions of edges at 10^6 points, most of them inside one part: a strict order, so the
+  // parallel sort gives the sequential one's array. 10^6 ellipsoid: 2.3 M edges.)
+  tbb::parallel_sort(long_edges.begin(), long_edges.end());
   long_edges.erase(std::unique(long_edges.begin(), long_edges.end()), long_edges.end());
   merged = 0;
   for (;;) {
