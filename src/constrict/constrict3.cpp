@@ -500,9 +500,9 @@ Status Constrictor3::Impl::build_tetrahedralization() {
       dt = std::move(*shared_dt);
     } else {
       if (Status st = build_delaunay3(*body.pts, dt); !st) return st;
-      detail::order_tets_by_vertex(dt);
-      tets_ordered = true;
+      detail::order_large_tets(dt);
     }
+    tets_ordered = dt.tets.size() >= detail::kOrderTetsFrom;  // (a shared one: auto ordered it alike)
     shared_dt.reset();
     body.tets = std::move(dt.tets);
     body.nbr = std::move(dt.neighbors);
@@ -511,8 +511,7 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     // The DT faces only: the co-spherical completion (every triple of a co-spherical cluster) is
     // part of the γ graph, not of the tetrahedralization the constriction carves.
     if (Status st = delaunay_gamma3(*body.pts, *dg, false); !st) return st;
-    detail::order_tets_by_vertex(dg->dt, &dg->simplex_face);
-    tets_ordered = true;
+    tets_ordered = detail::order_large_tets(dg->dt, &dg->simplex_face);
     body.tets = std::move(dg->dt.tets);
     body.nbr = std::move(dg->dt.neighbors);
     dg->dt = Delaunay3{};

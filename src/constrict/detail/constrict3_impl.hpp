@@ -52,8 +52,8 @@ struct Constrictor3::Impl {
   // The parts of the auto topology's gap rule per engine id (reconstruct3_sharing), or null: the
   // handle stage may then seal cavities that separate parts.
   std::shared_ptr<const std::vector<int>> part_of;
-  // The tetrahedra renumbered by their smallest vertex (core/detail/tet_order.hpp) after the
-  // engine built them itself; a tetrahedralization shared by the auto topology keeps CGAL's order.
+  // The tetrahedra renumbered by their smallest vertex (core/detail/tet_order.hpp: from
+  // kOrderTetsFrom tetrahedra on, also those the auto topology shares).
   bool tets_ordered = false;
   bool order_is_identity() const {
     for (std::size_t k = 0; k < order->size(); ++k)

@@ -16,9 +16,21 @@ namespace constrict::detail {
 // which read a tetrahedron's neighbours and per-vertex arrays, find them nearby in memory (CGAL's
 // container order is the order in which cells were made and reused during the insertion, nearly
 // random at 10^6 points). Deterministic, and the same at any thread count. O(T + N).
-// The engine orders the tetrahedra it builds itself (single mode: 10^6 ellipsoid and star 5 %
-// faster, igea 5 %); a tetrahedralization shared by the auto topology keeps CGAL's order, whose
-// ties the handle stage's tests were measured with (docs/benchmarks.md, fourteenth session).
 void order_tets_by_vertex(Delaunay3& dt, std::vector<std::array<int, 4>>* also = nullptr);
+
+// From this many tetrahedra on (about 300 000 surface points) the 3D engine and the auto topology
+// work on ordered tetrahedra: 5 % of a 10^6-point run (docs/benchmarks.md, fourteenth session).
+// Below, CGAL's order stays: the engine breaks some ties by tetrahedron number (the fill's,
+// carve's and handle stage's regions), and the handle stage's rules were measured on that order
+// (ordered, the noisy torus of its tests got its handle in 0 of 6 axis orders instead of 4).
+// Single mode and auto follow the same rule, so that auto on one part gives single's surface.
+inline constexpr std::size_t kOrderTetsFrom = std::size_t{1} << 21;
+
+// order_tets_by_vertex when @p dt has kOrderTetsFrom tetrahedra or more; whether it did.
+inline bool order_large_tets(Delaunay3& dt, std::vector<std::array<int, 4>>* also = nullptr) {
+  if (dt.tets.size() < kOrderTetsFrom) return false;
+  order_tets_by_vertex(dt, also);
+  return true;
+}
 
 }  // namespace constrict::detail
