@@ -502,7 +502,7 @@ Status Constrictor3::Impl::build_tetrahedralization() {
       if (Status st = build_delaunay3(*body.pts, dt); !st) return st;
       detail::order_large_tets(dt);
     }
-    tets_ordered = dt.tets.size() >= detail::kOrderTetsFrom;  // (a shared one: auto ordered it alike)
+    tets_ordered = detail::ordered_size(dt.tets.size());  // (a shared one: auto ordered it by the same rule)
     shared_dt.reset();
     body.tets = std::move(dt.tets);
     body.nbr = std::move(dt.neighbors);

@@ -4,20 +4,18 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "core/detail/big_vector.hpp"
+#include "core/detail/owned_ranges.hpp"
 
 namespace constrict::detail {
 namespace {
 
 constexpr std::size_t kGrain = 1 << 14;
-constexpr std::size_t kMaxParts = 8;  // tasks that own a range of vertex ids (each reads all keys)
 
 // The rows of @p v moved to their new positions (at[t]: where row t goes), remapped by @p f, in
 // v's own storage (a copy of the rows is read).
@@ -42,32 +40,29 @@ void order_tets_by_vertex(Delaunay3& dt, std::vector<std::array<int, 4>>* also) 
   const std::size_t T = dt.tets.size(), n = dt.n_vertices;
   if (T < 2 || n == 0) return;
   // (The temporaries come from the system and go back to it: core/detail/big_vector.hpp, OsArray.)
-  OsArray<int> at(T);                            // each tetrahedron's new position
-  auto key = std::make_unique<OsArray<int>>(T);  // its smallest vertex
-  OsArray<int>& k = *key;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t t = r.begin(); t != r.end(); ++t) k[t] = *std::min_element(dt.tets[t].begin(), dt.tets[t].end());
-  });
-  // A counting sort by key whose tasks each own a range of keys and read all of them in order:
-  // plain counters, and the positions within a key in container order (stable).
-  const std::size_t P = std::max<std::size_t>(
-      1, std::min<std::size_t>(
-             {kMaxParts, static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), T / kGrain + 1}));
-  OsArray<int> next(n + 1);  // (positions are below T, an int)
-  const auto owned = [&](const auto& pass) {
-    tbb::parallel_for(std::size_t{0}, P,
-                      [&](std::size_t p) { pass(static_cast<int>(n * p / P), static_cast<int>(n * (p + 1) / P)); });
-  };
-  owned([&](int lo, int hi) {
-    for (std::size_t t = 0; t < T; ++t)
-      if (k[t] >= lo && k[t] < hi) ++next[static_cast<std::size_t>(k[t]) + 1];
-  });
-  for (std::size_t v = 0; v < n; ++v) next[v + 1] += next[v];
-  owned([&](int lo, int hi) {
-    for (std::size_t t = 0; t < T; ++t)
-      if (k[t] >= lo && k[t] < hi) at[t] = next[static_cast<std::size_t>(k[t])]++;
-  });
-  key.reset();
+  OsArray<int> at(T);  // each tetrahedron's new position
+  {
+    OsArray<int> key(T);  // its smallest vertex
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t)
+        key[t] = *std::min_element(dt.tets[t].begin(), dt.tets[t].end());
+    });
+    // A counting sort by key whose tasks each own a range of keys (core/detail/owned_ranges.hpp):
+    // the positions within a key in container order (stable).
+    OsArray<int> next(n + 1);  // (positions are below T, an int)
+    const auto mine = [&](std::size_t t, std::size_t lo, std::size_t hi) {
+      return static_cast<std::size_t>(key[t]) >= lo && static_cast<std::size_t>(key[t]) < hi;
+    };
+    for_owned_ranges(n, T, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t t = 0; t < T; ++t)
+        if (mine(t, lo, hi)) ++next[static_cast<std::size_t>(key[t]) + 1];
+    });
+    for (std::size_t v = 0; v < n; ++v) next[v + 1] += next[v];
+    for_owned_ranges(n, T, [&](std::size_t lo, std::size_t hi) {
+      for (std::size_t t = 0; t < T; ++t)
+        if (mine(t, lo, hi)) at[t] = next[static_cast<std::size_t>(key[t])]++;
+    });
+  }
   const auto same = [](const std::array<int, 4>& row) { return row; };
   scatter(dt.tets, at, same);
   scatter(dt.neighbors, at, [&](std::array<int, 4> row) {

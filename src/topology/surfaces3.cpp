@@ -33,9 +33,8 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
+#include <tbb/parallel_sort.h>
 
 #include "constrict/criterion.hpp"
 #include "constrict/delaunay.hpp"
@@ -45,11 +44,12 @@
 #include "constrict/topology.hpp"
 #include "constrict/detail/share3.hpp"
 #include "core/detail/canonical_order.hpp"
-#include "core/detail/tet_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/link_cycle.hpp"
+#include "core/detail/owned_ranges.hpp"
 #include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
+#include "core/detail/tet_order.hpp"
 #include "core/detail/union_find.hpp"
 
 namespace constrict {
@@ -120,10 +120,8 @@ std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
   // In parallel over ranges of points: each range reads every tetrahedron and offers only to its
   // own points, so each point sees the same offers in the same order as one sequential pass (and
   // the order of the k nearest is a strict total order anyway).
-  const std::size_t n = pts.size();
-  const std::size_t ranges = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
-  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
-    const int lo = static_cast<int>(n * r / ranges), hi = static_cast<int>(n * (r + 1) / ranges);
+  detail::for_owned_ranges(pts.size(), dt.tets.size(), [&](std::size_t lo_, std::size_t hi_) {
+    const int lo = static_cast<int>(lo_), hi = static_cast<int>(hi_);
     for_tet_edges(dt, [&](int p, int q) {
       if (p >= lo && p < hi) offer(p, q);
       if (q >= lo && q < hi) offer(q, p);

@@ -11,19 +11,18 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
 #include "core/detail/big_vector.hpp"
 #include "core/detail/first_index.hpp"
+#include "core/detail/owned_ranges.hpp"
 #include "core/detail/tet_faces.hpp"
 
 namespace constrict {
@@ -31,7 +30,6 @@ namespace {
 
 inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 constexpr std::size_t kGrain = 1 << 14;
-constexpr std::size_t kMaxParts = 8;  // tasks that own a range of groups each (every one reads all faces)
 using detail::kFaceOut;
 
 // A face occurrence in the group of its smallest vertex, as one key: the other two vertices b < c
@@ -139,18 +137,13 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
   // Group the occurrences by their smallest vertex: the three faces of a tetrahedron through its
   // smallest vertex s0 in s0's group, the one opposite s0 in s1's; a triangle in its smallest
   // vertex's. Counted, then placed, by P tasks that each own a range of groups and read all
-  // tetrahedra and triangles: no two tasks write the same counter or slot (with atomic counters
-  // the placing took 4x as long: every locked add waited for the scattered writes before it,
-  // 10^6-point ellipsoid). Then each small
-  // group is sorted: a strict total order, so nothing depends on P or on the scheduling.
+  // tetrahedra and triangles (core/detail/owned_ranges.hpp). Then each small group is sorted: a
+  // strict total order, so nothing depends on the number of tasks or on the scheduling.
   const std::size_t groups = unlabel.size();
-  const std::size_t P = std::max<std::size_t>(
-      1, std::min<std::size_t>(
-             {kMaxParts, static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), groups / kGrain + 1}));
   std::vector<std::size_t> off(groups + 1, 0);
-  const auto owned = [&](const std::function<void(std::uint32_t lo, std::uint32_t hi)>& pass) {
-    tbb::parallel_for(std::size_t{0}, P, [&](std::size_t k) {
-      pass(static_cast<std::uint32_t>(groups * k / P), static_cast<std::uint32_t>(groups * (k + 1) / P));
+  const auto owned = [&](const auto& pass) {
+    detail::for_owned_ranges(groups, T + F, [&](std::size_t lo, std::size_t hi) {
+      pass(static_cast<std::uint32_t>(lo), static_cast<std::uint32_t>(hi));
     });
   };
   const auto in = [](std::uint32_t g, std::uint32_t lo, std::uint32_t hi) { return g >= lo && g < hi; };

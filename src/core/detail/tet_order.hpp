@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "constrict/delaunay.hpp"
@@ -26,9 +27,12 @@ void order_tets_by_vertex(Delaunay3& dt, std::vector<std::array<int, 4>>* also =
 // Single mode and auto follow the same rule, so that auto on one part gives single's surface.
 inline constexpr std::size_t kOrderTetsFrom = std::size_t{1} << 21;
 
+// Whether a tetrahedralization of @p tets tetrahedra is ordered (the rule above).
+inline bool ordered_size(std::size_t tets) { return tets >= kOrderTetsFrom; }
+
 // order_tets_by_vertex when @p dt has kOrderTetsFrom tetrahedra or more; whether it did.
 inline bool order_large_tets(Delaunay3& dt, std::vector<std::array<int, 4>>* also = nullptr) {
-  if (dt.tets.size() < kOrderTetsFrom) return false;
+  if (!ordered_size(dt.tets.size())) return false;
   order_tets_by_vertex(dt, also);
   return true;
 }
