@@ -99,6 +99,12 @@ struct Rings2Options {
   /// polygon and test that (slower on large noisy input; the same decisions on every set
   /// measured, docs/topology.md "Open arcs"; the tests compare the two).
   bool open_arc_test = true;
+  /// Ask the nearest-neighbour walk (docs/topology.md, Method 6) for holes the gap rule cannot
+  /// see: curves nearer to each other than topology_gap spacings but farther apart than their own
+  /// spacing. Its rings are taken only when they are complete, valid, and add holes (or islands in
+  /// holes) inside the rings found, never a split of one ring into rings side by side. false: the
+  /// gap rule alone (as before the fifteenth 2026-12-05 session).
+  bool walk_holes = true;
   /// Up to this many points the open-arc regions are made again after every round of joins
   /// (O(N) each); above it only where a join closed a loop that is not a small thin region
   /// (docs/topology.md, Method 3c). For tests; the default is measured.
@@ -155,6 +161,9 @@ struct RingsInference {
   /// Pairs of parts whose rings met (crossed or touched), joined into one part and made again
   /// (at most kMaxCrossingJoins; past it the decision is Crossing). Counted over all rounds.
   std::size_t crossings_joined = 0;
+  /// Rings that the nearest-neighbour walk added (holes, and islands in them, inside the rings of
+  /// the gap rule; Rings2Options::walk_holes); 0 when its rings were not taken.
+  std::size_t rings_from_walk = 0;
   double gap_threshold = kDefaultTopologyGap;  ///< the threshold used
   /// The largest threshold at which the points would still split into several parts (double; the
   /// bottleneck of the single-linkage tree of the mutual-crust pieces; 0 for one piece). The data

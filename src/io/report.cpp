@@ -152,6 +152,7 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
                      {"thin_parts_joined", in.thin_parts_joined},
                      {"joins_undone", in.joins_undone},
                      {"crossings_joined", in.crossings_joined},
+                     {"rings_from_walk", in.rings_from_walk},
                      {"open_parts", in.open_parts},
                      {"bad_degree_points", in.bad_degree_points},
                      {"split_gap_spacings", in.split_gap_spacings},

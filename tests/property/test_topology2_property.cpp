@@ -46,7 +46,8 @@ Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGa
   o.open_arc_test = open_arc_test;
   o.infer_in_single = true;  // (the single mode's note is checked too)
   Rings2Result r;
-  EXPECT_TRUE(reconstruct_rings2(p, o, r).is_ok());
+  const Status st = reconstruct_rings2(p, o, r);
+  EXPECT_TRUE(st.is_ok()) << st.message();
   return r;
 }
 
@@ -810,6 +811,126 @@ TEST(Topology2Property, MeetingRingsAreJoinedNotRefused) {
     repaired += a.inferred.crossings_joined;
   }
   EXPECT_GT(repaired, 0u);
+}
+
+// Method 6, the nearest-neighbour walk: circles 1.6-2 spacings apart (jittered samples) measure
+// below T = 2 at their narrowest, so the gap rule sees one part, but each circle's own points are
+// nearer to each other than to the other circle, and the walk traces each. With it the annuli and
+// the nested rings come out true; without it (Rings2Options::walk_holes = false) most are one
+// ring. The walk's rings are the same in any point order, rotated by 90° and scaled by 2^-7.
+TEST(Topology2Property, WalkFindsHolesNearerThanTheGap) {
+  std::size_t cases = 0, right = 0, right_without = 0, walked = 0;
+  for (TopoFamily f : {TopoFamily::Annulus, TopoFamily::Nested})
+    for (double gap : {1.6, 1.8, 2.0})
+      for (unsigned seed = 1; seed <= 4; ++seed) {
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        const auto s = test::make_topology(f, gap, seed);
+        const Rings2Result a = run(s.points, Topology2::Auto);
+        ASSERT_TRUE(a.valid()) << a.check.reason;
+        RingsCheck bc;
+        EXPECT_TRUE(validate_rings2_brute_force(s.points, a.rings, &bc).is_ok()) << bc.reason;
+        ++cases;
+        const bool ok = structure(a.rings) == truth(s);
+        right += ok;
+        walked += a.inferred.rings_from_walk > 0;
+        // A walk's answer is always the truth here (it adds holes; it never merges or splits wrong).
+        if (a.inferred.rings_from_walk > 0) {
+          EXPECT_TRUE(ok);
+        }
+        Rings2Options o;
+        o.topology = Topology2::Auto;
+        o.walk_holes = false;
+        Rings2Result w;
+        ASSERT_TRUE(reconstruct_rings2(s.points, o, w).is_ok());
+        EXPECT_EQ(w.inferred.rings_from_walk, 0u);
+        right_without += structure(w.rings) == truth(s);
+        if (a.inferred.rings_from_walk == 0) continue;
+        // Invariance of the walk's rings.
+        const std::size_t n = s.points.size();
+        std::vector<int> perm(n);
+        std::iota(perm.begin(), perm.end(), 0);
+        std::mt19937 rng(seed);
+        std::shuffle(perm.begin(), perm.end(), rng);
+        std::vector<int> back(n);
+        for (std::size_t i = 0; i < n; ++i) back[static_cast<std::size_t>(perm[i])] = static_cast<int>(i);
+        PointSet shuffled = s.points, rotated = s.points, scaled = s.points;
+        for (std::size_t i = 0; i < n; ++i) {
+          shuffled[static_cast<std::size_t>(perm[i])][0] = s.points[i][0];
+          shuffled[static_cast<std::size_t>(perm[i])][1] = s.points[i][1];
+          rotated[i][0] = -s.points[i][1];
+          rotated[i][1] = s.points[i][0];
+          scaled[i][0] = std::ldexp(s.points[i][0], -7);
+          scaled[i][1] = std::ldexp(s.points[i][1], -7);
+        }
+        EXPECT_EQ(structure(run(shuffled, Topology2::Auto).rings, back), structure(a.rings));
+        EXPECT_EQ(structure(run(rotated, Topology2::Auto).rings), structure(a.rings));
+        EXPECT_EQ(structure(run(scaled, Topology2::Auto).rings), structure(a.rings));
+      }
+  std::printf("walk: %zu of %zu true with the walk (%zu by it), %zu without\n", right, cases, walked, right_without);
+  EXPECT_GE(right, right_without + 6);
+  EXPECT_GE(walked, 6u);
+}
+
+// The walk never splits one curve into rings side by side: a dumbbell (two discs joined by a
+// channel 1.2 spacings wide, jittered samples along its outline) has a waist the walk may close
+// across, and stays one ring (the gap rule's call); a keyhole (a slot 1.2 spacings wide into a
+// round bay) likewise, though the walk could read the bay as a hole only through the slot.
+TEST(Topology2Property, WalkSplitsNoNeckOrSlot) {
+  // Points every h (jittered by up to 0.3 h) along a closed polyline.
+  const auto sample = [](const std::vector<std::array<double, 2>>& poly, double h, unsigned seed) {
+    std::vector<double> cum{0};
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const auto& a = poly[i];
+      const auto& b = poly[(i + 1) % poly.size()];
+      cum.push_back(cum.back() + std::hypot(b[0] - a[0], b[1] - a[1]));
+    }
+    const int n = static_cast<int>(cum.back() / h);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> jit(-0.3, 0.3);
+    PointSet p;
+    p.dim = 2;
+    for (int i = 0; i < n; ++i) {
+      double s = (i + jit(rng)) * cum.back() / n;
+      if (s < 0) s += cum.back();
+      const std::size_t k = static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin()) - 1;
+      const auto& a = poly[k];
+      const auto& b = poly[(k + 1) % poly.size()];
+      const double t = (s - cum[k]) / (cum[k + 1] - cum[k]);
+      p.coords.push_back(a[0] + t * (b[0] - a[0]));
+      p.coords.push_back(a[1] + t * (b[1] - a[1]));
+    }
+    return p;
+  };
+  const double h = 0.02, w = 1.2 * h / 2;  // half the channel's width
+  // The dumbbell: circles of radius 0.5 at x = -0.6 and 0.6, joined by the channel |y| <= w.
+  std::vector<std::array<double, 2>> bell;
+  const double a0 = std::asin(w / 0.5);
+  for (int side = 0; side < 2; ++side) {
+    const double cx = side == 0 ? 0.6 : -0.6, start = side == 0 ? M_PI + a0 : a0;
+    for (int i = 0; i <= 720; ++i) {
+      const double t = start + (2 * M_PI - 2 * a0) * i / 720.0;
+      bell.push_back({cx + 0.5 * std::cos(t), 0.5 * std::sin(t)});
+    }
+  }
+  // The keyhole: a unit circle with a slot from x = 1 to the bay of radius 0.15 at x = 0.5.
+  std::vector<std::array<double, 2>> key;
+  const double b0 = std::asin(w), c0 = std::asin(w / 0.15);
+  for (int i = 0; i <= 1440; ++i) {
+    const double t = b0 + (2 * M_PI - 2 * b0) * i / 1440.0;
+    key.push_back({std::cos(t), std::sin(t)});
+  }
+  for (int i = 0; i <= 720; ++i) {  // around the bay from its lower wall to its upper one, the far way
+    const double t = -c0 - (2 * M_PI - 2 * c0) * i / 720.0;
+    key.push_back({0.5 + 0.15 * std::cos(t), 0.15 * std::sin(t)});
+  }
+  for (unsigned seed = 1; seed <= 12; ++seed)
+    for (const auto* shape : {&bell, &key}) {
+      SCOPED_TRACE(std::string(shape == &bell ? "dumbbell" : "keyhole") + " seed " + std::to_string(seed));
+      const Rings2Result a = run(sample(*shape, h, seed), Topology2::Auto);
+      ASSERT_TRUE(a.valid()) << a.check.reason;
+      EXPECT_EQ(a.rings.size(), 1u);
+      EXPECT_EQ(a.inferred.rings_from_walk, 0u);
+    }
 }
 
 }  // namespace
