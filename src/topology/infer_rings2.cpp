@@ -3,8 +3,10 @@
 // Exactness contract: every decision -- nearest neighbour, half neighbour, mutual edges, the gap
 // test, cycles, nesting and orientation -- uses exact predicates (compare_distance2,
 // diametral_side2, compare_gap2, orient2) or combinatorics; doubles are computed only for the report
-// (gap_spacings, split_gap_spacings). Ties are broken by the lexicographic order of the points,
-// never by their indices, so the parts do not depend on the file order.
+// (gap_spacings, split_gap_spacings), and for the order in which the nearest-neighbour walk starts
+// its paths (NearestWalk::seed_less: the edges' squared lengths in double, a deterministic function
+// of the points). Ties are broken by the lexicographic order of the points, never by their
+// indices, so the parts do not depend on the file order.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -741,6 +744,12 @@ constexpr std::size_t kWalkMinSteps = 4;
 // The walk's rings must be at least this share of the gap threshold T apart (at T = 2: one local
 // spacing, the curves farther from each other than their own points).
 constexpr double kWalkGapShare = 0.5;
+// The walk reads each neighbour list about twice (each end looks again when it moves); it gives up
+// past this many times the adjacency's size.
+constexpr std::size_t kWalkWorkPerEdge = 8;
+// Up to this many Delaunay neighbours a point's nearest free one is found by a scan; above, from
+// a heap of its neighbours (NearestWalk::nearest_free_sorted).
+constexpr std::size_t kWalkScanDegree = 16;
 // Squared lengths in double are within 5 units in the last place of the exact ones (normal
 // range): comparisons that differ by more than kRel2 are decided by them, the rest exactly.
 constexpr double kRel2 = 16 * std::numeric_limits<double>::epsilon(), kNormal2 = 1e-290;
@@ -785,9 +794,14 @@ class NearestWalk {
     });
   }
 
-  // The rings, or false when a path cannot go on or a point is left over.
+  // The rings, or false when a path cannot go on, a point is left over, or the neighbour lists
+  // read exceed kWalkWorkPerEdge times their total (an end with very many neighbours whose nearest
+  // free one the other end keeps taking: a circle of points around its centre).
   bool trace(std::vector<std::vector<int>>& rings) const {
     const std::size_t n = pts_.size();
+    work_ = 0;
+    work_limit_ = kWalkWorkPerEdge * adj_.nbr.size() + 1024;
+    heaps_.clear();
     std::vector<Seed> seeds;  // each edge to a nearest neighbour, lexicographically smaller end first
     seeds.reserve(n);
     for (std::size_t p = 0; p < n; ++p) {
@@ -815,7 +829,7 @@ class NearestWalk {
       for (std::size_t steps = 0;; ++steps) {
         const int a = front.back(), b = back.back();
         if (steps >= kWalkMinSteps && (near_of(a, b) || near_of(b, a))) break;
-        if (ca < 0 && cb < 0) return false;  // an open path
+        if ((ca < 0 && cb < 0) || work_ > work_limit_) return false;  // an open path, or out of work
         const bool at_front = cb < 0 || (ca >= 0 && step_less(a, ca, b, cb));
         const int c = at_front ? ca : cb;
         (at_front ? front : back).push_back(c);
@@ -846,6 +860,8 @@ class NearestWalk {
   // where they differ by more than their rounding; the candidates within it, better().
   int nearest_free(int p, const std::vector<char>& used) const {
     const std::size_t b = adj_.start[static_cast<std::size_t>(p)], e = adj_.start[static_cast<std::size_t>(p) + 1];
+    if (e - b > kWalkScanDegree) return nearest_free_sorted(p, b, e, used);
+    work_ += e - b;
     double low = std::numeric_limits<double>::infinity();
     for (std::size_t k = b; k < e; ++k) {
       const int q = adj_.nbr[k];
@@ -860,6 +876,29 @@ class NearestWalk {
       if (best < 0 || better(p, q, best)) best = q;
     }
     return best;
+  }
+  // The same for a point of many neighbours (a centre of cocircular points has them all): its
+  // neighbours in a heap by better(), made once (O(d) comparisons), then the used ones popped (an
+  // end whose next point the other end keeps taking would otherwise read its whole list each time).
+  int nearest_free_sorted(int p, std::size_t b, std::size_t e, const std::vector<char>& used) const {
+    const auto after = [&](int x, int y) {  // y before x: a min-heap by better()
+      const int c = compare_lengths(p, y, p, x);
+      return c < 0 || (c == 0 && lex_less(at(y), at(x)));
+    };
+    auto it = heaps_.find(p);
+    if (it == heaps_.end()) {
+      std::vector<int> h(adj_.nbr.begin() + static_cast<std::ptrdiff_t>(b), adj_.nbr.begin() + static_cast<std::ptrdiff_t>(e));
+      std::make_heap(h.begin(), h.end(), after);
+      work_ += h.size();
+      it = heaps_.emplace(p, std::move(h)).first;
+    }
+    std::vector<int>& h = it->second;
+    while (!h.empty() && used[static_cast<std::size_t>(h.front())]) {
+      std::pop_heap(h.begin(), h.end(), after);
+      h.pop_back();
+      ++work_;
+    }
+    return h.empty() ? -1 : h.front();
   }
   double len2(int p, int q) const {
     const double dx = at(p)[0] - at(q)[0], dy = at(p)[1] - at(q)[1];
@@ -883,14 +922,17 @@ class NearestWalk {
     const int c = compare_lengths(a, ca, b, cb);
     return c < 0 || (c == 0 && lex_less(at(ca), at(cb)));
   }
-  // Seeds by length (compare_lengths), then by their ends' lexicographic order.
+  // Seeds by their squared length in double, then by their ends' lexicographic order. (Only the
+  // order in which paths start: a deterministic function of the two points' coordinates, the same
+  // in any file order, under a rotation by 90° and a power-of-two scale. Exact comparisons here
+  // cost O(N log N) multiprecision ones on regular samples, whose edges are all as long up to
+  // rounding: a 10^6-point circle with its centre took 2 s more.)
   struct Seed {
     double len2;
     std::array<int, 2> v;
   };
   bool seed_less(const Seed& x, const Seed& y) const {
-    const int c = compare_lengths(x.len2, y.len2, x.v[0], x.v[1], y.v[0], y.v[1]);
-    if (c != 0) return c < 0;
+    if (x.len2 != y.len2) return x.len2 < y.len2;
     if (x.v[0] != y.v[0]) return lex_less(at(x.v[0]), at(y.v[0]));
     return x.v[1] != y.v[1] && lex_less(at(x.v[1]), at(y.v[1]));
   }
@@ -898,6 +940,8 @@ class NearestWalk {
   const PointSet& pts_;
   const Adjacency& adj_;
   std::vector<std::array<int, 2>> near_;  // each point's two nearest Delaunay neighbours
+  mutable std::size_t work_ = 0, work_limit_ = 0;  // neighbour entries read by trace()
+  mutable std::unordered_map<int, std::vector<int>> heaps_;  // (nearest_free_sorted)
 };
 
 // Do the walk's rings (nested, in `walk`) add holes to ours (each point's ring in `ring_of`, `ours`
