@@ -51,6 +51,15 @@ Rings2Result run(const PointSet& p, Topology2 t, double gap = kDefaultTopologyGa
   return r;
 }
 
+// Auto on the points, its rings checked by the sweep (valid()) and by the brute force.
+Rings2Result run_checked(const PointSet& p) {
+  const Rings2Result a = run(p, Topology2::Auto);
+  EXPECT_TRUE(a.valid()) << a.check.reason;
+  RingsCheck bc;
+  EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
+  return a;
+}
+
 // n points at uniformly random positions along a five-petal closed curve (about 7 long), with
 // normal noise of about one spacing per coordinate: large enough, it splits into arcs.
 PointSet noisy_petal_curve(std::size_t n, unsigned seed) {
@@ -236,15 +245,35 @@ TEST(Topology2Property, EveryGapGivesAValidAnswer) {
       for (unsigned seed = 10; seed <= 11; ++seed) {
         SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
         const auto s = test::make_topology(f, gap, seed);
-        const Rings2Result a = run(s.points, Topology2::Auto);
-        ASSERT_TRUE(a.valid()) << a.check.reason;
-        RingsCheck bc;
-        EXPECT_TRUE(validate_rings2_brute_force(s.points, a.rings, &bc).is_ok()) << bc.reason;
+        const Rings2Result a = run_checked(s.points);
         if (gap >= 5) {  // near the threshold a part may merge two curves (valid, fewer rings): docs/topology.md
           EXPECT_EQ(structure(a.rings), truth(s));
         }
       }
 }
+
+// The points shuffled (point i at perm[i]; back maps new indices to old), rotated by 90° and
+// scaled by 2^-7: exact transformations, under which the rings must not change.
+struct Transformed {
+  PointSet shuffled, rotated, scaled;
+  std::vector<int> back;
+  Transformed(const PointSet& p, unsigned seed) : shuffled(p), rotated(p), scaled(p), back(p.size()) {
+    const std::size_t n = p.size();
+    std::vector<int> perm(n);  // new index of point i
+    std::iota(perm.begin(), perm.end(), 0);
+    std::mt19937 rng(seed);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    for (std::size_t i = 0; i < n; ++i) back[static_cast<std::size_t>(perm[i])] = static_cast<int>(i);
+    for (std::size_t i = 0; i < n; ++i) {
+      shuffled[static_cast<std::size_t>(perm[i])][0] = p[i][0];
+      shuffled[static_cast<std::size_t>(perm[i])][1] = p[i][1];
+      rotated[i][0] = -p[i][1];
+      rotated[i][1] = p[i][0];
+      scaled[i][0] = std::ldexp(p[i][0], -7);
+      scaled[i][1] = std::ldexp(p[i][1], -7);
+    }
+  }
+};
 
 // The decision and the rings do not depend on the point order, a rotation by 90° or a power-of-two
 // scale (all exact transformations).
@@ -256,23 +285,9 @@ TEST(Topology2Property, InvariantUnderPermutationRotationAndScale) {
         const auto s = test::make_topology(f, gap, seed);
         const Rings2Result base = run(s.points, Topology2::Auto);
         const auto want = structure(base.rings);
-        const std::size_t n = s.points.size();
-        std::vector<int> perm(n);  // new index of point i
-        std::iota(perm.begin(), perm.end(), 0);
-        std::mt19937 rng(seed);
-        std::shuffle(perm.begin(), perm.end(), rng);
-        std::vector<int> back(n);
-        for (std::size_t i = 0; i < n; ++i) back[static_cast<std::size_t>(perm[i])] = static_cast<int>(i);
-        PointSet shuffled = s.points, rotated = s.points, scaled = s.points;
-        for (std::size_t i = 0; i < n; ++i) {
-          shuffled[static_cast<std::size_t>(perm[i])][0] = s.points[i][0];
-          shuffled[static_cast<std::size_t>(perm[i])][1] = s.points[i][1];
-          rotated[i][0] = -s.points[i][1];
-          rotated[i][1] = s.points[i][0];
-          scaled[i][0] = std::ldexp(s.points[i][0], -7);
-          scaled[i][1] = std::ldexp(s.points[i][1], -7);
-        }
-        const Rings2Result a = run(shuffled, Topology2::Auto), b = run(rotated, Topology2::Auto), c = run(scaled, Topology2::Auto);
+        const Transformed t(s.points, seed);
+        const std::vector<int>& back = t.back;
+        const Rings2Result a = run(t.shuffled, Topology2::Auto), b = run(t.rotated, Topology2::Auto), c = run(t.scaled, Topology2::Auto);
         EXPECT_EQ(a.inferred.decision, base.inferred.decision);
         EXPECT_EQ(b.inferred.decision, base.inferred.decision);
         EXPECT_EQ(c.inferred.decision, base.inferred.decision);
@@ -825,10 +840,7 @@ TEST(Topology2Property, WalkFindsHolesNearerThanTheGap) {
       for (unsigned seed = 1; seed <= 4; ++seed) {
         SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
         const auto s = test::make_topology(f, gap, seed);
-        const Rings2Result a = run(s.points, Topology2::Auto);
-        ASSERT_TRUE(a.valid()) << a.check.reason;
-        RingsCheck bc;
-        EXPECT_TRUE(validate_rings2_brute_force(s.points, a.rings, &bc).is_ok()) << bc.reason;
+        const Rings2Result a = run_checked(s.points);
         ++cases;
         const bool ok = structure(a.rings) == truth(s);
         right += ok;
@@ -846,25 +858,10 @@ TEST(Topology2Property, WalkFindsHolesNearerThanTheGap) {
         right_without += structure(w.rings) == truth(s);
         if (a.inferred.rings_from_walk == 0) continue;
         // Invariance of the walk's rings.
-        const std::size_t n = s.points.size();
-        std::vector<int> perm(n);
-        std::iota(perm.begin(), perm.end(), 0);
-        std::mt19937 rng(seed);
-        std::shuffle(perm.begin(), perm.end(), rng);
-        std::vector<int> back(n);
-        for (std::size_t i = 0; i < n; ++i) back[static_cast<std::size_t>(perm[i])] = static_cast<int>(i);
-        PointSet shuffled = s.points, rotated = s.points, scaled = s.points;
-        for (std::size_t i = 0; i < n; ++i) {
-          shuffled[static_cast<std::size_t>(perm[i])][0] = s.points[i][0];
-          shuffled[static_cast<std::size_t>(perm[i])][1] = s.points[i][1];
-          rotated[i][0] = -s.points[i][1];
-          rotated[i][1] = s.points[i][0];
-          scaled[i][0] = std::ldexp(s.points[i][0], -7);
-          scaled[i][1] = std::ldexp(s.points[i][1], -7);
-        }
-        EXPECT_EQ(structure(run(shuffled, Topology2::Auto).rings, back), structure(a.rings));
-        EXPECT_EQ(structure(run(rotated, Topology2::Auto).rings), structure(a.rings));
-        EXPECT_EQ(structure(run(scaled, Topology2::Auto).rings), structure(a.rings));
+        const Transformed t(s.points, seed);
+        EXPECT_EQ(structure(run(t.shuffled, Topology2::Auto).rings, t.back), structure(a.rings));
+        EXPECT_EQ(structure(run(t.rotated, Topology2::Auto).rings), structure(a.rings));
+        EXPECT_EQ(structure(run(t.scaled, Topology2::Auto).rings), structure(a.rings));
       }
   std::printf("walk: %zu of %zu true with the walk (%zu by it), %zu without\n", right, cases, walked, right_without);
   EXPECT_GE(right, right_without + 6);
