@@ -4,7 +4,10 @@
 // and the adjacency (reconstruct_rings2() on the engine's triangulation, constrict/detail/share2.hpp).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "constrict/delaunay.hpp"
 #include "constrict/points.hpp"
@@ -21,7 +24,14 @@ namespace constrict::detail {
 constexpr unsigned kThinWallSides = 6;
 static_assert(kMinRingFatness >= 0.87, "kThinWallSides needs kMinRingFatness > 1 / (2 tan(pi / 6))");
 
-struct RingsAdjacency;  // the triangulation's vertex adjacency (infer_rings2.cpp)
+/// The Delaunay neighbours of every vertex (CSR: nbr[start[v] .. start[v + 1])), each edge once per
+/// end, in no particular order; and dt's triangles and neighbours (the enclosed regions).
+struct RingsAdjacency {
+  std::vector<std::size_t> start;
+  std::vector<int> nbr;
+  std::vector<std::array<int, 3>> triangles, neighbors;
+  explicit RingsAdjacency(Delaunay2&& dt);
+};
 
 /// The adjacency of dt's vertices; keeps dt's triangles and neighbours (moved in: a caller whose
 /// triangulation goes on changing copies it, and builds this later, on another core).
