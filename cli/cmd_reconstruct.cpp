@@ -612,7 +612,7 @@ Command add_reconstruct_command(CLI::App& app) {
                   "single (default: one polygon / one genus-0 surface) | auto (what the data show: 2D shells, holes, parts; 3D parts, inner shells, handles; docs/topology.md)")
       ->check(CLI::IsMember({"single", "auto"}));
   cmd->add_option("--topology-gap", a->topology_gap,
-                  "auto: separate rings (2D) or surfaces (3D) only where parts are at least T local spacings apart (default 2)")
+                  "auto: separate rings (2D) or surfaces (3D) only where parts are at least T local spacings apart (default 2); 2D holes that the nearest-neighbour walk traces, at least T/2")
       ->check(non_negative_number());
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line, no progress");
   return {cmd, [a] { return run_reconstruct(*a); }};

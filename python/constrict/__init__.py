@@ -397,8 +397,9 @@ def reconstruct2(
             ``result.merged_duplicates``. CLI --merge-duplicates.
         topology: "single" (default): one polygon, a :class:`Polygon`. "auto": the rings the
             data show (holes, several parts, nesting), a :class:`Rings`. CLI --topology.
-        topology_gap: parts at least this many local spacings apart become separate rings
-            (topology="auto"). CLI --topology-gap.
+        topology_gap: parts at least this many local spacings apart become separate rings, and
+            holes traced by the nearest-neighbour walk at least half of it (topology="auto";
+            docs/topology.md, Method 6). CLI --topology-gap.
 
     Returns:
         :class:`Polygon`.
