@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Every shared 2D point set ends with a valid simple polygon through all points; on the
 // single-closed-curve sets with ground truth the exact matches and recovered GT edges never drop
-// below the recorded baseline (tests/data/regression/gt2d_expected.csv). Skips without ../shared.
+// below the recorded baseline (tests/data/regression/gt2d_expected.csv). With --topology auto, every
+// set whose ground truth is closed curves only (the two real scans with a hole, the 20 topology sets)
+// gives exactly those rings (issue 16). Skips without ../shared.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include "constrict/constrict.hpp"
 #include "constrict/io.hpp"
 #include "constrict/metrics.hpp"
+#include "constrict/topology.hpp"
 #include "constrict/validate.hpp"
 
 namespace fs = std::filesystem;
@@ -103,4 +106,40 @@ TEST(Shared2D, EveryFileGivesAValidPolygonAndGroundTruthDoesNotRegress) {
   std::printf("\n");
   EXPECT_EQ(gt_sets, expected.size());
   EXPECT_GE(exact, expected_exact);
+}
+
+// Issue 16's 2D measure: `--topology auto` gives rings with exactly the ground truth's point sets on
+// every shared set whose ground truth is several closed curves: the real scans sd_vase (an outline
+// and its inner loop, 9.8 spacings apart) and crawl_Fig12a (1.1-1.7 spacings apart: the
+// nearest-neighbour walk, docs/topology.md Method 6), and the 20 topology sets.
+TEST(Shared2D, AutoGivesTheGroundTruthRingsOfEveryMultiCurveSet) {
+  const fs::path topo = fs::path(CONSTRICT_SHARED_DIR) / "data" / "topology" / "2d";
+  if (!fs::is_directory(kShared2d / "points") || !fs::is_directory(topo / "points")) GTEST_SKIP() << "no shared data";
+  std::size_t sets = 0, right = 0;
+  for (const fs::path& dir : {kShared2d, topo})
+    for (const auto& e : fs::directory_iterator(dir / "points")) {
+      const std::string name = e.path().stem().string();
+      const fs::path gt = dir / "gt" / (name + ".gt");
+      if (!fs::exists(gt)) continue;
+      PointSet pts;
+      ASSERT_TRUE(read_points(e.path().string(), ReadOptions{}, pts).is_ok()) << name;
+      Reference2 ref;
+      ASSERT_TRUE(read_reference2(gt.string(), pts.size(), ref).is_ok()) << name;
+      if (ref.closed.size() < 2 || !ref.open.empty()) continue;
+      SCOPED_TRACE(name);
+      Rings2Options o;
+      o.topology = Topology2::Auto;
+      Rings2Result r;
+      ASSERT_TRUE(reconstruct_rings2(pts, o, r).is_ok());
+      ASSERT_TRUE(r.valid()) << r.check.reason;
+      std::vector<std::vector<int>> rings;
+      for (const Ring2& g : r.rings) rings.push_back(g.indices);
+      const RingsComparison c = compare_rings2(rings, ref);
+      ++sets;
+      right += c.same_point_sets == ref.closed.size() && c.result_rings == ref.closed.size();
+      EXPECT_EQ(c.same_point_sets, ref.closed.size());
+      EXPECT_EQ(c.result_rings, ref.closed.size());
+    }
+  std::printf("[ shared 2D auto ] %zu of %zu multi-curve sets give their ground-truth rings\n", right, sets);
+  EXPECT_EQ(sets, 22u);
 }
