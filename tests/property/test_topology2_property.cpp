@@ -608,7 +608,8 @@ TEST(Topology2Property, InferenceIsTheSameOnOneThread) {
     return r;
   };
   std::vector<PointSet> inputs = {noisy_petal_curve(20000, 3), test::make_topology(TopoFamily::Nested, 2.5, 4, 1.0, 0.3).points,
-                                  test::make_topology(TopoFamily::Parts, 3.0, 2).points};
+                                  test::make_topology(TopoFamily::Parts, 3.0, 2).points,
+                                  test::make_topology(TopoFamily::Nested, 1.8, 1).points};  // (the walk's rings)
   for (std::size_t k = 0; k < inputs.size(); ++k) {
     SCOPED_TRACE("input " + std::to_string(k));
     const RingsInference a = infer(inputs[k], 1), b = infer(inputs[k], 2);
@@ -616,6 +617,7 @@ TEST(Topology2Property, InferenceIsTheSameOnOneThread) {
     EXPECT_EQ(a.parts, b.parts);
     EXPECT_EQ(a.open_parts, b.open_parts);
     EXPECT_EQ(a.thin_parts_joined, b.thin_parts_joined);
+    EXPECT_EQ(a.rings_from_walk, b.rings_from_walk);
     EXPECT_EQ(a.split_gap_spacings, b.split_gap_spacings);
     EXPECT_EQ(a.min_gap_spacings, b.min_gap_spacings);
     ASSERT_EQ(a.rings.size(), b.rings.size());
@@ -625,6 +627,9 @@ TEST(Topology2Property, InferenceIsTheSameOnOneThread) {
     }
     if (k == 0) {
       EXPECT_GT(a.thin_parts_joined, 0u);  // (the many-part path ran)
+    }
+    if (k == 3) {
+      EXPECT_GT(a.rings_from_walk, 0u);  // (the walk's rings were taken)
     }
   }
 }
