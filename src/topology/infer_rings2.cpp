@@ -342,6 +342,21 @@ std::vector<int> find_parts(const PointSet& pts, const Adjacency& adj, const Gap
   return part_of;
 }
 
+// Point lists (parts, or rings in their cyclic order) ordered by their lexicographically smallest
+// point: an order of the points' coordinates, not of their indices.
+void order_by_lowest_point(const PointSet& pts, std::vector<std::vector<int>>& lists) {
+  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
+  std::vector<int> low(lists.size());
+  for (std::size_t k = 0; k < lists.size(); ++k)
+    low[k] = *std::min_element(lists[k].begin(), lists[k].end(), [&](int a, int b) { return lex_less(at(a), at(b)); });
+  std::vector<std::size_t> order(lists.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lex_less(at(low[a]), at(low[b])); });
+  std::vector<std::vector<int>> sorted;
+  for (std::size_t k : order) sorted.push_back(std::move(lists[k]));
+  lists = std::move(sorted);
+}
+
 // The parts as point lists (ascending indices), ordered by their lexicographically smallest point.
 std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector<int>& part_of) {
   std::vector<std::vector<int>> by_root(part_of.size());
@@ -349,16 +364,8 @@ std::vector<std::vector<int>> group_parts(const PointSet& pts, const std::vector
   std::vector<std::vector<int>> parts;
   for (auto& g : by_root)
     if (!g.empty()) parts.push_back(std::move(g));
-  const auto at = [&](int i) { return pts[static_cast<std::size_t>(i)]; };
-  const auto lowest = [&](const std::vector<int>& g) { return *std::min_element(g.begin(), g.end(), [&](int a, int b) { return lex_less(at(a), at(b)); }); };
-  std::vector<int> low(parts.size());
-  for (std::size_t k = 0; k < parts.size(); ++k) low[k] = lowest(parts[k]);
-  std::vector<std::size_t> order(parts.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lex_less(at(low[a]), at(low[b])); });
-  std::vector<std::vector<int>> sorted;
-  for (std::size_t k : order) sorted.push_back(std::move(parts[k]));
-  return sorted;
+  order_by_lowest_point(pts, parts);
+  return parts;
 }
 
 // The regions the parts enclose (docs/topology.md, "Open arcs"). A wall is a Delaunay edge within
@@ -877,28 +884,23 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   // Method 6: the nearest-neighbour walk's rings replace ours (each point's ring in ours_of, `ours`
   // rings) when they add holes to them. Traced once, when first asked.
   std::optional<std::vector<std::vector<int>>> walk;  // (empty: the walk failed)
-  const auto walk_adds_holes = [&](const std::vector<int>& ours_of, std::size_t ours) {
+  const auto take_walk_rings = [&](const std::vector<int>& ours_of, std::size_t ours) {
     if (!options.walk_holes) return;
     if (!walk) {
       walk.emplace();
       if (!detail::nearest_walk_rings2(points, adj, *walk)) walk->clear();
-      const auto lowest = [&](const std::vector<int>& r) {
-        return *std::min_element(r.begin(), r.end(), [&](int a, int b) { return lex_less(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)]); });
-      };
-      std::sort(walk->begin(), walk->end(), [&](const std::vector<int>& a, const std::vector<int>& b) {
-        return lex_less(points[static_cast<std::size_t>(lowest(a))], points[static_cast<std::size_t>(lowest(b))]);
-      });
+      order_by_lowest_point(points, *walk);  // (nest(): parents first)
     }
     if (walk->size() <= ours) return;
     RingsInference w;
     std::vector<std::vector<int>> rings = *walk;
     nest(points, rings, w);
-    if (!detail::walk_adds_holes(w.rings, ours_of, ours) || !validate_rings2(points, w.rings, &w.check)) return;
+    if (!detail::walk_adds_holes(w.rings, ours_of, ours)) return;
     std::vector<int> walk_of(points.size());
     for (std::size_t k = 0; k < w.rings.size(); ++k)
       for (int v : w.rings[k].indices) walk_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
     // Its rings at least kWalkGapShare · T local spacings apart (every closest pair of two rings is
-    // a Delaunay edge): the option moves this threshold too.
+    // a Delaunay edge): the option moves this threshold too. Then the exact check of the set.
     for (std::size_t p = 0; p < points.size(); ++p)
       for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
         const int q = adj.nbr[k];
@@ -906,6 +908,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
             gaps.shorter(static_cast<int>(p), q, kWalkGapShare * gap))
           return;
       }
+    if (!validate_rings2(points, w.rings, &w.check)) return;
     out.rings = std::move(w.rings);
     out.check = w.check;
     out.min_gap_spacings = std::numeric_limits<double>::infinity();
@@ -916,10 +919,11 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   // (Only where the crust is not clean: a part that is one clean NN-crust cycle is a curve by the
   // crust's own reading, which the walk cannot add a hole to.)
   std::vector<int> cycle;
-  if (parts.size() == 1) {  // OneCurve, unless the walk finds holes
-    if (!crust_cycle(crust, parts[0], part_of, cycle)) walk_adds_holes(std::vector<int>(points.size(), 0), 1);
+  const auto one_part_or_walk = [&] {  // OneCurve, unless the walk finds holes
+    if (!crust_cycle(crust, parts[0], part_of, cycle)) take_walk_rings(std::vector<int>(points.size(), 0), 1);
     return Status::ok();
-  }
+  };
+  if (parts.size() == 1) return one_part_or_walk();
   // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
   // part's own sparse spots up to kSealFactors times the threshold.
   std::vector<std::optional<Enclosures>> enclosures;  // per level
@@ -1124,7 +1128,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       report_gaps(adj, gaps, ring_of, out);
       if (validate_rings2(points, out.rings, &out.check)) {
         out.decision = RingsDecision::Rings;
-        if (out.parts_polygon > 0) walk_adds_holes(ring_of, rings.size());
+        if (out.parts_polygon > 0) take_walk_rings(ring_of, rings.size());
         return Status::ok();
       }
       const int a = out.check.met_a, b = out.check.met_b;
@@ -1182,8 +1186,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     if (parts.size() == 1) {
       out.decision = RingsDecision::OneCurve;
       out.parts_polygon = 0;
-      if (!crust_cycle(crust, parts[0], part_of, cycle)) walk_adds_holes(std::vector<int>(points.size(), 0), 1);
-      return Status::ok();
+      return one_part_or_walk();
     }
   }
 }

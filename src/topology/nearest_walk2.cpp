@@ -19,6 +19,7 @@
 #include <tbb/parallel_sort.h>
 
 #include "constrict/predicates.hpp"
+#include "core/detail/semi_static.hpp"
 #include "topology/detail/ring_nesting.hpp"
 
 namespace constrict::detail {
@@ -35,9 +36,12 @@ constexpr std::size_t kWalkWorkPerEdge = 8;
 // Up to this many Delaunay neighbours a point's nearest free one is found by a scan; above, from
 // a heap of its neighbours (NearestWalk::nearest_free_sorted).
 constexpr std::size_t kWalkScanDegree = 16;
-// Squared lengths in double are within 5 units in the last place of the exact ones (normal
-// range): comparisons that differ by more than kRel2 are decided by them, the rest exactly.
-constexpr double kRel2 = 16 * std::numeric_limits<double>::epsilon(), kNormal2 = 1e-290;
+// Squared lengths computed in double are compared by the project's semi-static filter
+// (gap_filtered: one segment against one, factor 1); what it cannot decide, exactly.
+inline bool surely_longer(double x, double y) {
+  bool ok = false;
+  return gap_filtered(x, y, 1.0, 1, 2, ok) > 0 && ok;
+}
 
 // Rings traced point by point, an idea of Parakkat and Muthuganapathy ("Crawl through neighbors",
 // SGP 2016): a path starts at the shortest Delaunay edge between nearest neighbours whose ends are
@@ -62,12 +66,11 @@ class NearestWalk {
           if (d < d0) d1 = d0, d0 = d;
           else if (d < d1) d1 = d;
         }
-        const bool filtered = d0 > kNormal2 && d1 < std::numeric_limits<double>::max();
         std::array<int, 2>& n = near_[p];
         n = {-1, -1};
         for (std::size_t k = adj_.start[p]; k < adj_.start[p + 1]; ++k) {
           const int q = adj_.nbr[k];
-          if (filtered && len2(ip, q) * (1 - kRel2) > d1) continue;
+          if (surely_longer(len2(ip, q), d1)) continue;  // (two are nearer)
           if (n[0] < 0 || better(ip, q, n[0])) {
             n[1] = n[0];
             n[0] = q;
@@ -153,11 +156,10 @@ class NearestWalk {
       if (!used[static_cast<std::size_t>(q)]) low = std::min(low, len2(p, q));
     }
     if (low == std::numeric_limits<double>::infinity()) return -1;
-    const bool filtered = low > kNormal2 && low < std::numeric_limits<double>::max();
     int best = -1;
     for (std::size_t k = b; k < e; ++k) {
       const int q = adj_.nbr[k];
-      if (used[static_cast<std::size_t>(q)] || (filtered && len2(p, q) * (1 - kRel2) > low)) continue;
+      if (used[static_cast<std::size_t>(q)] || surely_longer(len2(p, q), low)) continue;
       if (best < 0 || better(p, q, best)) best = q;
     }
     return best;
@@ -166,10 +168,7 @@ class NearestWalk {
   // neighbours in a heap by better(), made once (O(d) comparisons), then the used ones popped (an
   // end whose next point the other end keeps taking would otherwise read its whole list each time).
   int nearest_free_sorted(int p, std::size_t b, std::size_t e, const std::vector<char>& used) const {
-    const auto after = [&](int x, int y) {  // y before x: a min-heap by better()
-      const int c = compare_lengths(p, y, p, x);
-      return c < 0 || (c == 0 && lex_less2(at(y), at(x)));
-    };
+    const auto after = [&](int x, int y) { return better(p, y, x); };  // a min-heap by better()
     auto it = heaps_.find(p);
     if (it == heaps_.end()) {
       std::vector<int> h(adj_.nbr.begin() + static_cast<std::ptrdiff_t>(b), adj_.nbr.begin() + static_cast<std::ptrdiff_t>(e));
@@ -189,15 +188,11 @@ class NearestWalk {
     const double dx = at(p)[0] - at(q)[0], dy = at(p)[1] - at(q)[1];
     return dx * dx + dy * dy;
   }
-  // sign(|pq| - |rs|), exactly: the squared lengths in double where they differ by more than
-  // their rounding (each within 5 units in the last place), else compare_gap2 (one segment,
-  // factor 1).
-  int compare_lengths(int p, int q, int r, int s) const { return compare_lengths(len2(p, q), len2(r, s), p, q, r, s); }
-  int compare_lengths(double x, double y, int p, int q, int r, int s) const {
-    if (std::min(x, y) > kNormal2 && std::max(x, y) < std::numeric_limits<double>::max()) {
-      if (x < y * (1 - kRel2)) return -1;
-      if (y < x * (1 - kRel2)) return 1;
-    }
+  // sign(|pq| - |rs|), exactly: the filter on the squared lengths in double, else compare_gap2.
+  int compare_lengths(int p, int q, int r, int s) const {
+    bool ok = false;
+    const int c = gap_filtered(len2(p, q), len2(r, s), 1.0, 1, 2, ok);
+    if (ok) return c;
     const double* a[1] = {at(r)};
     const double* b[1] = {at(s)};
     return compare_gap2(at(p), at(q), a, b, 1, 1.0);
