@@ -262,8 +262,10 @@ struct Mesh3Result {
       false;  ///< the carve, fill or handle pass stopped at its work bound (points along curves in space)
   std::size_t grown = 0;                  ///< tetrahedra of the growth (0: growth off or failed)
   std::size_t grown_outside = 0;          ///< of those, labelled outside (to reach missed points)
+  std::size_t grown_crawled = 0;          ///< ... of those, joined along two faces into a thin part
+                                          ///< the labels miss (docs/reconstruction-3d.md §4.11)
   /// The growth reached every point but took at least 1/kThinWallShare of its tetrahedra against
-  /// their labels (a wall about a spacing thick, whose inside the labels cannot see: the surface
+  /// their labels (one-face outside steps: grown_outside - grown_crawled) (a wall about a spacing thick, whose inside the labels cannot see: the surface
   /// zigzags between its two sides), so the variant constrictions from the hull ran as well
   /// (docs/reconstruction-3d.md §4.7, "Thin walls"); default variants only (not with --fast),
   /// and only for a genus-0 growth of one surface (the handle stage's loops and cavities stay).

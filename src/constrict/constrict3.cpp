@@ -225,6 +225,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   r.cavity_capped = r.cavity_capped || growth.cavity_capped;
   r.grow_cavities = growth.cavities;
   r.grown_outside = growth.grown_outside;
+  r.grown_crawled = growth.crawled;
   r.filled = filled;
   r.carve_capped = r.carve_capped || fill_capped;
   r.stages.push_back({Stage3::Grow, body.n - n_hull, 0});

@@ -7,9 +7,10 @@
 // (never three faces: that would bury a vertex). Every vertex in the body is therefore on its
 // surface. Order: tetrahedra labelled inside by the largest circumradius first (from the medial
 // axis outwards, which keeps the growth front from wrapping around pockets); when none is left, a
-// tetrahedron labelled outside only if it brings a new point into the body (one-face rule), the
-// smallest first relative to the spacing (thin parts the labels miss: a point is reached by the
-// shortest step, through its own part, not across the gap to a nearby part).
+// tetrahedron labelled outside only if it brings a new point into the body (one-face rule), or if
+// it is a small two-face step that lets a small next one do so (into a wall the labels miss,
+// §4.11), the smallest first relative to the spacing (thin parts the labels miss: a point is
+// reached by the shortest step, through its own part, not across the gap to a nearby part).
 #include <algorithm>
 #include <cstdint>
 
@@ -24,6 +25,9 @@ namespace {
 // Keys: inside tetrahedra kInsideKeyBase + ln r (ln r clamped below at kMinLogRadius); outside
 // tetrahedra (their own heap, popped only when no inside one is left) minus their size ratio.
 constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
+// The largest outside tetrahedron (bridge ratio) that may join by the two-face rule to open the
+// way into a thin part (crawls()). Measured 2, 2.5, 3, 4 (docs/reconstruction-3d.md §4.11).
+constexpr double kCrawlRatio = 3.0;
 
 class Growth3 {
  public:
@@ -68,7 +72,11 @@ class Growth3 {
       cell_[uz(e.tet)].queued = 0;
       if (cell_[uz(e.tet)].alive) continue;
       int glued[2];
-      const int rule = addable(e.tet, outside, glued);
+      int rule = addable(e.tet, outside, glued);
+      if (!rule && outside && crawls(e.tet)) {
+        rule = addable(e.tet, false, glued);
+        s_.crawled += rule == 2 ? 1 : 0;
+      }
       if (!rule) continue;
       if (outside) ++s_.grown_outside;
       new_edges(e.tet, rule, glued);
@@ -98,6 +106,30 @@ class Growth3 {
     if (ng == 1) return b_.onb[uz(v[uz(glued[0])])] ? 0 : 1;
     if (ng == 2 && !one_face_only) return edges_.has(v[uz(glued[0])], v[uz(glued[1])]) ? 0 : 2;
     return 0;
+  }
+  // An outside tetrahedron glued along two faces joins too (the two-face rule) when it opens the
+  // way into a thin part: it is small (bridge ratio at most kCrawlRatio) and, once it is in, a
+  // tetrahedron beyond one of its free faces, as small, is glued along that face alone and brings
+  // in a point not yet in the body. A wall about a spacing thick has no inside the labels can see
+  // (the balls of its tetrahedra reach through both its faces), and each of its tetrahedra has
+  // its four points on both faces: the one-face rule alone cannot walk along it, and its points
+  // were reached by large steps across the gap to the nearest part instead (sheets of long faces;
+  // docs/reconstruction-3d.md §4.11).
+  bool crawls(int t) const {
+    if (-key(t) > kCrawlRatio) return false;
+    for (int i = 0; i < 4; ++i) {
+      const int m = b_.nbr[uz(t)][uz(i)];
+      if (m < 0 || uz(m) >= b_.T0 || in_body(m)) continue;
+      int glued = 0, apex = -1;
+      for (int j = 0; j < 4; ++j) {
+        const int w = b_.nbr[uz(m)][uz(j)];
+        if (w == t) apex = b_.tets[uz(m)][uz(j)];
+        else if (in_body(w)) ++glued;
+      }
+      if (glued == 0 && apex >= 0 && !b_.onb[uz(apex)] && bridge_ratio3(*b_.pts, *spacing_, b_.tets[uz(m)]) <= kCrawlRatio)
+        return true;
+    }
+    return false;
   }
   // The edges t brings into the body, glued by the one-face rule (the three from its new apex,
   // the vertex opposite the glued face) or the two-face rule (its free edge, joining the vertices

@@ -45,8 +45,11 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
     if (rg.method == Method3::Grow) {
       if (options.validate) validate_result(base, rg);
       // (A growth whose handle stage closed a loop or sealed a cavity is kept: the variants give
-      // genus 0 and one surface, and the auto topology asked for what the labels show.)
-      if (rg.grown_outside * Mesh3Result::kThinWallShare < rg.grown || rg.genus != 0 || rg.surfaces != 1) {
+      // genus 0 and one surface, and the auto topology asked for what the labels show. The
+      // share counts the one-face outside steps, as measured: the two-face steps into thin parts
+      // (§4.11) are the growth following such a part, not zigzagging across it.)
+      const std::size_t against = rg.grown_outside - rg.grown_crawled;
+      if (against * Mesh3Result::kThinWallShare < rg.grown || rg.genus != 0 || rg.surfaces != 1) {
         result = std::move(rg);
         return Status::ok();
       }
@@ -108,6 +111,7 @@ Status Constrictor3::run_candidates(const PointSet& points, const Constrict3Opti
   if (grown) {
     result.grown = grown->grown;
     result.grown_outside = grown->grown_outside;
+    result.grown_crawled = grown->grown_crawled;
     result.ms_grow = grown->ms_grow;
     result.grow_checked = result.grow_replaced = true;
   }

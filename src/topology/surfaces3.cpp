@@ -860,6 +860,7 @@ PointSet subset(const PointSet& pts, const std::vector<int>& ids) {
 void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
   sum.grown += r.grown;
   sum.grown_outside += r.grown_outside;
+  sum.grown_crawled += r.grown_crawled;
   sum.filled += r.filled;
   sum.handle_added += r.handle_added;
   sum.handle_removed += r.handle_removed;

@@ -19,6 +19,7 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "thin_walls3_gen.hpp"
 
 namespace constrict {
 namespace {
@@ -105,6 +106,8 @@ std::vector<std::pair<std::string, PointSet>> families3() {
     }
     f.push_back({"noisy sphere", make(3, c)});
   }
+  // A plate the labels miss, entered by outside steps along two faces (its sheets came from them).
+  f.push_back({"thin plate", test::make_thin_wall(12, 0.8, 8, 12, 2).points});
   return f;
 }
 

@@ -159,6 +159,7 @@ class Cavity3 {
 
 struct Growth3Stats {
   std::size_t grown = 0, grown_outside = 0, cavities = 0;
+  std::size_t crawled = 0;  // of the outside ones, joined by the two-face rule into thin parts
   bool cavity_capped = false;  // the mirrored cavities stopped at their work bound
 };
 // Grows the body from the inside tetrahedron of the largest circumradius by the mirror images of
