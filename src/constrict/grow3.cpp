@@ -28,6 +28,9 @@ constexpr double kInsideKeyBase = 1000.0, kMinLogRadius = -500.0;
 // The largest outside tetrahedron (bridge ratio) that may join by the two-face rule to open the
 // way into a thin part (crawls()). Measured 2, 2.5, 3, 4 (docs/reconstruction-3d.md §4.11).
 constexpr double kCrawlRatio = 3.0;
+// How many two-face steps ahead crawls() looks for the step that brings in a point (measured 0, 1,
+// 2: 1 fixes more sets than 0; 2 the same as 1).
+constexpr int kCrawlDepth = 1;
 
 class Growth3 {
  public:
@@ -110,24 +113,26 @@ class Growth3 {
   // An outside tetrahedron glued along two faces joins too (the two-face rule) when it opens the
   // way into a thin part: it is small (bridge ratio at most kCrawlRatio) and, once it is in, a
   // tetrahedron beyond one of its free faces, as small, is glued along that face alone and brings
-  // in a point not yet in the body. A wall about a spacing thick has no inside the labels can see
+  // in a point not yet in the body, or is glued along two faces and opens the way in turn
+  // (kCrawlDepth such steps ahead). A wall about a spacing thick has no inside the labels can see
   // (the balls of its tetrahedra reach through both its faces), and each of its tetrahedra has
   // its four points on both faces: the one-face rule alone cannot walk along it, and its points
   // were reached by large steps across the gap to the nearest part instead (sheets of long faces;
   // docs/reconstruction-3d.md §4.11).
-  bool crawls(int t) const {
-    if (-key(t) > kCrawlRatio) return false;
+  bool crawls(int t, int depth = 0) const {
+    if (depth == 0 && -key(t) > kCrawlRatio) return false;
     for (int i = 0; i < 4; ++i) {
       const int m = b_.nbr[uz(t)][uz(i)];
-      if (m < 0 || uz(m) >= b_.T0 || in_body(m)) continue;
-      int glued = 0, apex = -1;
+      if (m < 0 || uz(m) >= b_.T0 || in_body(m) || cell_[uz(m)].inside) continue;
+      int glued = 0, apex = -1;  // (after t: glued along their common face and `glued` others)
       for (int j = 0; j < 4; ++j) {
         const int w = b_.nbr[uz(m)][uz(j)];
         if (w == t) apex = b_.tets[uz(m)][uz(j)];
         else if (in_body(w)) ++glued;
       }
-      if (glued == 0 && apex >= 0 && !b_.onb[uz(apex)] && bridge_ratio3(*b_.pts, *spacing_, b_.tets[uz(m)]) <= kCrawlRatio)
-        return true;
+      if (apex < 0 || bridge_ratio3(*b_.pts, *spacing_, b_.tets[uz(m)]) > kCrawlRatio) continue;
+      if (glued == 0 && !b_.onb[uz(apex)]) return true;
+      if (glued == 1 && depth < kCrawlDepth && crawls(m, depth + 1)) return true;
     }
     return false;
   }
