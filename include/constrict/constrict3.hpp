@@ -265,10 +265,11 @@ struct Mesh3Result {
   std::size_t grown_crawled = 0;          ///< ... of those, joined along two faces into a thin part
                                           ///< the labels miss (docs/reconstruction-3d.md §4.11)
   /// The growth reached every point but took at least 1/kThinWallShare of its tetrahedra against
-  /// their labels (one-face outside steps: grown_outside - grown_crawled) (a wall about a spacing thick, whose inside the labels cannot see: the surface
-  /// zigzags between its two sides), so the variant constrictions from the hull ran as well
-  /// (docs/reconstruction-3d.md §4.7, "Thin walls"); default variants only (not with --fast),
-  /// and only for a genus-0 growth of one surface (the handle stage's loops and cavities stay).
+  /// their labels by the one-face rule (grown_outside - grown_crawled): a wall about a spacing
+  /// thick, whose inside the labels cannot see, where the surface zigzags between its two sides.
+  /// So the variant constrictions from the hull ran as well (docs/reconstruction-3d.md §4.7,
+  /// "Thin walls"); default variants only (not with --fast), and only for a genus-0 growth of
+  /// one surface (the handle stage's loops and cavities stay).
   static constexpr std::size_t kThinWallShare = 32;
   bool grow_checked = false;
   bool grow_replaced = false;             ///< ... and the smallest of their surfaces, smaller than the growth's, won

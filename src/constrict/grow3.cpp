@@ -66,7 +66,8 @@ class Growth3 {
     add(seed);
     for (;;) {
       if (heap_.empty() && !outside_ready_) ready_outside();
-      // Outside (labelled so: its own heap): the one-face rule only (its fourth vertex is a new point).
+      // Outside (labelled so: its own heap): the one-face rule (its fourth vertex is a new point), or
+      // the two-face rule into a thin part (crawls()).
       const bool outside = heap_.empty();
       TetHeap& h = outside ? out_heap_ : heap_;
       if (h.empty()) break;
@@ -75,13 +76,12 @@ class Growth3 {
       cell_[uz(e.tet)].queued = 0;
       if (cell_[uz(e.tet)].alive) continue;
       int glued[2];
-      int rule = addable(e.tet, outside, glued);
-      if (!rule && outside && crawls(e.tet)) {
-        rule = addable(e.tet, false, glued);
+      const int rule = addable(e.tet, outside, glued);
+      if (!rule) continue;
+      if (outside) {
+        ++s_.grown_outside;
         s_.crawled += rule == 2 ? 1 : 0;
       }
-      if (!rule) continue;
-      if (outside) ++s_.grown_outside;
       new_edges(e.tet, rule, glued);
       add(e.tet);
     }
@@ -97,8 +97,8 @@ class Growth3 {
   }
   bool in_body(int t) const { return t >= 0 && uz(t) < b_.T0 && cell_[uz(t)].alive; }
   // 1 / 2: t can join the body glued along one / two faces (their indices in glued); 0: it cannot.
-  // one_face_only: only the one-face rule counts.
-  int addable(int t, bool one_face_only, int glued[2]) const {
+  // outside (labelled so): the two-face rule only into a thin part (crawls()).
+  int addable(int t, bool outside, int glued[2]) const {
     int ng = 0;
     for (int i = 0; i < 4; ++i)
       if (in_body(b_.nbr[uz(t)][uz(i)])) {
@@ -107,7 +107,7 @@ class Growth3 {
       }
     const auto& v = b_.tets[uz(t)];
     if (ng == 1) return b_.onb[uz(v[uz(glued[0])])] ? 0 : 1;
-    if (ng == 2 && !one_face_only) return edges_.has(v[uz(glued[0])], v[uz(glued[1])]) ? 0 : 2;
+    if (ng == 2 && !edges_.has(v[uz(glued[0])], v[uz(glued[1])])) return !outside || crawls(t) ? 2 : 0;
     return 0;
   }
   // An outside tetrahedron glued along two faces joins too (the two-face rule) when it opens the

@@ -12,12 +12,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "constrict/points.hpp"
+#include "blue_noise3.hpp"
 #include "unit/test_fixtures.hpp"
 
 namespace constrict::test {
@@ -60,10 +59,7 @@ inline double capsule_sdf(const Capsule& c, const P& p) {
   return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - c.r;
 }
 
-struct Rng {
-  std::uint64_t s;
-  double next() { return static_cast<double>(splitmix64(s) >> 11) * 0x1.0p-53; }
-};
+using Rng = Rng01;
 
 // A uniform point on the capsule's boundary.
 inline P on_capsule(const Capsule& c, Rng& rng) {
@@ -147,11 +143,7 @@ inline GapObject make_gap_object(GapShape s, double g, double r, double sparse, 
   o.parts = detail_gaps3::shape(s, g, r, sparse);
   detail_gaps3::Rng rng{seed * 0x2545f4914f6cdd1dULL + 17};
   // Candidates: 4 per (0.75 h·sparse)² of each part's area, kept outside every other part.
-  struct Cand {
-    P p;
-    double rad;
-  };
-  std::vector<Cand> cand;
+  std::vector<DartCandidate> cand;
   for (std::size_t i = 0; i < o.parts.size(); ++i) {
     const Capsule& c = o.parts[i];
     const double L = std::sqrt((c.b[0] - c.a[0]) * (c.b[0] - c.a[0]) + (c.b[1] - c.a[1]) * (c.b[1] - c.a[1]) +
@@ -164,42 +156,16 @@ inline GapObject make_gap_object(GapShape s, double g, double r, double sparse, 
       bool keep = true;
       for (std::size_t j = 0; j < o.parts.size() && keep; ++j)
         keep = j == i || detail_gaps3::capsule_sdf(o.parts[j], p) > 1e-6;
-      if (keep) cand.push_back({jitter(p, rng), rad});
+      if (keep) cand.push_back({detail_gaps3::jitter(p, rng), rad});
     }
   }
-  // Shuffle (Fisher-Yates), then dart throwing with the larger radius of the two points.
-  for (std::size_t k = cand.size(); k > 1; --k) std::swap(cand[k - 1], cand[static_cast<std::size_t>(rng.next() * double(k))]);
+  // Shuffled, then dart throwing with the larger radius of the two points.
   double cell = 0;
   for (const Capsule& c : o.parts) cell = std::max(cell, 0.75 * c.sparse);
-  std::map<std::tuple<long, long, long>, std::vector<std::size_t>> grid;
-  std::vector<Cand> kept;
-  for (const Cand& c : cand) {
-    const long cx = std::lround(std::floor(c.p[0] / cell)), cy = std::lround(std::floor(c.p[1] / cell)),
-               cz = std::lround(std::floor(c.p[2] / cell));
-    bool ok = true;
-    for (long dx = -1; dx <= 1 && ok; ++dx)
-      for (long dy = -1; dy <= 1 && ok; ++dy)
-        for (long dz = -1; dz <= 1 && ok; ++dz) {
-          auto it = grid.find({cx + dx, cy + dy, cz + dz});
-          if (it == grid.end()) continue;
-          for (std::size_t k : it->second) {
-            const Cand& q = kept[k];
-            const double rr = std::max(c.rad, q.rad);
-            const double d2 = (c.p[0] - q.p[0]) * (c.p[0] - q.p[0]) + (c.p[1] - q.p[1]) * (c.p[1] - q.p[1]) +
-                              (c.p[2] - q.p[2]) * (c.p[2] - q.p[2]);
-            if (d2 < rr * rr) {
-              ok = false;
-              break;
-            }
-          }
-        }
-    if (!ok) continue;
-    grid[{cx, cy, cz}].push_back(kept.size());
-    kept.push_back(c);
-  }
+  const std::vector<DartCandidate> kept = dart_throw(std::move(cand), cell, rng);
   o.points.dim = 3;
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (const Cand& c : kept) {
+  for (const DartCandidate& c : kept) {
     o.points.coords.insert(o.points.coords.end(), c.p.begin(), c.p.end());
     for (std::size_t k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], c.p[k]);

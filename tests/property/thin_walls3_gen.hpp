@@ -11,11 +11,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
-#include <tuple>
 #include <vector>
 
 #include "constrict/points.hpp"
+#include "blue_noise3.hpp"
 #include "unit/test_fixtures.hpp"
 
 namespace constrict::test {
@@ -30,10 +29,7 @@ struct ThinWallObject {
 
 namespace detail_thin3 {
 using P = std::array<double, 3>;
-struct Rng {
-  std::uint64_t s;
-  double next() { return static_cast<double>(splitmix64(s) >> 11) * 0x1.0p-53; }
-};
+using Rng = Rng01;
 // The plate's box: centred on the x axis, its inner end inside the ball.
 inline P plate_centre(const ThinWallObject& o) { return {o.radius + o.half[0] - 2 * o.h, 0, 0}; }
 inline double box_sdf(const ThinWallObject& o, const P& p) {
@@ -104,32 +100,12 @@ inline ThinWallObject make_thin_wall(double radius, double thickness, double len
         if (detail_thin3::ball_sdf(o, p) > 1e-9) cand.push_back(p);
       }
     }
-  for (std::size_t k = cand.size(); k > 1; --k) std::swap(cand[k - 1], cand[static_cast<std::size_t>(rng.next() * double(k))]);
-  std::map<std::tuple<long, long, long>, std::vector<std::size_t>> grid;
-  std::vector<P> kept;
-  const auto cell = [&](const P& p, int k) { return std::lround(std::floor(p[k] / rad)); };
-  for (const P& p : cand) {
-    bool ok = true;
-    for (long dx = -1; dx <= 1 && ok; ++dx)
-      for (long dy = -1; dy <= 1 && ok; ++dy)
-        for (long dz = -1; dz <= 1 && ok; ++dz) {
-          const auto it = grid.find({cell(p, 0) + dx, cell(p, 1) + dy, cell(p, 2) + dz});
-          if (it == grid.end()) continue;
-          for (std::size_t q : it->second) {
-            const double d2 = (p[0] - kept[q][0]) * (p[0] - kept[q][0]) + (p[1] - kept[q][1]) * (p[1] - kept[q][1]) +
-                              (p[2] - kept[q][2]) * (p[2] - kept[q][2]);
-            if (d2 < rad * rad) {
-              ok = false;
-              break;
-            }
-          }
-        }
-    if (!ok) continue;
-    grid[{cell(p, 0), cell(p, 1), cell(p, 2)}].push_back(kept.size());
-    kept.push_back(p);
-  }
+  std::vector<DartCandidate> darts;
+  for (const P& p : cand) darts.push_back({p, rad});
+  const std::vector<DartCandidate> kept = dart_throw(std::move(darts), rad, rng);
   o.points.dim = 3;
-  for (P p : kept) {
+  for (const DartCandidate& d : kept) {
+    P p = d.p;
     for (double& x : p) x += 0.02 * o.h * (2 * rng.next() - 1);
     for (int i = 0; i < 3; ++i) o.points.coords.push_back(R[i][0] * p[0] + R[i][1] * p[1] + R[i][2] * p[2]);
   }
