@@ -376,7 +376,7 @@ class Regions {
     std::vector<int> mine = pending_;  // the region's additions since the last valid state, sorted
     std::sort(mine.begin(), mine.end());
     // The start, for the moves at pinches below.
-    const bool star = handles && nbad_ <= kStarMoveMaxBad;
+    const bool star = nbad_ <= kStarMoveMaxBad;
     const std::vector<int> pending0 = star ? pending_ : std::vector<int>{},
                            dimples0 = star ? dimples_ : std::vector<int>{};
     const std::vector<int> mine0 = star ? mine : std::vector<int>{};
@@ -434,11 +434,14 @@ class Regions {
     // A handle whose single toggles fail at a few pinched vertices (two fans of body tetrahedra
     // around one point): moves of several tetrahedra there (star_moves), the best one while it
     // lowers the defect, when at most kStarMoveMaxBad are left (with many bad vertices such moves
-    // let regions through that close several loops at once across a sparse spot). A region whose
+    // let regions through that close several loops at once across a sparse spot). The fill too
+    // (docs/reconstruction-3d.md §4.12), with moves that add only tetrahedra labelled inside and
+    // take out only the region's own: a pocket inside a sparse tube whose full addition pinches a
+    // point or two was left out, and the surface cut through the tube. A region whose
     // peel ended almost valid (star) tries them from where the single toggles started; one whose
     // peel ended with more tries them where the toggles end (they are kept from opening the loop
     // again, so that end still closes it: 2 of 28 noisy tori, chains and links closed this way).
-    const bool star_end = handles && !star && nbad_ <= kStarMoveMaxBad;
+    const bool star_end = !star && nbad_ <= kStarMoveMaxBad;
     if ((!star && !star_end) || closed_now()) return;
     if (star) {
       // (From the start: the single toggles' sideways walk can leave the pinch where no move
@@ -459,6 +462,13 @@ class Regions {
         star_moves(v, moves_);
         for (const auto& m : moves_) {
           if (s_.trials > trial_budget() || over_budget()) break;
+          // (The fill: only tetrahedra labelled inside added, only the region's own taken out.
+          // Moves through outside ones or the grown body dented a thin tip of a random half of horse.)
+          if (!handles && std::any_of(m.begin(), m.end(), [&](int t) {
+                return b_.alive(t) ? !std::binary_search(mine.begin(), mine.end(), t)
+                                   : !(uz(t) < b_.T0 && sign_ * score_[uz(t)] > 0);
+              }))
+            continue;
           s_.trials += m.size();
           toggle_all(m);
           const std::size_t d = defect();

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,21 @@ inline GapObject make_gap_object(GapShape s, double g, double r, double sparse, 
   }
   o.diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
   return o;
+}
+
+// A random subset of the object's points, each kept with probability `keep` (as in the random
+// halves and quarters of bench/close_parts.sh): clumps and holes instead of blue noise. The gap and
+// radius of make_gap_object are then best given in units of the subset's spacing, sparse / √keep.
+// std::mt19937_64 is the same on every platform; its draw d is taken as d · 2^-64 (what libstdc++'s
+// uniform_real_distribution gives, written out so that the subset does not depend on the library).
+inline GapObject random_subset(const GapObject& o, double keep, std::uint64_t seed) {
+  GapObject s = o;
+  s.points.coords.clear();
+  std::mt19937_64 rng(seed * 7919 + 13);
+  for (std::size_t i = 0; i < o.points.size(); ++i)
+    if (static_cast<double>(rng()) * 0x1.0p-64 < keep)
+      s.points.coords.insert(s.points.coords.end(), o.points[i], o.points[i] + 3);
+  return s;
 }
 
 }  // namespace constrict::test
