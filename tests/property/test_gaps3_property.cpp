@@ -35,6 +35,15 @@ double surface_to_truth(const test::GapObject& o, const TriMesh3& m) {
       [&](const std::array<double, 3>& q) { return test::gap_object_distance(o, q); });
 }
 
+// The default reconstruction, complete, checked by the validator and of genus 0.
+void reconstruct_valid_genus0(const PointSet& points, Mesh3Result& r) {
+  ASSERT_TRUE(reconstruct3(points, {}, r).is_ok());
+  ASSERT_TRUE(r.complete);
+  MeshCheck mc;
+  EXPECT_TRUE(validate_mesh3(points, r.mesh, &mc).is_ok()) << mc.reason;
+  EXPECT_EQ(mc.genus, 0);
+}
+
 struct Case {
   test::GapShape shape;
   double sparse;  // spacing of the close parts, in h
@@ -66,11 +75,8 @@ TEST(Gaps3Property, NoBridgesFromTwoSpacings) {
         if (f) std::fclose(f);
       }
       Mesh3Result r;
-      ASSERT_TRUE(reconstruct3(o.points, {}, r).is_ok());
-      ASSERT_TRUE(r.complete);
-      MeshCheck mc;
-      EXPECT_TRUE(validate_mesh3(o.points, r.mesh, &mc).is_ok()) << mc.reason;
-      EXPECT_EQ(mc.genus, 0);
+      reconstruct_valid_genus0(o.points, r);
+      if (HasFatalFailure()) return;
       EXPECT_EQ(r.mesh.triangles.size(), 2 * o.points.size() - 4);
       const double d = surface_to_truth(o, r.mesh) / c.sparse;
       std::printf("| %s | %g h | %g | %zu | %.2f | %zu |\n", test::gap_shape_name(c.shape), c.sparse, gap, o.points.size(),
@@ -152,11 +158,8 @@ TEST(Gaps3Property, RandomSubsetsOfClosePartsKeepTheirParts) {
         SCOPED_TRACE(std::string(test::gap_shape_name(f.shape)) + " keep " + std::to_string(f.keep) + " gap " +
                      std::to_string(gap) + " seed " + std::to_string(seed));
         Mesh3Result r;
-        ASSERT_TRUE(reconstruct3(o.points, {}, r).is_ok());
-        ASSERT_TRUE(r.complete);
-        MeshCheck mc;
-        EXPECT_TRUE(validate_mesh3(o.points, r.mesh, &mc).is_ok()) << mc.reason;
-        EXPECT_EQ(mc.genus, 0);
+        reconstruct_valid_genus0(o.points, r);
+        if (HasFatalFailure()) return;
         const double d = surface_to_truth(o, r.mesh) / h;
         std::printf("| %s | %g h | %g | %g | %llu | %zu | %.2f |\n", test::gap_shape_name(f.shape), f.sparse, f.keep,
                     gap, static_cast<unsigned long long>(seed), o.points.size(), d);
