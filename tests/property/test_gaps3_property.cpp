@@ -169,3 +169,40 @@ TEST(Gaps3Property, RandomSubsetsOfClosePartsKeepTheirParts) {
 
 }  // namespace
 }  // namespace constrict
+
+namespace constrict {
+namespace {
+
+// The sweep behind docs/reconstruction-3d.md §4.12 (disabled; run with
+// --gtest_also_run_disabled_tests --gtest_filter='*RandomSubsetSweep*'): every shape, close parts
+// as dense as the rest or 2× sparser, gaps 2-4 in the subset's spacing, kept fractions 0.5, 0.45,
+// 0.4, 0.35, 0.3 and 0.25, seeds 1..CONSTRICT_SWEEP_SEEDS (default 8). Prints one row per set and
+// the sets farther than 1.5 subset spacings from the truth; asserts only validity.
+TEST(Gaps3Property, DISABLED_RandomSubsetSweep) {
+  const char* env = std::getenv("CONSTRICT_SWEEP_SEEDS");
+  const std::uint64_t seeds = env ? std::strtoull(env, nullptr, 10) : 8;
+  std::size_t sets = 0, far = 0;
+  for (double keep : {0.5, 0.45, 0.4, 0.35, 0.3, 0.25})
+    for (test::GapShape shape :
+         {test::GapShape::Fingers, test::GapShape::Legs, test::GapShape::Ear, test::GapShape::Hook})
+      for (double sparse : {1.0, 2.0})
+        for (double gap : {2.0, 3.0, 4.0})
+          for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+            const double h = sparse / std::sqrt(keep);
+            const test::GapObject o =
+                test::random_subset(test::make_gap_object(shape, gap * h, 4 * h, sparse, seed), keep, seed);
+            Mesh3Result r;
+            reconstruct_valid_genus0(o.points, r);
+            if (HasFatalFailure()) return;
+            const double d = surface_to_truth(o, r.mesh) / h;
+            ++sets;
+            far += d > 1.5;
+            std::printf("%s sparse %g keep %g gap %g seed %llu points %zu d %.2f%s\n", test::gap_shape_name(shape),
+                        sparse, keep, gap, static_cast<unsigned long long>(seed), o.points.size(), d,
+                        d > 1.5 ? "  <<" : "");
+          }
+  std::printf("farther than 1.5 spacings: %zu of %zu sets\n", far, sets);
+}
+
+}  // namespace
+}  // namespace constrict
