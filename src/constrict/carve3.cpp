@@ -58,6 +58,12 @@ class Regions {
           Rule rule = Rule::Genus0, const HandleDecision* decide = nullptr, bool local_repair = true)
       : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st), rule_(rule),
         decide_(decide), local_repair_(add_ && local_repair) {}
+  // The fill before the growth's cavities (fill_inside3's `reach`): points not yet in the body may
+  // stay out, and a valid state has 2R - 4 faces over the R points in it (every one manifold).
+  Regions& reaching() {
+    reach_ = add_ && rule_ == Rule::Genus0;
+    return *this;
+  }
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
   // Precondition (both callers: after a complete constriction or growth): every vertex of the
@@ -84,7 +90,11 @@ class Regions {
                           alive_at_[v] = k;
                         }
                       });
-    targetF_ = 2 * b_.n - 4;
+    std::size_t in_body = b_.n;
+    if (reach_)
+      in_body =
+          static_cast<std::size_t>(std::count_if(alive_at_.begin(), alive_at_.end(), [](int k) { return k > 0; }));
+    targetF_ = 2 * in_body - 4;
     if (rule_ == Rule::Genus0 && F_ != targetF_) return false;
     anchor_.assign(b_.tets.size(), 0);
     if (!add_) choose_anchors();
@@ -212,6 +222,7 @@ class Regions {
 
   // Is the surface around v a single disk (the link of v one simple cycle)?
   bool vertex_manifold(int v) {
+    if (reach_ && alive_at_[uz(v)] == 0) return true;  // (not in the body: allowed while reaching)
     work_ += uz(vt_off_[uz(v) + 1] - vt_off_[uz(v)]);
     link_.clear();
     for (int k = vt_off_[uz(v)]; k < vt_off_[uz(v) + 1]; ++k) {
@@ -251,12 +262,14 @@ class Regions {
       touched_.push_back(t);
     }
     if (make_alive) {
-      for (int x : b_.tets[uz(t)]) ++alive_at_[uz(x)];
+      for (int x : b_.tets[uz(t)])
+        if (++alive_at_[uz(x)] == 1 && reach_) targetF_ += 2;  // (a point brought in)
       b_.state[uz(t)] = kAlive;
       F_ = F_ - 4 + 2 * uz(b_.surface_faces_of(t));
     } else {
       F_ = F_ + 4 - 2 * uz(b_.surface_faces_of(t));
-      for (int x : b_.tets[uz(t)]) --alive_at_[uz(x)];
+      for (int x : b_.tets[uz(t)])
+        if (--alive_at_[uz(x)] == 0 && reach_) targetF_ -= 2;
       b_.state[uz(t)] = kOutside;
     }
     ++b_.ver[uz(t)];
@@ -725,6 +738,7 @@ class Regions {
   std::vector<int> star_, star_nbr_, star_comp_;  // star_moves' scratch
   std::vector<std::vector<int>> moves_;
   bool pinched_ = false;  // the region used a move of star_moves
+  bool reach_ = false;    // reaching(): points may stay out of the body
 };
 
 std::size_t count_changed(const std::vector<std::uint8_t>& before, const std::vector<std::uint8_t>& after, bool to_alive) {
@@ -749,7 +763,7 @@ std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, 
   return stats.changed;
 }
 
-std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats) {
+std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats, bool reach) {
   // Nothing to fill (the usual case): no left-out inside tetrahedron touches the body.
   bool any = false;
   for (std::size_t t = 0; t < body.T0 && !any; ++t) {
@@ -758,13 +772,21 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
   }
   if (!any) return 0;
   const std::vector<std::uint8_t> state0 = body.state;
-  if (!Regions(body, labels.label, -1.0f, min_conf, Toggle::Add, stats).run()) return 0;
+  Regions regions(body, labels.label, -1.0f, min_conf, Toggle::Add, stats);
+  if (reach) regions.reaching();
+  if (!regions.run()) return 0;
   // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void would
   // also have 2N-4 faces in total: excluded here (then the whole pass is undone).
   stats.changed = count_changed(state0, body.state, true);
   if (stats.changed > 0 && !body.side_connected(kOutside)) {
     body.state = state0;
     stats.changed = 0;
+  }
+  if (reach && stats.changed > 0) {  // the points now in the body are on its surface
+    body.onb.assign(body.n, 0);
+    body.n_onb = 0;
+    for (std::size_t t = 0; t < body.tets.size(); ++t)
+      if (body.state[t] == kAlive) body.mark_on_surface(static_cast<int>(t));
   }
   return stats.changed;
 }

@@ -216,7 +216,7 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
     stage_event(Stage3::Fill);
     t0 = Clock::now();
     detail::Carve3Stats fs;
-    filled = detail::fill_inside3(body, *keys.labels, opt.carve_confidence <= 1 ? opt.carve_confidence : kFillConfidence, fs);
+    filled = detail::fill_inside3(body, *keys.labels, detail::fill_confidence(opt), fs);
     fill_capped = fs.capped;
     r.ms_fill = ms_since(t0);
   }
@@ -224,6 +224,8 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   r.grown = growth.grown;
   r.cavity_capped = r.cavity_capped || growth.cavity_capped;
   r.grow_cavities = growth.cavities;
+  r.grow_pocket_points = growth.pocket_reached;
+  r.grow_pocket_filled = growth.pocket_filled;
   r.grown_outside = growth.grown_outside;
   r.grown_crawled = growth.crawled;
   r.filled = filled;
@@ -243,7 +245,7 @@ void Constrictor3::Impl::handles_stage(Mesh3Result& r) {
   const auto t0 = Clock::now();
   const std::vector<std::uint8_t> state0 = body.state;
   handles_closed = handles_opened = {};
-  const double conf = opt.carve_confidence <= 1 ? opt.carve_confidence : kFillConfidence;
+  const double conf = detail::fill_confidence(opt);
   auto log = std::make_shared<std::vector<Handle3Change>>();
   const std::size_t changed =
       detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get(), log, keys.labels.get()), handles_closed,

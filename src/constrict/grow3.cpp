@@ -297,6 +297,17 @@ bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt
   if (seed < 0) return false;
   g.run(seed);
   if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
+    // Points the growth left are often inside a pocket of tetrahedra labelled inside that the
+    // growth's front closed around (every tetrahedron there had all its points in the body
+    // already): the fill takes such pockets first and may bring the points in with them. The
+    // cavities below would put their tetrahedra in the pocket, which the fill then can no longer
+    // take whole (docs/reconstruction-3d.md §4.13).
+    const std::size_t before = body.n_onb;
+    Carve3Stats fs;
+    stats.pocket_filled = fill_inside3(body, labels, fill_confidence(opt), fs, /*reach=*/true);
+    stats.pocket_reached = body.n_onb - before;
+  }
+  if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
     nbr_delaunay = body.nbr;
     place_unreached(body, opt, visitor, stats);
   }

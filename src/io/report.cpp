@@ -80,10 +80,17 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
                  {"removed", r.refine_removed},
                  {"capped", r.refine_capped}};
   j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}, {"capped", r.carve_capped}};
-  j["grow"] = {{"enabled", opt.grow},           {"tetrahedra", r.grown},        {"labelled_outside", r.grown_outside},
+  j["grow"] = {{"enabled", opt.grow},
+               {"tetrahedra", r.grown},
+               {"labelled_outside", r.grown_outside},
                {"thin_part_steps", r.grown_crawled},
-               {"filled", r.filled},            {"cavities", r.grow_cavities}, {"unreached", r.grow_unreached},
-               {"thin_wall_check", r.grow_checked}, {"replaced_by_constriction", r.grow_replaced}};
+               {"filled", r.filled},
+               {"cavities", r.grow_cavities},
+               {"unreached", r.grow_unreached},
+               {"pocket_points", r.grow_pocket_points},
+               {"pocket_filled", r.grow_pocket_filled},
+               {"thin_wall_check", r.grow_checked},
+               {"replaced_by_constriction", r.grow_replaced}};
   j["size_bias"] = r.size_bias;
   j["label_weight"] = r.label_weight;
   j["variants"] = variants_json(r.candidates);

@@ -866,6 +866,8 @@ void add_counts(Mesh3Result& sum, const Mesh3Result& r) {
   sum.handle_removed += r.handle_removed;
   sum.handle_changes.insert(sum.handle_changes.end(), r.handle_changes.begin(), r.handle_changes.end());
   sum.grow_cavities += r.grow_cavities;
+  sum.grow_pocket_points += r.grow_pocket_points;
+  sum.grow_pocket_filled += r.grow_pocket_filled;
   sum.cavities += r.cavities;
   sum.cavity_attempts += r.cavity_attempts;
   sum.carved += r.carved;

@@ -22,6 +22,7 @@
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
+#include "property/gaps3_gen.hpp"
 #include "test_fixtures.hpp"
 
 namespace constrict {
@@ -214,6 +215,35 @@ TEST(Stages3, GrowthReachesEveryPointOfAShellAndFillKeepsItValid) {
   const std::size_t filled = detail::fill_inside3(b, *labels, 0.5, fs);
   expect_valid_body(b, true, "filled");
   EXPECT_EQ(filled, fs.changed);
+}
+
+// Sparse fingers whose growth closes its front around a pocket labelled inside with a point in it
+// (docs/reconstruction-3d.md §4.13): without cavities the growth leaves the point; the fill in its
+// reaching mode takes the pocket with it, and every state is a closed genus-0 2-manifold through
+// the points in the body.
+TEST(Stages3, FillBeforeTheCavitiesBringsInThePointOfAPocket) {
+  const double h = 2 / std::sqrt(0.35);
+  const PointSet p =
+      test::random_subset(test::make_gap_object(test::GapShape::Fingers, 2 * h, 4 * h, 2, 6), 0.35, 6).points;
+  Body3 b = start_body(p);
+  const auto labels = detail::compute_labels3(b);
+  const std::vector<double> spacing = detail::nearest_spacing3(b);
+  Constrict3Options none;
+  none.fallback = Fallback3::None;
+  detail::Growth3Stats gs;
+  detail::Tets nbr0;
+  EXPECT_FALSE(detail::grow_body3(b, *labels, none, nullptr, gs, nbr0, &spacing));
+  const std::size_t left = b.n - b.n_onb;
+  EXPECT_GE(left, 1u);
+  expect_valid_body(b, false, "grown, points left");
+  // The ordinary fill needs every point in the body: it does nothing here.
+  detail::Carve3Stats plain;
+  EXPECT_EQ(detail::fill_inside3(b, *labels, 0.5, plain), 0u);
+  detail::Carve3Stats fs;
+  const std::size_t filled = detail::fill_inside3(b, *labels, 0.5, fs, /*reach=*/true);
+  std::cout << "[ pocket ] points left by the growth " << left << ", tetrahedra filled " << filled << "\n";
+  EXPECT_GT(filled, 0u);
+  expect_valid_body(b, true, "pocket filled");
 }
 
 TEST(Stages3, CarveAndFlipsKeepEveryPointOnAValidSurface) {

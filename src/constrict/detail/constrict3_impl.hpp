@@ -22,8 +22,6 @@ inline double ms_since(Clock::time_point t0) {
 struct Constrictor3::Impl {
   // Below every key: pop whatever is best.
   static constexpr double kAnyKey = -1e300;
-  // Label confidence of the fill when the carve is off (carve_confidence > 1).
-  static constexpr double kFillConfidence = 0.5;
 
   // Inputs.
   const PointSet* input = nullptr;  // the caller's points (the validation reads them)

@@ -159,6 +159,7 @@ class Cavity3 {
 
 struct Growth3Stats {
   std::size_t grown = 0, grown_outside = 0, cavities = 0;
+  std::size_t pocket_filled = 0, pocket_reached = 0;  // the fill before the cavities: tetrahedra, points
   std::size_t crawled = 0;  // of the outside ones, joined by the two-face rule into thin parts
   bool cavity_capped = false;  // the mirrored cavities stopped at their work bound
 };
@@ -173,6 +174,12 @@ bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt
 
 // ---- carve and fill (carve3.cpp; docs/reconstruction-3d.md §4.6, §4.7) -------------------------
 
+// Label confidence of the fill (and of the handle stage): the carve's, or 0.5 when the carve is
+// off (carve_confidence > 1).
+inline double fill_confidence(const Constrict3Options& opt) {
+  return opt.carve_confidence <= 1 ? opt.carve_confidence : 0.5;
+}
+
 struct Carve3Stats {
   std::size_t changed = 0, regions = 0, undone = 0;  // tetrahedra kept removed / added; ...
   std::size_t trials = 0;  // single toggles the local repair tried (all regions of the pass)
@@ -183,8 +190,10 @@ struct Carve3Stats {
 // genus 0 through every point). Returns the tetrahedra removed.
 std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
 // The mirror image after the growth: adds the regions of Delaunay tetrahedra labelled inside that
-// the body left out, under the same validity rule and with no enclosed void.
-std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
+// the body left out, under the same validity rule and with no enclosed void. `reach`: before the
+// growth's cavities, while points are still out of the body: those may stay out, and a region may
+// bring them in (a valid state: a closed genus-0 2-manifold through the points in the body).
+std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats, bool reach = false);
 
 // ---- handles (carve3.cpp, handles3.cpp; docs/topology.md §"3D") --------------------------------
 
