@@ -280,8 +280,8 @@ struct Mesh3Result {
   int genus = 0;                          ///< total genus of the surface (> 0 only with handles)
   int surfaces = 1;                       ///< its components (> 1 only with handles: inner shells)
   std::size_t grow_cavities = 0;          ///< points the growth placed by a mirrored star cavity
-  /// Points the growth left that the fill brought in before the cavities, with the pockets of
-  /// tetrahedra labelled inside around them (docs/reconstruction-3d.md §4.13), and those tetrahedra.
+  /// Points inside pockets labelled inside that the growth's front closed around, brought in by the
+  /// fill during the growth (docs/reconstruction-3d.md §4.13), and the tetrahedra it added.
   std::size_t grow_pocket_points = 0, grow_pocket_filled = 0;
   std::size_t grow_unreached = 0;         ///< growth tried and failed: points it left (then the constriction ran)
   std::size_t cavities = 0;               ///< successful fallback re-tetrahedralizations

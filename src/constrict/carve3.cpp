@@ -764,13 +764,16 @@ std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, 
 }
 
 std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats, bool reach) {
-  // Nothing to fill (the usual case): no left-out inside tetrahedron touches the body.
-  bool any = false;
-  for (std::size_t t = 0; t < body.T0 && !any; ++t) {
+  // Nothing to fill (the usual case): no left-out inside tetrahedron touches the body. Reaching:
+  // nothing to reach either unless such a tetrahedron has a point out of the body (a point comes
+  // in only with a tetrahedron of its own; the fill after the growth takes the other pockets).
+  bool any = false, reachable = !reach;
+  for (std::size_t t = 0; t < body.T0 && !(any && reachable); ++t) {
     if (body.state[t] != kOutside || !(labels.label[t] <= -min_conf)) continue;
     for (int m : body.nbr[t]) any = any || body.alive(m);
+    for (int x : body.tets[t]) reachable = reachable || !body.onb[uz(x)];
   }
-  if (!any) return 0;
+  if (!any || !reachable) return 0;
   const std::vector<std::uint8_t> state0 = body.state;
   Regions regions(body, labels.label, -1.0f, min_conf, Toggle::Add, stats);
   if (reach) regions.reaching();

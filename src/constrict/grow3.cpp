@@ -34,8 +34,9 @@ constexpr int kCrawlDepth = 1;
 
 class Growth3 {
  public:
-  Growth3(Body3& b, const Labels3& l, Growth3Stats& st, const std::vector<double>* spacing)
-      : b_(b), l_(l), s_(st), given_spacing_(spacing) {}
+  // fill_conf > 0: the fill runs when the inside tetrahedra are exhausted with points left (below).
+  Growth3(Body3& b, const Labels3& l, Growth3Stats& st, const std::vector<double>* spacing, double fill_conf)
+      : b_(b), l_(l), s_(st), given_spacing_(spacing), fill_conf_(fill_conf) {}
 
   // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids.
   int seed() const {
@@ -160,6 +161,7 @@ class Growth3 {
   // need the spacing: the engine's, computed beside the labels, or computed here). With every
   // point in the body none of them can join.
   void ready_outside() {
+    if (fill_conf_ > 0 && b_.n_onb < b_.n) fill_pockets();
     outside_ready_ = true;
     if (waiting_.empty() || b_.n_onb == b_.n) {
       waiting_.clear();
@@ -171,6 +173,39 @@ class Growth3 {
       if (!cell_[uz(m)].alive) out_heap_.push({key(m), m, 0}, b_.tets);
       else cell_[uz(m)].queued = 0;
     waiting_.clear();
+  }
+  // When no inside tetrahedron can join and points are left, they are often inside a pocket of
+  // tetrahedra labelled inside that the front closed around (every tetrahedron there next to the
+  // body has its four points in the body already, so neither rule adds it). The outside steps would
+  // then reach such a point across a gap, or a cavity place it (docs/reconstruction-3d.md §4.13):
+  // the fill, in its reaching mode, takes such pockets first, with their points, and its
+  // tetrahedra join the growth's state (their edges, their neighbours queued).
+  void fill_pockets() {
+    const std::size_t before = b_.n_onb;
+    Carve3Stats fs;
+    const std::size_t filled = fill_inside3(b_, l_, fill_conf_, fs, /*reach=*/true);
+    s_.pocket_filled += filled;
+    s_.pocket_reached += b_.n_onb - before;
+    if (filled == 0) return;
+    std::vector<int> joined;
+    for (std::size_t t = 0; t < b_.T0; ++t)
+      if (b_.state[t] == kAlive && !cell_[t].alive) joined.push_back(static_cast<int>(t));
+    for (int t : joined) {
+      cell_[uz(t)].alive = 1;
+      const auto& v = b_.tets[uz(t)];
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          if (!edges_.has(v[uz(i)], v[uz(j)])) edges_.add(v[uz(i)], v[uz(j)]);
+    }
+    for (int t : joined)
+      for (int m : b_.nbr[uz(t)])
+        if (m >= 0 && uz(m) < b_.T0 && !cell_[uz(m)].alive && !cell_[uz(m)].queued) {
+          cell_[uz(m)].queued = 1;
+          if (cell_[uz(m)].inside)
+            heap_.push({cell_[uz(m)].inside_key, m, 0}, b_.tets);
+          else
+            waiting_.push_back(m);
+        }
   }
   void add(int t) {
     b_.state[uz(t)] = kAlive;
@@ -241,6 +276,7 @@ class Growth3 {
   const std::vector<double>* given_spacing_;  // the engine's spacing, or null
   std::vector<double> own_spacing_;           // else computed at the first outside step
   const std::vector<double>* spacing_ = nullptr;  // the one in use, once outside steps began
+  double fill_conf_;                              // the fill's label confidence, or <= 0: no fill during the growth
   // What the growth reads of each Delaunay tetrahedron, in one record (one cache line holds four;
   // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
   // (its key is static: one entry is enough), labelled inside, and then its key.
@@ -292,20 +328,18 @@ void place_unreached(Body3& b, const Constrict3Options& opt, Constrict3Visitor* 
 
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
                 Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing) {
-  Growth3 g(body, labels, stats, spacing);
+  // (Fallback3::None: the growth's own rules only, no pocket fill and no cavity.)
+  Growth3 g(body, labels, stats, spacing, opt.fallback != Fallback3::None ? fill_confidence(opt) : -1.0);
   const int seed = g.seed();
   if (seed < 0) return false;
   g.run(seed);
   if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
-    // Points the growth left are often inside a pocket of tetrahedra labelled inside that the
-    // growth's front closed around (every tetrahedron there had all its points in the body
-    // already): the fill takes such pockets first and may bring the points in with them. The
-    // cavities below would put their tetrahedra in the pocket, which the fill then can no longer
-    // take whole (docs/reconstruction-3d.md §4.13).
+    // Once more before the cavities (pockets the outside steps closed): a cavity would put its
+    // tetrahedra into such a pocket, which the fill then can no longer take whole (§4.13).
     const std::size_t before = body.n_onb;
     Carve3Stats fs;
-    stats.pocket_filled = fill_inside3(body, labels, fill_confidence(opt), fs, /*reach=*/true);
-    stats.pocket_reached = body.n_onb - before;
+    stats.pocket_filled += fill_inside3(body, labels, fill_confidence(opt), fs, /*reach=*/true);
+    stats.pocket_reached += body.n_onb - before;
   }
   if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
     nbr_delaunay = body.nbr;

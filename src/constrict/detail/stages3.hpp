@@ -159,7 +159,7 @@ class Cavity3 {
 
 struct Growth3Stats {
   std::size_t grown = 0, grown_outside = 0, cavities = 0;
-  std::size_t pocket_filled = 0, pocket_reached = 0;  // the fill before the cavities: tetrahedra, points
+  std::size_t pocket_filled = 0, pocket_reached = 0;  // the fill during the growth: tetrahedra, points
   std::size_t crawled = 0;  // of the outside ones, joined by the two-face rule into thin parts
   bool cavity_capped = false;  // the mirrored cavities stopped at their work bound
 };
