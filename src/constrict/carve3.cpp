@@ -58,8 +58,8 @@ class Regions {
           Rule rule = Rule::Genus0, const HandleDecision* decide = nullptr, bool local_repair = true)
       : b_(b), score_(score), sign_(sign), min_conf_(threshold), add_(dir == Toggle::Add), s_(st), rule_(rule),
         decide_(decide), local_repair_(add_ && local_repair) {}
-  // The fill before the growth's cavities (fill_inside3's `reach`): points not yet in the body may
-  // stay out, and a valid state has 2R - 4 faces over the R points in it (every one manifold).
+  // The fill during the growth (fill_inside3's `reach`): points not yet in the body may stay out,
+  // and a valid state has 2R - 4 faces over the R points in it (every one manifold).
   Regions& reaching() {
     reach_ = add_ && rule_ == Rule::Genus0;
     return *this;
@@ -785,12 +785,9 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
     body.state = state0;
     stats.changed = 0;
   }
-  if (reach && stats.changed > 0) {  // the points now in the body are on its surface
-    body.onb.assign(body.n, 0);
-    body.n_onb = 0;
+  if (reach && stats.changed > 0)  // the points brought in are on the surface (every state is valid)
     for (std::size_t t = 0; t < body.tets.size(); ++t)
-      if (body.state[t] == kAlive) body.mark_on_surface(static_cast<int>(t));
-  }
+      if (body.state[t] == kAlive && state0[t] != kAlive) body.mark_on_surface(static_cast<int>(t));
   return stats.changed;
 }
 

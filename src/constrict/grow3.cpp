@@ -32,6 +32,17 @@ constexpr double kCrawlRatio = 3.0;
 // 2: 1 fixes more sets than 0; 2 the same as 1).
 constexpr int kCrawlDepth = 1;
 
+// The fill in its reaching mode (docs/reconstruction-3d.md §4.13): pockets labelled inside that hold
+// points still out of the body come in with those points. Returns the tetrahedra it added.
+std::size_t fill_pockets(Body3& b, const Labels3& l, double conf, Growth3Stats& st) {
+  const std::size_t before = b.n_onb;
+  Carve3Stats fs;
+  const std::size_t filled = fill_inside3(b, l, conf, fs, /*reach=*/true);
+  st.pocket_filled += filled;
+  st.pocket_reached += b.n_onb - before;
+  return filled;
+}
+
 class Growth3 {
  public:
   // fill_conf > 0: the fill runs when the inside tetrahedra are exhausted with points left (below).
@@ -161,7 +172,7 @@ class Growth3 {
   // need the spacing: the engine's, computed beside the labels, or computed here). With every
   // point in the body none of them can join.
   void ready_outside() {
-    if (fill_conf_ > 0 && b_.n_onb < b_.n) fill_pockets();
+    if (fill_conf_ > 0 && b_.n_onb < b_.n) join_pockets();
     outside_ready_ = true;
     if (waiting_.empty() || b_.n_onb == b_.n) {
       waiting_.clear();
@@ -180,13 +191,8 @@ class Growth3 {
   // then reach such a point across a gap, or a cavity place it (docs/reconstruction-3d.md §4.13):
   // the fill, in its reaching mode, takes such pockets first, with their points, and its
   // tetrahedra join the growth's state (their edges, their neighbours queued).
-  void fill_pockets() {
-    const std::size_t before = b_.n_onb;
-    Carve3Stats fs;
-    const std::size_t filled = fill_inside3(b_, l_, fill_conf_, fs, /*reach=*/true);
-    s_.pocket_filled += filled;
-    s_.pocket_reached += b_.n_onb - before;
-    if (filled == 0) return;
+  void join_pockets() {
+    if (fill_pockets(b_, l_, fill_conf_, s_) == 0) return;
     std::vector<int> joined;
     for (std::size_t t = 0; t < b_.T0; ++t)
       if (b_.state[t] == kAlive && !cell_[t].alive) joined.push_back(static_cast<int>(t));
@@ -334,16 +340,13 @@ bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt
   if (seed < 0) return false;
   g.run(seed);
   if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
-    // Once more before the cavities (pockets the outside steps closed): a cavity would put its
-    // tetrahedra into such a pocket, which the fill then can no longer take whole (§4.13).
-    const std::size_t before = body.n_onb;
-    Carve3Stats fs;
-    stats.pocket_filled += fill_inside3(body, labels, fill_confidence(opt), fs, /*reach=*/true);
-    stats.pocket_reached += body.n_onb - before;
-  }
-  if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
-    nbr_delaunay = body.nbr;
-    place_unreached(body, opt, visitor, stats);
+    // The pockets once more before the cavities (those the outside steps closed): a cavity would
+    // put its tetrahedra into such a pocket, which the fill then can no longer take whole (§4.13).
+    fill_pockets(body, labels, fill_confidence(opt), stats);
+    if (body.n_onb < body.n) {
+      nbr_delaunay = body.nbr;
+      place_unreached(body, opt, visitor, stats);
+    }
   }
   return body.n_onb == body.n;
 }
