@@ -203,7 +203,9 @@ Constrictor3::Impl::Growth Constrictor3::Impl::grow_stage(Mesh3Result& r) {
   if (!grew && can_grow() && !stepped) {
     auto t0 = Clock::now();
     stage_event(Stage3::Grow);
-    const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay, keys.spacing.get());
+    const bool ok = detail::grow_body3(body, *keys.labels, opt, visitor, growth, nbr_delaunay, keys.spacing.get(),
+                                       growth_prep.get());
+    growth_prep.reset();
     stepped = true;
     r.ms_grow = ms_since(t0);
     r.cavity_capped = growth.cavity_capped;  // (a failed growth's result is not kept: here)
@@ -529,19 +531,30 @@ Status Constrictor3::Impl::build_tetrahedralization() {
     need_size = need_size || v.size_bias > 0;
     need_label = need_label || v.label_weight > 0;
   }
+  // The start state (the hull) and the growth's set-up read only the tetrahedralization.
+  const auto start_state = [&] {
+    body.ver.assign(body.T0, 0);
+    body.mark.assign(body.T0, 0);
+    hull.heap.reserve(body.T0 / 4 + 16);
+    reset_to_hull();
+    n_hull = body.n_onb;
+    if (grow_planned() && n_hull < body.n)
+      growth_prep = std::make_shared<const detail::GrowthPrep3>(detail::prepare_growth3(body));
+  };
   if (need_label) {
-    // The spacing (the bridge measure of every complete result, the growth's outside steps) reads
-    // only the tetrahedralization: it is computed on the other core while the labels propagate.
+    // The spacing (the bridge measure of every complete result, the growth's outside steps) and
+    // the start state are made on the other core while the labels propagate (the propagation
+    // reads the tetrahedra and their neighbours only).
     auto spacing = std::make_shared<std::vector<double>>();
-    keys.labels = detail::compute_labels3(body, [&] { *spacing = detail::nearest_spacing3(body); });
+    keys.labels = detail::compute_labels3(body, [&] {
+      *spacing = detail::nearest_spacing3(body);
+      start_state();
+    });
     keys.spacing = std::move(spacing);
+  } else {
+    start_state();
   }
   ms_setup = ms_since(t_setup);
-  body.ver.assign(body.T0, 0);
-  body.mark.assign(body.T0, 0);
-  hull.heap.reserve(body.T0 / 4 + 16);
-  reset_to_hull();
-  n_hull = body.n_onb;
   // (Every point on the hull after a DT-only build: nothing will be removed, so no γ pass and no
   // second tetrahedralization; the post-passes do not read γ.)
   if (!can_grow() && (keys.dg || body.n_onb < body.n)) ensure_hull_start();

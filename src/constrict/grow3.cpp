@@ -13,11 +13,17 @@
 // reached by the shortest step, through its own part, not across the gap to a nearby part).
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
+#include <utility>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/big_vector.hpp"
+#include "core/detail/bucket_sort.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -43,35 +49,83 @@ std::size_t fill_pockets(Body3& b, const Labels3& l, double conf, Growth3Stats& 
   return filled;
 }
 
+// The inside tetrahedra waiting to join, as a set of ranks (rank 0: the first the growth takes):
+// one bit each, the smallest set bit popped first. The growth pops them in nearly ascending rank
+// (a pushed tetrahedron almost never outranks the one just popped: 254 of 4.3 million pushes on
+// the 10^6 star), so the scan for the next set bit moves forward through the words and reads them
+// in order, where a binary heap of the waiting tetrahedra (up to 437 000 of them there) read about
+// twenty entries at random per pop: half of the growth's time (docs/benchmarks.md).
+class RankQueue {
+ public:
+  void reset(std::size_t ranks) {
+    bits_.assign((ranks + 63) / 64, 0);
+    word_ = bits_.size();
+    count_ = 0;
+  }
+  bool empty() const { return count_ == 0; }
+  void push(std::uint32_t r) {
+    bits_[r >> 6] |= std::uint64_t{1} << (r & 63);
+    word_ = std::min<std::size_t>(word_, r >> 6);
+    ++count_;
+  }
+  // The smallest rank in the set (not empty).
+  std::uint32_t top() {
+    while (bits_[word_] == 0) ++word_;
+    return static_cast<std::uint32_t>(word_ * 64 + static_cast<std::size_t>(__builtin_ctzll(bits_[word_])));
+  }
+  std::uint32_t pop() {
+    const std::uint32_t r = top();
+    bits_[word_] &= bits_[word_] - 1;  // (the lowest set bit)
+    --count_;
+    return r;
+  }
+
+ private:
+  std::vector<std::uint64_t> bits_;
+  std::size_t word_ = 0;  // no set bit below this word
+  std::size_t count_ = 0;
+};
+
 class Growth3 {
  public:
   // fill_conf > 0: the fill runs when the inside tetrahedra are exhausted with points left (below).
   Growth3(Body3& b, const Labels3& l, Growth3Stats& st, const std::vector<double>* spacing, double fill_conf)
       : b_(b), l_(l), s_(st), given_spacing_(spacing), fill_conf_(fill_conf) {}
 
-  // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids.
+  // Largest circumradius among the inside tetrahedra, ties -> smallest sorted vertex ids (a strict
+  // total order: the same seed from any split of the range).
   int seed() const {
-    int seed = -1;
-    for (std::size_t t = 0; t < b_.T0; ++t)
-      if (l_.label[t] < 0 && l_.lrad[t] > kFlatLogRadius &&
-          (seed < 0 || l_.lrad[t] > l_.lrad[uz(seed)] ||
-           (l_.lrad[t] == l_.lrad[uz(seed)] && sorted4(b_.tets[t]) < sorted4(b_.tets[uz(seed)]))))
-        seed = static_cast<int>(t);
-    return seed;
+    const auto better = [&](int t, int than) {
+      if (t < 0) return false;
+      if (than < 0) return true;
+      if (l_.lrad[uz(t)] != l_.lrad[uz(than)]) return l_.lrad[uz(t)] > l_.lrad[uz(than)];
+      return sorted4(b_.tets[uz(t)]) < sorted4(b_.tets[uz(than)]);
+    };
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, b_.T0, 1 << 16), -1,
+        [&](const tbb::blocked_range<std::size_t>& r, int best) {
+          for (std::size_t t = r.begin(); t != r.end(); ++t)
+            if (l_.label[t] < 0 && l_.lrad[t] > kFlatLogRadius && better(static_cast<int>(t), best))
+              best = static_cast<int>(t);
+          return best;
+        },
+        [&](int a, int b) { return better(b, a) ? b : a; });
   }
-  void run(int seed) {
-    b_.state.assign(b_.T0, kOutside);
-    for (auto& v : b_.ver) ++v;
-    cell_.resize(b_.T0);
+  void run(int seed, const GrowthPrep3* prep) {
+    b_.state.resize(b_.T0);
+    cell_.allocate(b_.T0);  // (written whole below: not zero-filled)
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.T0, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
-        const bool inside = l_.label[t] < 0;
-        cell_[t] = {inside ? kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[t]) : 0.0, 0, 0, inside};
+        b_.state[t] = kOutside;
+        ++b_.ver[t];
+        cell_[t] = {0, 0, 0, l_.label[t] < 0};
       }
     });
+    for (std::size_t t = b_.T0; t < b_.ver.size(); ++t) ++b_.ver[t];
+    rank_inside();
     b_.onb.assign(b_.n, 0);
     b_.n_onb = 0;
-    edges_.reset(b_);
+    edges_.reset(b_, prep ? *prep : prepare_growth3(b_));
     const auto& sv = b_.tets[uz(seed)];
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) edges_.add(sv[uz(i)], sv[uz(j)]);
@@ -81,21 +135,26 @@ class Growth3 {
       // Outside (labelled so: its own heap): the one-face rule (its fourth vertex is a new point), or
       // the two-face rule into a thin part (crawls()).
       const bool outside = heap_.empty();
-      TetHeap& h = outside ? out_heap_ : heap_;
-      if (h.empty()) break;
-      const HeapEntry e = h.pop(b_.tets);
-      if (!h.empty()) prefetch(h.top().tet);
-      cell_[uz(e.tet)].queued = 0;
-      if (cell_[uz(e.tet)].alive) continue;
+      if (outside && out_heap_.empty()) break;
+      int t;
+      if (!outside) {
+        t = by_rank_[heap_.pop()];
+        if (!heap_.empty()) prefetch(by_rank_[heap_.top()]);
+      } else {
+        t = out_heap_.pop(b_.tets).tet;
+        if (!out_heap_.empty()) prefetch(out_heap_.top().tet);
+      }
+      cell_[uz(t)].queued = 0;
+      if (cell_[uz(t)].alive) continue;
       int glued[2];
-      const int rule = addable(e.tet, outside, glued);
+      const int rule = addable(t, outside, glued);
       if (!rule) continue;
       if (outside) {
         ++s_.grown_outside;
         s_.crawled += rule == 2 ? 1 : 0;
       }
-      new_edges(e.tet, rule, glued);
-      add(e.tet);
+      new_edges(t, rule, glued);
+      add(t);
     }
   }
 
@@ -161,12 +220,63 @@ class Growth3 {
     }
   }
   double key(int t) const {
-    if (cell_[uz(t)].inside) return cell_[uz(t)].inside_key;
+    if (cell_[uz(t)].inside) return inside_key(uz(t));
     // Outside: the smallest first, by the size ratio of the bridge measure (longest edge over the
     // largest nearest-neighbour distance of its vertices). Measured against "least confident
     // first" on the shared models and their random halves and quarters (docs/reconstruction-3d.md
     // §4.9): the labels are near 1 on both a thin part's own tetrahedra and those across a gap.
     return -bridge_ratio3(*b_.pts, *spacing_, b_.tets[uz(t)]);
+  }
+  // Inside tetrahedra: by the largest circumradius first (ln r, clamped below at kMinLogRadius),
+  // equal keys by the smallest sorted vertex ids (a geometric key, as TetHeap).
+  double inside_key(std::size_t t) const { return kInsideKeyBase + std::max(kMinLogRadius, l_.lrad[t]); }
+  // The inside tetrahedra in the order the growth takes them (by_rank_), and each one's rank (a
+  // strict total order: the same ranks whatever the sort does, on any number of threads).
+  void rank_inside() {
+    struct Item {
+      std::uint64_t key;  // the bits of -inside_key: ascending as the key descends
+      int tet;
+    };
+    // The inside tetrahedra with their keys, in index order (fixed blocks: counts, then each
+    // block written at its offset).
+    constexpr std::size_t kBlock = std::size_t{1} << 16;
+    const std::size_t blocks = (b_.T0 + kBlock - 1) / kBlock;
+    std::vector<std::size_t> at(blocks + 1, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k)
+        for (std::size_t t = k * kBlock, e = std::min(b_.T0, t + kBlock); t < e; ++t) at[k + 1] += cell_[t].inside;
+    });
+    for (std::size_t k = 0; k < blocks; ++k) at[k + 1] += at[k];
+    BigArray<Item> order;
+    order.allocate(at[blocks]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        std::size_t i = at[k];
+        for (std::size_t t = k * kBlock, e = std::min(b_.T0, t + kBlock); t < e; ++t) {
+          if (!cell_[t].inside) continue;
+          // (inside_key >= kInsideKeyBase + kMinLogRadius > 0: its bits order as its values)
+          std::uint64_t bits;
+          const double key = inside_key(t);
+          std::memcpy(&bits, &key, sizeof bits);
+          order[i++] = Item{~bits, static_cast<int>(t)};
+        }
+      }
+    });
+    bucket_sort(
+        order, [](const Item& x) { return x.key; },
+        [&](const Item& x, const Item& y) {
+          if (x.key != y.key) return x.key < y.key;
+          return sorted4(b_.tets[uz(x.tet)]) < sorted4(b_.tets[uz(y.tet)]);
+        });
+    by_rank_.resize(order.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 1 << 14),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          by_rank_[k] = order[k].tet;
+                          cell_[uz(order[k].tet)].rank = static_cast<std::uint32_t>(k);
+                        }
+                      });
+    heap_.reset(order.size());
   }
   // The outside tetrahedra met so far go to their own heap once no inside one is left (their keys
   // need the spacing: the engine's, computed beside the labels, or computed here). With every
@@ -208,7 +318,7 @@ class Growth3 {
         if (m >= 0 && uz(m) < b_.T0 && !cell_[uz(m)].alive && !cell_[uz(m)].queued) {
           cell_[uz(m)].queued = 1;
           if (cell_[uz(m)].inside)
-            heap_.push({cell_[uz(m)].inside_key, m, 0}, b_.tets);
+            heap_.push(cell_[uz(m)].rank);
           else
             waiting_.push_back(m);
         }
@@ -224,7 +334,8 @@ class Growth3 {
     for (int m : b_.nbr[uz(t)])
       if (m >= 0 && uz(m) < b_.T0 && !cell_[uz(m)].alive && !cell_[uz(m)].queued) {
         cell_[uz(m)].queued = 1;
-        if (cell_[uz(m)].inside) heap_.push({cell_[uz(m)].inside_key, m, 0}, b_.tets);
+        if (cell_[uz(m)].inside)
+          heap_.push(cell_[uz(m)].rank);
         else if (spacing_ != nullptr) out_heap_.push({key(m), m, 0}, b_.tets);
         else if (!outside_ready_) waiting_.push_back(m);
         // (else: every point was in the body when the inside heap ran dry; none can join.)
@@ -232,26 +343,13 @@ class Growth3 {
   }
 
   // The body's edges as lists of neighbours per vertex (an edge walk per two-face test was half
-  // of the growth's time). Each vertex has room for its Delaunay degree, which its star gives by
-  // Euler's formula: f tetrahedra and h hull faces at the vertex have (f + h) / 2 + 1 neighbours
-  // on the hull (a disk link), f / 2 + 2 inside (a sphere link).
+  // of the growth's time). Each vertex has room for its Delaunay degree (prepare_growth3).
   class BodyEdges {
    public:
-    void reset(const Body3& b) {
-      std::vector<int> f(b.n, 0), h(b.n, 0);
-      for (std::size_t t = 0; t < b.T0; ++t)
-        for (int i = 0; i < 4; ++i) {
-          ++f[uz(b.tets[t][uz(i)])];
-          if (b.nbr[t][uz(i)] < 0)
-            for (int k = 0; k < 3; ++k) ++h[uz(b.tets[t][uz(kFaceOut[i][k])])];
-        }
-      off_.assign(b.n + 1, 0);
-      for (std::size_t v = 0; v < b.n; ++v) {
-        const int deg = f[v] == 0 ? 0 : h[v] > 0 ? (f[v] + h[v]) / 2 + 1 : f[v] / 2 + 2;
-        off_[v + 1] = off_[v] + static_cast<std::size_t>(deg);
-      }
+    void reset(const Body3& b, const GrowthPrep3& prep) {
+      off_ = prep.edge_room;
       size_.assign(b.n, 0);
-      nb_.assign(off_[b.n], 0);
+      nb_.allocate(off_[b.n]);  // (an entry is read only once written: not zero-filled)
     }
     bool has(int a, int c) const {
       if (size_[uz(c)] < size_[uz(a)]) std::swap(a, c);
@@ -269,14 +367,17 @@ class Growth3 {
       nb_[off_[uz(a)] + size_[uz(a)]++] = c;
     }
     std::vector<std::size_t> off_;
-    std::vector<int> size_, nb_;
+    std::vector<int> size_;
+    BigArray<int> nb_;
   };
 
   Body3& b_;
   const Labels3& l_;
   Growth3Stats& s_;
   BodyEdges edges_;
-  TetHeap heap_, out_heap_;  // inside tetrahedra; outside ones (only when no inside one is left)
+  RankQueue heap_;            // inside tetrahedra, by rank (rank_inside)
+  std::vector<int> by_rank_;  // the inside tetrahedron of each rank
+  TetHeap out_heap_;          // outside ones (only when no inside one is left)
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
   const std::vector<double>* given_spacing_;  // the engine's spacing, or null
@@ -287,10 +388,10 @@ class Growth3 {
   // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
   // (its key is static: one entry is enough), labelled inside, and then its key.
   struct Cell {
-    double inside_key;
+    std::uint32_t rank;  // (inside: its rank, rank_inside)
     std::uint8_t alive, queued, inside;
   };
-  std::vector<Cell> cell_;
+  BigArray<Cell> cell_;
 };
 
 // Growth lock: a point that no Delaunay tetrahedron can bring into the body (its star is cut off
@@ -332,13 +433,33 @@ void place_unreached(Body3& b, const Constrict3Options& opt, Constrict3Visitor* 
 
 }  // namespace
 
+// Each vertex's Delaunay degree, which its star gives by Euler's formula: f tetrahedra and h hull
+// faces at the vertex have (f + h) / 2 + 1 neighbours on the hull (a disk link), f / 2 + 2 inside
+// (a sphere link).
+GrowthPrep3 prepare_growth3(const Body3& b) {
+  std::vector<int> f(b.n, 0), h(b.n, 0);
+  for (std::size_t t = 0; t < b.T0; ++t)
+    for (int i = 0; i < 4; ++i) {
+      ++f[uz(b.tets[t][uz(i)])];
+      if (b.nbr[t][uz(i)] < 0)
+        for (int k = 0; k < 3; ++k) ++h[uz(b.tets[t][uz(kFaceOut[i][k])])];
+    }
+  GrowthPrep3 prep;
+  prep.edge_room.assign(b.n + 1, 0);
+  for (std::size_t v = 0; v < b.n; ++v) {
+    const int deg = f[v] == 0 ? 0 : h[v] > 0 ? (f[v] + h[v]) / 2 + 1 : f[v] / 2 + 2;
+    prep.edge_room[v + 1] = prep.edge_room[v] + static_cast<std::size_t>(deg);
+  }
+  return prep;
+}
+
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
-                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing) {
+                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing, const GrowthPrep3* prep) {
   // (Fallback3::None: the growth's own rules only, no pocket fill and no cavity.)
   Growth3 g(body, labels, stats, spacing, opt.fallback != Fallback3::None ? fill_confidence(opt) : -1.0);
   const int seed = g.seed();
   if (seed < 0) return false;
-  g.run(seed);
+  g.run(seed, prep);
   if (body.n_onb < body.n && opt.fallback != Fallback3::None) {
     // The pockets once more before the cavities (those the outside steps closed): a cavity would
     // put its tetrahedra into such a pocket, which the fill then can no longer take whole (§4.13).

@@ -5,6 +5,7 @@
 // closed genus-0 2-manifold surface), and what the stage promises (labels on every tetrahedron,
 // a growth that reaches every point, flips that lower the area, cavities that keep the volume).
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
@@ -12,6 +13,7 @@
 #include <cstdint>
 #include <iostream>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/big_vector.hpp"
+#include "core/detail/bucket_sort.hpp"
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
@@ -215,6 +219,127 @@ TEST(Stages3, GrowthReachesEveryPointOfAShellAndFillKeepsItValid) {
   const std::size_t filled = detail::fill_inside3(b, *labels, 0.5, fs);
   expect_valid_body(b, true, "filled");
   EXPECT_EQ(filled, fs.changed);
+}
+
+// The growth's inside phase against its definition, written out with an ordered set: the inside
+// tetrahedra are examined largest key first (kInsideKeyBase + ln r clamped, equal keys by the
+// smallest sorted vertex ids), each once per neighbour added, and join by the one-face rule (the
+// vertex opposite the glued face not yet in the body) or the two-face rule (the edge between the
+// vertices opposite the glued faces not yet in the body). The growth ranks the tetrahedra and pops
+// the smallest rank of a bit set: the bodies must be the same. Shells of random points, and points
+// on a sphere on a latitude-longitude grid (every circumball the same up to rounding: ties).
+TEST(Stages3, GrowthTakesTheInsideTetrahedraInKeyOrder) {
+  struct Case {
+    const char* name;
+    PointSet p;
+  };
+  std::vector<Case> cases;
+  for (const unsigned seed : {3u, 11u}) cases.push_back({"shell", shell(1500, seed, 0.0)});
+  cases.push_back(
+      {"large shell", shell(25000, 5, 0.0)});  // (more inside tetrahedra than bucket_sort sorts in one piece)
+  {
+    PointSet g;
+    g.dim = 3;
+    g.coords = {0, 0, 1, 0, 0, -1};
+    for (int i = 1; i < 12; ++i)
+      for (int j = 0; j < 16; ++j) {
+        const double th = M_PI * i / 12, ph = 2 * M_PI * j / 16;
+        g.coords.insert(g.coords.end(), {std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
+      }
+    cases.push_back({"sphere grid", g});
+  }
+  {
+    PointSet box;
+    box.dim = 3;
+    for (int x = 0; x <= 6; ++x)
+      for (int y = 0; y <= 5; ++y)
+        for (int z = 0; z <= 4; ++z)
+          if (x == 0 || x == 6 || y == 0 || y == 5 || z == 0 || z == 4)
+            box.coords.insert(box.coords.end(), {double(x), double(y), double(z)});
+    cases.push_back({"lattice box", box});
+    PointSet torus;
+    torus.dim = 3;
+    for (int i = 0; i < 24; ++i)
+      for (int j = 0; j < 10; ++j) {
+        const double u = 2 * M_PI * i / 24, v = 2 * M_PI * j / 10;
+        torus.coords.insert(torus.coords.end(),
+                            {(3 + std::cos(v)) * std::cos(u), (3 + std::cos(v)) * std::sin(u), std::sin(v)});
+      }
+    cases.push_back({"grid torus", torus});
+  }
+  for (const Case& c : cases) {
+    Body3 b = start_body(c.p);
+    const auto labels = detail::compute_labels3(b);
+    Constrict3Options none;
+    none.fallback = Fallback3::None;
+    detail::Growth3Stats gs;
+    detail::Tets nbr0;
+    detail::grow_body3(b, *labels, none, nullptr, gs, nbr0);
+    ASSERT_EQ(gs.grown_outside, 0u) << c.name << ": the reference covers the inside phase only";
+
+    // The definition.
+    const std::size_t T0 = b.T0;
+    const auto key = [&](std::size_t t) { return 1000.0 + std::max(-500.0, labels->lrad[t]); };
+    const auto before = [&](int x, int y) {  // x is examined before y
+      if (key(static_cast<std::size_t>(x)) != key(static_cast<std::size_t>(y)))
+        return key(static_cast<std::size_t>(x)) > key(static_cast<std::size_t>(y));
+      return detail::sorted4(b.tets[static_cast<std::size_t>(x)]) <
+             detail::sorted4(b.tets[static_cast<std::size_t>(y)]);
+    };
+    std::set<int, decltype(before)> queue(before);
+    std::vector<char> alive(T0, 0), queued(T0, 0), onb(b.n, 0);
+    std::set<std::pair<int, int>> edges;
+    const auto edge = [](int u, int v) { return std::make_pair(std::min(u, v), std::max(u, v)); };
+    const auto add = [&](int t) {
+      alive[static_cast<std::size_t>(t)] = 1;
+      const auto& v = b.tets[static_cast<std::size_t>(t)];
+      for (int i = 0; i < 4; ++i) {
+        onb[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] = 1;
+        for (int j = i + 1; j < 4; ++j)
+          edges.insert(edge(v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>(j)]));
+      }
+      for (int m : b.nbr[static_cast<std::size_t>(t)])
+        if (m >= 0 && !alive[static_cast<std::size_t>(m)] && !queued[static_cast<std::size_t>(m)] &&
+            labels->label[static_cast<std::size_t>(m)] < 0) {
+          queued[static_cast<std::size_t>(m)] = 1;
+          queue.insert(m);
+        }
+    };
+    int seed = -1;
+    for (std::size_t t = 0; t < T0; ++t)
+      if (labels->label[t] < 0 && labels->lrad[t] > detail::kFlatLogRadius &&
+          (seed < 0 || labels->lrad[t] > labels->lrad[static_cast<std::size_t>(seed)] ||
+           (labels->lrad[t] == labels->lrad[static_cast<std::size_t>(seed)] &&
+            detail::sorted4(b.tets[t]) < detail::sorted4(b.tets[static_cast<std::size_t>(seed)]))))
+        seed = static_cast<int>(t);
+    ASSERT_GE(seed, 0) << c.name;
+    add(seed);
+    std::size_t ties = 0;
+    while (!queue.empty()) {
+      const int t = *queue.begin();
+      queue.erase(queue.begin());
+      if (!queue.empty() && key(static_cast<std::size_t>(*queue.begin())) == key(static_cast<std::size_t>(t))) ++ties;
+      queued[static_cast<std::size_t>(t)] = 0;
+      const auto& v = b.tets[static_cast<std::size_t>(t)];
+      int glued[4], ng = 0;
+      for (int i = 0; i < 4; ++i) {
+        const int m = b.nbr[static_cast<std::size_t>(t)][static_cast<std::size_t>(i)];
+        if (m >= 0 && alive[static_cast<std::size_t>(m)]) glued[ng++] = i;
+      }
+      const bool joins =
+          (ng == 1 && !onb[static_cast<std::size_t>(v[static_cast<std::size_t>(glued[0])])]) ||
+          (ng == 2 && !edges.count(edge(v[static_cast<std::size_t>(glued[0])], v[static_cast<std::size_t>(glued[1])])));
+      if (joins) add(t);
+    }
+    std::size_t differ = 0, grown = 0;
+    for (std::size_t t = 0; t < T0; ++t) {
+      differ += (b.state[t] == detail::kAlive) != (alive[t] != 0);
+      grown += alive[t];
+    }
+    EXPECT_EQ(differ, 0u) << c.name << ": " << grown << " tetrahedra grown by the definition";
+    EXPECT_EQ(grown, gs.grown) << c.name;
+    std::cout << c.name << ": " << grown << " tetrahedra grown, " << ties << " pops tied with the next\n";
+  }
 }
 
 // Sparse fingers whose growth closes its front around a pocket labelled inside with a point in it
@@ -422,6 +547,70 @@ TEST(Stages3, NearestSpacingIsTheShortestDelaunayEdgeAtEveryPoint) {
           want[static_cast<std::size_t>(y)] = std::min(want[static_cast<std::size_t>(y)], l);
         }
     EXPECT_EQ(detail::nearest_spacing3(b), want) << n << " points";
+  }
+}
+
+// bucket_sort (core/detail/bucket_sort.hpp) gives the order of its comparator, on one thread and
+// on several: keys spread over the whole range, clustered in a few values (long runs of equal keys
+// that the comparator's second field decides), all equal, and with extremes (0 and 2^64 - 1).
+TEST(Stages3, BucketSortIsTheComparatorsOrderOnAnyThreadCount) {
+  struct Item {
+    std::uint64_t key;
+    int id;
+  };
+  const auto less = [](const Item& x, const Item& y) { return x.key != y.key ? x.key < y.key : x.id > y.id; };
+  for (const std::size_t n :
+       {std::size_t{0}, std::size_t{1}, std::size_t{1000}, std::size_t{70000}, std::size_t{400000}})
+    for (int kind = 0; kind < 4; ++kind) {
+      const std::uint64_t seed = 1000 * n + static_cast<std::uint64_t>(kind);
+      std::uint64_t s = seed;
+      std::vector<Item> items(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::uint64_t r = test::splitmix64(s);
+        const std::uint64_t k = kind == 0   ? r
+                                : kind == 1 ? (r % 7) * 1000003
+                                : kind == 2 ? 42
+                                            : (r & 1 ? ~std::uint64_t{0} : r % 3);
+        items[i] = {k, static_cast<int>(i)};
+      }
+      std::vector<Item> want = items;
+      std::sort(want.begin(), want.end(), less);
+      for (const int threads : {1, 2}) {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+        detail::BigArray<Item> got;
+        got.allocate(n);
+        std::copy(items.begin(), items.end(), got.data());
+        detail::bucket_sort(
+            got, [](const Item& x) { return x.key; }, less);
+        std::size_t bad = 0;
+        for (std::size_t i = 0; i < n; ++i) bad += got[i].id != want[i].id;
+        EXPECT_EQ(bad, 0u) << "n " << n << ", keys " << kind << ", seed " << seed << ", threads " << threads;
+      }
+    }
+}
+
+// The growth's room for each vertex's body edges (prepare_growth3, by Euler's formula from the
+// vertex's star) is its number of Delaunay edges, on a shell (hull and inner points) and a cloud.
+TEST(Stages3, GrowthEdgeRoomIsTheDelaunayDegree) {
+  for (const PointSet& p : {shell(3000, 5), cloud(3000, 9)}) {
+    const Body3 b = start_body(p);
+    std::set<std::pair<int, int>> edges;
+    for (std::size_t t = 0; t < b.T0; ++t)
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const int u = b.tets[t][static_cast<std::size_t>(i)], v = b.tets[t][static_cast<std::size_t>(j)];
+          edges.insert({std::min(u, v), std::max(u, v)});
+        }
+    std::vector<std::size_t> degree(b.n, 0);
+    for (const auto& e : edges) {
+      ++degree[static_cast<std::size_t>(e.first)];
+      ++degree[static_cast<std::size_t>(e.second)];
+    }
+    const detail::GrowthPrep3 prep = detail::prepare_growth3(b);
+    ASSERT_EQ(prep.edge_room.size(), b.n + 1);
+    std::size_t bad = 0;
+    for (std::size_t v = 0; v < b.n; ++v) bad += prep.edge_room[v + 1] - prep.edge_room[v] != degree[v];
+    EXPECT_EQ(bad, 0u) << b.n << " points";
   }
 }
 

@@ -66,6 +66,7 @@ struct Constrictor3::Impl {
   detail::CavityState3 cavity;        // the lock fallback's cavities
   detail::Tets nbr_delaunay;          // adjacency before the growth's cavities (for a reset)
   detail::Growth3Stats growth;
+  std::shared_ptr<const detail::GrowthPrep3> growth_prep;  // made beside the labels, used once by the growth
   detail::Carve3Stats carve;
   detail::Carve3Stats handles_closed, handles_opened;
   detail::Flips3Stats flips;

@@ -169,8 +169,16 @@ struct Growth3Stats {
 // otherwise the caller restores the start (Body3::reset_to_hull with nbr_delaunay, the
 // adjacency before the first cavity, saved here). `spacing`: nearest_spacing3(body) if the caller
 // has it (else computed when the first outside step needs it).
+// `prep`: prepare_growth3(body) if the caller made it (else made here).
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
-                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing = nullptr);
+                Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing = nullptr,
+                const struct GrowthPrep3* prep = nullptr);
+// What the growth sets up from the Delaunay tetrahedralization alone, so that it can be made
+// beside the labels: each vertex's room for its body edges (its Delaunay degree), as offsets.
+struct GrowthPrep3 {
+  std::vector<std::size_t> edge_room;  // n + 1 offsets
+};
+GrowthPrep3 prepare_growth3(const Body3& body);
 
 // ---- carve and fill (carve3.cpp; docs/reconstruction-3d.md §4.6, §4.7) -------------------------
 

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "constrict/memory.hpp"
@@ -70,6 +71,10 @@ class BigArray {
   T* data() noexcept { return data_.get(); }
   const T* data() const noexcept { return data_.get(); }
   std::size_t size() const noexcept { return size_; }
+  void swap(BigArray& o) noexcept {
+    data_.swap(o.data_);
+    std::swap(size_, o.size_);
+  }
 
  private:
   std::unique_ptr<T[]> data_;
