@@ -998,24 +998,26 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
     // (chord[(L - 1) * w + k] for j = r.begin() - kMaxSegment + k, mod n), half the square roots.
     const std::size_t K = U(kMaxSegment), w = r.size() + K, base = (r.begin() + n - K % n) % n;
     const std::size_t max_len = n >= 3 ? std::min(K, n - 3) : 0;
+    // Positions below 2n wrapped by one subtraction (a 64-bit division each was most of this pass).
+    const auto wrap = [n](std::size_t x) { return x >= n ? x - n : x; };
     std::vector<double> chord(max_len * w);
     for (std::size_t L = 1; L <= max_len; ++L)
       for (std::size_t k = 0, j = base; k < w; ++k, j = j + 1 == n ? 0 : j + 1)
-        chord[(L - 1) * w + k] = dpos(j, (j + L + 1) % n);
+        chord[(L - 1) * w + k] = dpos(j, wrap(j + L + 1));
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::size_t ip = (i + n - 1) % n, m = i - r.begin();
+      const std::size_t ip = wrap(i + n - 1), m = i - r.begin();
       double gs = 0, ge = 0;
       for (std::size_t L = 1; L <= max_len; ++L) {
         const double* c = &chord[(L - 1) * w];
         // segment i .. i+L-1 (starts here): the chord d(i-1, i+L)
-        const std::size_t last = (i + L - 1) % n;
+        const std::size_t last = wrap(i + L - 1);
         gs = std::max(gs, el[ip] + el[last] - c[m + K - 1]);
         // segment i-L+1 .. i (ends here): the chord d(i-L, i+1)
-        const std::size_t pp = (i + n - L) % n;
+        const std::size_t pp = wrap(i + n - L);
         ge = std::max(ge, el[pp] + el[i] - c[m + K - L]);
       }
-      vi[U(poly[i])] = {xy[2 * i], xy[2 * i + 1], std::max(el[ip], el[i]), std::max(gs, ge),
-                        poly[(i + 1) % n], poly[ip]};
+      vi[U(poly[i])] = {xy[2 * i],        xy[2 * i + 1],     std::max(el[ip], el[i]),
+                        std::max(gs, ge), poly[wrap(i + 1)], poly[ip]};
     }
   });
   std::atomic<bool> any{false};

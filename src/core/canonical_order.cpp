@@ -14,6 +14,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "core/detail/big_vector.hpp"
+#include "core/detail/bucket_sort.hpp"
+
 namespace constrict::detail {
 namespace {
 
@@ -80,7 +83,12 @@ std::vector<int> canonical_order(const PointSet& p) {
     if (!(t > 0)) return 0;
     return t >= cells - 1 ? static_cast<std::uint64_t>(cells - 1) : static_cast<std::uint64_t>(t);
   };
-  std::vector<std::pair<std::uint64_t, int>> key(n);
+  struct Key {
+    std::uint64_t code;
+    int index;
+  };
+  BigArray<Key> key;  // (written whole below: not zero-filled)
+  key.allocate(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       std::uint64_t m = 0;
@@ -89,32 +97,22 @@ std::vector<int> canonical_order(const PointSet& p) {
     }
   });
   // The order: by code, equal codes (points in one cell) by the exact lexicographic order of the
-  // coordinates, a strict total order on distinct points. One counting pass on the top 16 bits
-  // of the code, then each bucket sorted on its own (in parallel): the result is that order
-  // whatever the sort algorithms do.
-  const auto less = [&](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
-    if (a.first != b.first) return a.first < b.first;
-    const double* pa = p[static_cast<std::size_t>(a.second)];
-    const double* pb = p[static_cast<std::size_t>(b.second)];
-    return std::lexicographical_compare(pa, pa + d, pb, pb + d);
-  };
-  constexpr int kTopBits = 16;
-  const int shift = (p.dim == 3 ? 3 * kBits3 : 2 * kBits2) - kTopBits;
-  std::vector<std::size_t> start((std::size_t{1} << kTopBits) + 1, 0);
-  for (const auto& e : key) ++start[(e.first >> shift) + 1];
-  for (std::size_t b = 0; b + 1 < start.size(); ++b) start[b + 1] += start[b];
-  std::vector<std::pair<std::uint64_t, int>> sorted(n);
-  {
-    std::vector<std::size_t> at(start.begin(), start.end() - 1);
-    for (const auto& e : key) sorted[at[e.first >> shift]++] = e;
-  }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, start.size() - 1, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t b = r.begin(); b != r.end(); ++b)
-      if (start[b + 1] - start[b] > 1)
-        std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[b]), sorted.begin() + static_cast<std::ptrdiff_t>(start[b + 1]), less);
-  });
+  // coordinates, a strict total order on distinct points (equal points, an error found later, by
+  // index): the result is that order whatever the sort does (bucket_sort, on both cores).
+  bucket_sort(
+      key, [](const Key& a) { return a.code; },
+      [&](const Key& a, const Key& b) {
+        if (a.code != b.code) return a.code < b.code;
+        const double* pa = p[static_cast<std::size_t>(a.index)];
+        const double* pb = p[static_cast<std::size_t>(b.index)];
+        if (std::lexicographical_compare(pa, pa + d, pb, pb + d)) return true;
+        if (std::lexicographical_compare(pb, pb + d, pa, pa + d)) return false;
+        return a.index < b.index;
+      });
   std::vector<int> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = sorted[i].second;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 65536), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) order[i] = key[i].index;
+  });
   return order;
 }
 

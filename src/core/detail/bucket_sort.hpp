@@ -19,10 +19,50 @@
 
 namespace constrict::detail {
 
+namespace bucket_sort_detail {
+
+// Ranges of at most kDirect items are sorted by comparisons; larger ones are first bucketed on
+// their keys' next leading bits (256 buckets a level), so that keys crowding into a few leading
+// values (points along a curve: their Morton codes) do not leave a few large comparison sorts.
+constexpr std::size_t kDirect = 64;
+
+template <class T, class Key, class Less>
+void sort_range(T* b, T* e, const Key& key, const Less& less, std::vector<T>& tmp) {
+  const std::size_t n = static_cast<std::size_t>(e - b);
+  if (n <= kDirect) {
+    std::sort(b, e, less);
+    return;
+  }
+  std::uint64_t lo = key(*b), hi = lo;
+  for (T* x = b; x != e; ++x) {
+    lo = std::min(lo, key(*x));
+    hi = std::max(hi, key(*x));
+  }
+  if (lo == hi) {  // (one key: the comparator decides)
+    std::sort(b, e, less);
+    return;
+  }
+  int shift = 0;
+  while (((hi - lo) >> shift) >= 256) ++shift;
+  std::size_t start[257] = {};
+  for (T* x = b; x != e; ++x) ++start[((key(*x) - lo) >> shift) + 1];
+  for (int k = 0; k < 256; ++k) start[k + 1] += start[k];
+  tmp.resize(n);
+  std::size_t at[256];
+  std::copy(start, start + 256, at);
+  for (T* x = b; x != e; ++x) tmp[at[(key(*x) - lo) >> shift]++] = *x;
+  std::copy(tmp.begin(), tmp.begin() + static_cast<std::ptrdiff_t>(n), b);
+  for (int k = 0; k < 256; ++k)
+    if (start[k + 1] - start[k] > 1) sort_range(b + start[k], b + start[k + 1], key, less, tmp);
+}
+
+}  // namespace bucket_sort_detail
+
 /// Sorts @p v by @p less, a strict total order on its items that the key leads: key(a) < key(b)
 /// implies less(a, b) (key(item) is a std::uint64_t). The result is that order, whatever the
 /// thread count: the items go to buckets of equal leading key bits in a fixed number of blocks,
-/// each bucket is then sorted by @p less (in parallel over the buckets).
+/// each bucket is then sorted by @p less (in parallel over the buckets; a large one bucketed again
+/// on the next bits first).
 template <class T, class Key, class Less>
 void bucket_sort(BigArray<T>& v, const Key& key, const Less& less) {
   const std::size_t n = v.size();
@@ -86,9 +126,10 @@ void bucket_sort(BigArray<T>& v, const Key& key, const Less& less) {
     }
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<T> tmp;
     for (std::size_t k = r.begin(); k != r.end(); ++k)
       if (start[k + 1] - start[k] > 1)
-        std::sort(out.data() + start[k], out.data() + start[k + 1], less);
+        bucket_sort_detail::sort_range(out.data() + start[k], out.data() + start[k + 1], key, less, tmp);
   });
   v.swap(out);
 }
