@@ -930,3 +930,29 @@ TEST_F(IoRoundTrip, PercentDot17gIsBitIdentical) {
 
 }  // namespace
 }  // namespace constrict
+
+namespace constrict {
+namespace {
+
+// A polygon's .idx is one index per line in polygon order; a large one is formatted in blocks on
+// all cores (write_polygon.cpp) and must be the same text, across block ends too.
+TEST_F(IoRoundTrip, LargeIndexPolygonIsOneIndexPerLine) {
+  for (const std::size_t n : {std::size_t{5}, std::size_t{300001}}) {
+    PointSet p;
+    p.dim = 2;
+    p.coords.assign(2 * n, 0.0);
+    std::vector<int> ids(n);
+    for (std::size_t k = 0; k < n; ++k) ids[k] = static_cast<int>((k * 7919) % n);  // (a permutation: n prime to 7919)
+    std::string want;
+    for (int v : ids) want += std::to_string(v) + "\n";
+    const std::string path = (dir_ / "large.idx").string();
+    ASSERT_TRUE(write_polygon2(path, p, ids, PolygonFormat::Idx).is_ok());
+    std::ifstream f(path, std::ios::binary);
+    const std::string got((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(got.size(), want.size()) << n;
+    EXPECT_TRUE(got == want) << n << " indices";
+  }
+}
+
+}  // namespace
+}  // namespace constrict
