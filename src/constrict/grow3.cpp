@@ -384,9 +384,9 @@ class Growth3 {
   std::vector<double> own_spacing_;           // else computed at the first outside step
   const std::vector<double>* spacing_ = nullptr;  // the one in use, once outside steps began
   double fill_conf_;                              // the fill's label confidence, or <= 0: no fill during the growth
-  // What the growth reads of each Delaunay tetrahedron, in one record (one cache line holds four;
-  // in separate arrays each neighbour cost four misses): in the body (mirrors state), in a heap
-  // (its key is static: one entry is enough), labelled inside, and then its key.
+  // What the growth reads of each Delaunay tetrahedron, in one record of 8 bytes (in separate
+  // arrays each neighbour cost four misses): its rank (inside ones), in the body (mirrors state),
+  // queued (its key is static: one entry is enough), labelled inside.
   struct Cell {
     std::uint32_t rank;  // (inside: its rank, rank_inside)
     std::uint8_t alive, queued, inside;
