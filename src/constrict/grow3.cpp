@@ -24,6 +24,7 @@
 #include "constrict/detail/stages3.hpp"
 #include "core/detail/big_vector.hpp"
 #include "core/detail/bucket_sort.hpp"
+#include "core/detail/rank_queue.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -48,43 +49,6 @@ std::size_t fill_pockets(Body3& b, const Labels3& l, double conf, Growth3Stats& 
   st.pocket_reached += b.n_onb - before;
   return filled;
 }
-
-// The inside tetrahedra waiting to join, as a set of ranks (rank 0: the first the growth takes):
-// one bit each, the smallest set bit popped first. The growth pops them in nearly ascending rank
-// (a pushed tetrahedron almost never outranks the one just popped: 254 of 4.3 million pushes on
-// the 10^6 star), so the scan for the next set bit moves forward through the words and reads them
-// in order, where a binary heap of the waiting tetrahedra (up to 437 000 of them there) read about
-// twenty entries at random per pop: half of the growth's time (docs/benchmarks.md).
-class RankQueue {
- public:
-  void reset(std::size_t ranks) {
-    bits_.assign((ranks + 63) / 64, 0);
-    word_ = bits_.size();
-    count_ = 0;
-  }
-  bool empty() const { return count_ == 0; }
-  void push(std::uint32_t r) {
-    bits_[r >> 6] |= std::uint64_t{1} << (r & 63);
-    word_ = std::min<std::size_t>(word_, r >> 6);
-    ++count_;
-  }
-  // The smallest rank in the set (not empty).
-  std::uint32_t top() {
-    while (bits_[word_] == 0) ++word_;
-    return static_cast<std::uint32_t>(word_ * 64 + static_cast<std::size_t>(__builtin_ctzll(bits_[word_])));
-  }
-  std::uint32_t pop() {
-    const std::uint32_t r = top();
-    bits_[word_] &= bits_[word_] - 1;  // (the lowest set bit)
-    --count_;
-    return r;
-  }
-
- private:
-  std::vector<std::uint64_t> bits_;
-  std::size_t word_ = 0;  // no set bit below this word
-  std::size_t count_ = 0;
-};
 
 class Growth3 {
  public:

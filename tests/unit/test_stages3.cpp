@@ -23,6 +23,7 @@
 #include "constrict/detail/stages3.hpp"
 #include "core/detail/big_vector.hpp"
 #include "core/detail/bucket_sort.hpp"
+#include "core/detail/rank_queue.hpp"
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/validate.hpp"
@@ -586,6 +587,50 @@ TEST(Stages3, BucketSortIsTheComparatorsOrderOnAnyThreadCount) {
         for (std::size_t i = 0; i < n; ++i) bad += got[i].id != want[i].id;
         EXPECT_EQ(bad, 0u) << "n " << n << ", keys " << kind << ", seed " << seed << ", threads " << threads;
       }
+    }
+}
+
+// RankQueue (core/detail/rank_queue.hpp) pops the smallest rank in the set, against std::set: random
+// pushes and pops, pushes that all go below the last pop (descending), and sizes at the ends of
+// its words and levels.
+TEST(Stages3, RankQueuePopsTheSmallestRank) {
+  for (const std::size_t n :
+       {std::size_t{1}, std::size_t{63}, std::size_t{64}, std::size_t{65}, std::size_t{4097}, std::size_t{262145}})
+    for (int pattern = 0; pattern < 3; ++pattern) {
+      std::uint64_t s = 77 * n + static_cast<std::uint64_t>(pattern);
+      detail::RankQueue q;
+      q.reset(n);
+      std::set<std::uint32_t> want;
+      std::vector<char> in(n, 0);
+      std::size_t bad = 0, ops = 0;
+      std::uint32_t next_down = static_cast<std::uint32_t>(n);
+      for (std::size_t step = 0; step < 3 * n + 10; ++step) {
+        const std::uint64_t r = test::splitmix64(s);
+        const bool push = pattern == 1 ? next_down > 0 && r % 3 != 0 : r % 2 == 0;
+        if (push) {
+          std::uint32_t k = pattern == 1 ? --next_down : static_cast<std::uint32_t>((r >> 8) % n);
+          if (pattern == 2)
+            k = static_cast<std::uint32_t>(((r >> 8) % 2 ? n - 1 - (r >> 16) % 64 % n : (r >> 16) % 64 % n));
+          if (in[k]) continue;
+          in[k] = 1;
+          q.push(k);
+          want.insert(k);
+        } else if (!want.empty()) {
+          ASSERT_FALSE(q.empty());
+          const std::uint32_t got = q.pop();
+          bad += got != *want.begin();
+          in[*want.begin()] = 0;
+          want.erase(want.begin());
+        }
+        ++ops;
+        bad += q.empty() != want.empty();
+      }
+      while (!want.empty()) {
+        bad += q.pop() != *want.begin();
+        want.erase(want.begin());
+      }
+      EXPECT_TRUE(q.empty());
+      EXPECT_EQ(bad, 0u) << "n " << n << ", pattern " << pattern << ", " << ops << " operations";
     }
 }
 
