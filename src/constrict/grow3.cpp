@@ -198,7 +198,7 @@ class Growth3 {
   // strict total order: the same ranks whatever the sort does, on any number of threads).
   void rank_inside() {
     struct Item {
-      std::uint64_t key;  // the bits of -inside_key: ascending as the key descends
+      std::uint64_t key;  // the complemented bits of inside_key (> 0): ascending as the key descends
       int tet;
     };
     // The inside tetrahedra with their keys, in index order (fixed blocks: counts, then each
