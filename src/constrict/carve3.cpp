@@ -24,6 +24,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/big_vector.hpp"
 #include "core/detail/link_cycle.hpp"
 
 namespace constrict::detail {
@@ -149,40 +150,49 @@ class Regions {
   // Tetrahedra per vertex at the start (CSR), each list ascending: every one that can be in the
   // body (fill), or the body's (carve). In parallel: counts by atomic increments, the lists
   // filled through atomic cursors and then sorted (the same lists as a sequential fill).
+  // The body tetrahedra of each vertex (the fill's: every one not replaced), ascending. Fixed
+  // blocks of tetrahedra count their vertices, then each block writes its tetrahedra in order at
+  // its offset in each vertex's list: no atomics and no sort (they were a third of the carve on
+  // the 10^6 ellipsoid), the same lists on any thread count.
   void index_vertex_tets() {
     const auto in = [&](std::size_t t) { return add_ ? b_.state[t] != kReplaced : b_.state[t] == kAlive; };
-    const std::size_t T = b_.tets.size();
-    std::vector<std::atomic<int>> cnt(b_.n + 1);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n + 1, kSetupGrain),
+    const std::size_t T = b_.tets.size(), n = b_.n;
+    constexpr std::size_t kBlocks = 4;
+    const std::size_t per = (T + kBlocks - 1) / kBlocks;
+    std::vector<int> at(kBlocks * n, 0);  // block b's count, then its next slot, of vertex v: at[b * n + v]
+    const auto each_block = [&](const auto& f) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kBlocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t b = r.begin(); b != r.end(); ++b) f(at.data() + b * n, b * per, std::min(T, (b + 1) * per));
+      });
+    };
+    each_block([&](int* c, std::size_t t0, std::size_t t1) {
+      for (std::size_t t = t0; t < t1; ++t)
+        if (in(t))
+          for (int x : b_.tets[t]) ++c[uz(x)];
+    });
+    vt_off_.assign(n + 1, 0);
+    for (std::size_t v = 0; v < n; ++v) {
+      int k = 0;
+      for (std::size_t b = 0; b < kBlocks; ++b) k += at[b * n + v];
+      vt_off_[v + 1] = vt_off_[v] + k;
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kSetupGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t v = r.begin(); v != r.end(); ++v) cnt[v].store(0, std::memory_order_relaxed);
+                        for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                          int next = vt_off_[v];
+                          for (std::size_t b = 0; b < kBlocks; ++b) {
+                            const int k = at[b * n + v];
+                            at[b * n + v] = next;
+                            next += k;
+                          }
+                        }
                       });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kSetupGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t t = r.begin(); t != r.end(); ++t)
-                          if (in(t))
-                            for (int x : b_.tets[t]) cnt[uz(x) + 1].fetch_add(1, std::memory_order_relaxed);
-                      });
-    vt_off_.assign(b_.n + 1, 0);
-    for (std::size_t v = 0; v < b_.n; ++v) vt_off_[v + 1] = vt_off_[v] + cnt[v + 1].load(std::memory_order_relaxed);
-    vt_idx_.assign(uz(vt_off_[b_.n]), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t v = r.begin(); v != r.end(); ++v)
-                          cnt[v].store(vt_off_[v], std::memory_order_relaxed);
-                      });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kSetupGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t t = r.begin(); t != r.end(); ++t)
-                          if (in(t))
-                            for (int x : b_.tets[t])
-                              vt_idx_[uz(cnt[uz(x)].fetch_add(1, std::memory_order_relaxed))] = static_cast<int>(t);
-                      });
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b_.n, kSetupGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t v = r.begin(); v != r.end(); ++v)
-                          std::sort(vt_idx_.begin() + vt_off_[v], vt_idx_.begin() + vt_off_[v + 1]);
-                      });
+    vt_idx_.allocate(uz(vt_off_[n]));  // (every slot written below: not zero-filled)
+    each_block([&](int* c, std::size_t t0, std::size_t t1) {
+      for (std::size_t t = t0; t < t1; ++t)
+        if (in(t))
+          for (int x : b_.tets[t]) vt_idx_[uz(c[uz(x)]++)] = static_cast<int>(t);
+    });
   }
 
   // A vertex whose body tetrahedra are all labelled outside (a thin part the labels miss) keeps
@@ -725,7 +735,8 @@ class Regions {
   static constexpr std::size_t kWorkFloor = std::size_t{1} << 20;
   bool over_budget() const { return work_ > work_budget_; }
   std::size_t work_ = 0, work_budget_ = 0;
-  std::vector<int> vt_off_, vt_idx_;
+  std::vector<int> vt_off_;
+  BigArray<int> vt_idx_;
   std::size_t F_ = 0, targetF_ = 0, nbad_ = 0;
   std::size_t regionF0_ = 0;   // F before the current region
   std::vector<int> alive_at_;  // body tetrahedra per vertex
