@@ -790,9 +790,11 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
   if (reach) regions.reaching();
   if (!regions.run()) return 0;
   // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void would
-  // also have 2N-4 faces in total: excluded here (then the whole pass is undone).
+  // also have 2N-4 faces in total: excluded here (then the whole pass is undone). Reaching, a
+  // pocket may also end as a second part of the body, a torus apart from the ball (2R-4 faces in
+  // all as well: a thick noisy shell of 3*10^5 points): the body must stay one part.
   stats.changed = count_changed(state0, body.state, true);
-  if (stats.changed > 0 && !body.side_connected(kOutside)) {
+  if (stats.changed > 0 && (!body.side_connected(kOutside) || (reach && !body.side_connected(kAlive)))) {
     body.state = state0;
     stats.changed = 0;
   }
