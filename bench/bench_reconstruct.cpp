@@ -119,6 +119,29 @@ BENCHMARK(BM_CgalDelaunay3Same)->Apply(sizes3);
 BENCHMARK(BM_Reconstruct3)->Apply(sizes3);
 BENCHMARK(BM_Surfaces3Auto)->Apply(sizes3);
 
+// A volume: points of a thick noisy shell (radius 1 to 1.2, uniform in it), 10^5 and 3*10^5. The
+// growth's pushes often outrank its last pop here (366 967 times at 3*10^5), the case that made a
+// forward scan over the rank queue's bits rescan 648 million words (2026-12-06; the queue is a
+// tree of words since: core/detail/rank_queue.hpp). ms_grow is the growth stage.
+void BM_Reconstruct3ThickShell(benchmark::State& state) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> u(0, 1);
+  PointSet pts;
+  pts.dim = 3;
+  for (long i = 0; i < state.range(0); ++i) {
+    const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z), s = (1 + 0.2 * u(rng)) / r;
+    pts.coords.insert(pts.coords.end(), {x * s, y * s, z * s});
+  }
+  for (auto _ : state) {
+    Mesh3Result r;
+    if (!reconstruct3(pts, Constrict3Options{}, r) || !r.complete) state.SkipWithError("reconstruct3 failed");
+    state.counters["ms_grow"] = r.ms_grow;
+    state.counters["grown_outside"] = static_cast<double>(r.grown_outside);
+  }
+}
+BENCHMARK(BM_Reconstruct3ThickShell)->Arg(100000)->Arg(300000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 // Hostile 3D inputs whose Delaunay tetrahedra meet by the thousand at some points (found by
 // sweeps of 2026-12-04; docs/reconstruction-3d.md §4.10): the passes stop at their work bounds.
 // Before the bounds: thin rod 2 000 points 10 s, circle and axis (auto) more than 10 minutes,
