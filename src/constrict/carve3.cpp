@@ -11,7 +11,6 @@
 // of inside tetrahedra the body left out; a region whose end state is invalid at a few vertices
 // only is first repaired by single toggles at those vertices (docs/reconstruction-3d.md §4.9).
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -147,9 +146,6 @@ class Regions {
     return add_ ? !b_.alive(t) && b_.surface_faces_of(t) < 4 : b_.alive(t) && b_.surface_faces_of(t) > 0;
   }
 
-  // Tetrahedra per vertex at the start (CSR), each list ascending: every one that can be in the
-  // body (fill), or the body's (carve). In parallel: counts by atomic increments, the lists
-  // filled through atomic cursors and then sorted (the same lists as a sequential fill).
   // The body tetrahedra of each vertex (the fill's: every one not replaced), ascending. Fixed
   // blocks of tetrahedra count their vertices, then each block writes its tetrahedra in order at
   // its offset in each vertex's list: no atomics and no sort (they were a third of the carve on

@@ -231,7 +231,7 @@ Status write_polygon2(const std::string& path, const PointSet& points, const std
       return {StatusCode::InvalidArgument, path + ": polygon index " + std::to_string(i) + " out of range"};
   if (format == PolygonFormat::Auto) format = polygon_format_from_path(path);
   std::string s;
-  s.reserve(boundary.size() * 24 + 64);
+  if (format != PolygonFormat::Idx) s.reserve(boundary.size() * 24 + 64);  // (index_lines sizes its own)
   switch (format) {
     case PolygonFormat::Idx: s = index_lines(boundary); break;
     case PolygonFormat::Csv:

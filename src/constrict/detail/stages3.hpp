@@ -157,6 +157,13 @@ class Cavity3 {
 
 // ---- growth from the inside (grow3.cpp; docs/reconstruction-3d.md §4.7) ------------------------
 
+// What the growth sets up from the Delaunay tetrahedralization alone, so that it can be made
+// beside the labels: each vertex's room for its body edges (its Delaunay degree), as offsets.
+struct GrowthPrep3 {
+  std::vector<std::size_t> edge_room;  // n + 1 offsets
+};
+GrowthPrep3 prepare_growth3(const Body3& body);
+
 struct Growth3Stats {
   std::size_t grown = 0, grown_outside = 0, cavities = 0;
   std::size_t pocket_filled = 0, pocket_reached = 0;  // the fill during the growth: tetrahedra, points
@@ -172,13 +179,7 @@ struct Growth3Stats {
 // `prep`: prepare_growth3(body) if the caller made it (else made here).
 bool grow_body3(Body3& body, const Labels3& labels, const Constrict3Options& opt, Constrict3Visitor* visitor,
                 Growth3Stats& stats, Tets& nbr_delaunay, const std::vector<double>* spacing = nullptr,
-                const struct GrowthPrep3* prep = nullptr);
-// What the growth sets up from the Delaunay tetrahedralization alone, so that it can be made
-// beside the labels: each vertex's room for its body edges (its Delaunay degree), as offsets.
-struct GrowthPrep3 {
-  std::vector<std::size_t> edge_room;  // n + 1 offsets
-};
-GrowthPrep3 prepare_growth3(const Body3& body);
+                const GrowthPrep3* prep = nullptr);
 
 // ---- carve and fill (carve3.cpp; docs/reconstruction-3d.md §4.6, §4.7) -------------------------
 
