@@ -64,6 +64,10 @@ struct Constrict2Options {
   /// Work bound of the LocalSearch refinement: at most refine_work_per_point · N array elements
   /// moved (the polygon stays simple when the bound stops it; Polygon2Result::refine_budget_hit).
   std::size_t refine_work_per_point = 64;
+  /// The γ0 fallback's graph tests done side by side ahead of its queue (0: each test as its
+  /// candidate comes out). A tuning knob only: the polygon is the same for every value and
+  /// thread count.
+  std::size_t fallback_tests_ahead = 16;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
   /// then incomplete (no fallback runs) unless all points were already on the boundary.
   std::size_t stop_after = SIZE_MAX;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -196,9 +197,10 @@ class Grid {
   }
   /// On a just built grid: add_edge(a, b, id) for count edges, seg(k, a, b, id) giving the k-th
   /// (the same each call), in one counting sort per layer (CellLists::build).
+  /// The two layers are filled side by side (seg must allow concurrent calls).
   template <class Seg> void add_edges(std::size_t count, Seg&& seg) {
-    if (fine_on_) edges_fine_.add_all(count, seg);
-    edges_coarse_.add_all(count, seg);
+    if (!fine_on_) return edges_coarse_.add_all(count, seg);
+    tbb::parallel_invoke([&] { edges_fine_.add_all(count, seg); }, [&] { edges_coarse_.add_all(count, seg); });
   }
   /// Calls f(id) for the registered edges that can meet segment ab (maybe more than once) until f
   /// returns true; true if it did.
@@ -363,8 +365,12 @@ struct Constrictor2::Impl {
   std::vector<int> out_edge;              // boundary edge id of (v, nxt[v])
   std::unordered_map<std::uint64_t, double> delta_cache;
   std::unordered_set<std::uint64_t> aug;  // degree-4 augmentation edges
-  std::vector<unsigned> mark;
-  unsigned mark_stamp = 0;
+  struct Marks {
+    std::vector<unsigned> mark;
+    unsigned stamp = 0;
+  };  // (neighbourhood)
+  Marks marks;
+  tbb::enumerable_thread_specific<Marks> worker_marks;  // (first_heap)
 
   const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
@@ -520,25 +526,27 @@ struct Constrictor2::Impl {
   void build_fallback() {
     if (fb_ready) return;
     fb_ready = true;
-    build_adjacency();
-    // The median boundary edge (largest coordinate difference) sizes a sparse grid's cells.
-    std::vector<double> len;
-    len.reserve(n_onb);
-    for (std::size_t v = 0; v < n; ++v)
-      if (onb[v]) {
-        const double* p = P(static_cast<int>(v));
-        const double* q = P(nxt[v]);
-        len.push_back(std::max(std::fabs(p[0] - q[0]), std::fabs(p[1] - q[1])));
-      }
-    const auto mid = len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2);
-    std::nth_element(len.begin(), mid, len.end());
-    grid.build(*pts, len.empty() ? 0.0 : *mid);
     out_edge.assign(n, -1);
     for (std::size_t v = 0; v < n; ++v)
       if (onb[v]) {
         out_edge[v] = static_cast<int>(bedges.size());
         bedges.push_back(BEdge{static_cast<int>(v), nxt[v], true});
       }
+    // The Delaunay adjacency beside the grids (neither reads the other).
+    tbb::parallel_invoke([&] { build_adjacency(); }, [&] { build_grid(); });
+    marks.mark.assign(n, 0);
+  }
+  void build_grid() {
+    // The median boundary edge (largest coordinate difference) sizes a sparse grid's cells.
+    std::vector<double> len(bedges.size());
+    for (std::size_t k = 0; k < bedges.size(); ++k) {
+      const double* p = P(bedges[k].u);
+      const double* q = P(bedges[k].v);
+      len[k] = std::max(std::fabs(p[0] - q[0]), std::fabs(p[1] - q[1]));
+    }
+    const auto mid = len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2);
+    std::nth_element(len.begin(), mid, len.end());
+    grid.build(*pts, len.empty() ? 0.0 : *mid);
     // The edges run by their first vertex; the second one's coordinates are a random read, so
     // they are prefetched a few edges ahead.
     grid.add_edges(bedges.size(), [&](std::size_t k, const double*& a, const double*& b, int& id) {
@@ -547,7 +555,6 @@ struct Constrictor2::Impl {
       b = P(bedges[k].v);
       id = static_cast<int>(k);
     });
-    mark.assign(n, 0);
   }
   void build_adjacency() {
     if (adj_ready) return;
@@ -652,9 +659,13 @@ struct Constrictor2::Impl {
     ++n_onb;
   }
 
-  // Vertices within k DT hops of the seeds (marks them with a fresh stamp).
-  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) {
-    ++mark_stamp;
+  // Vertices within k DT hops of the seeds (marks them with a fresh stamp; m.mark is made on first
+  // use).
+  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) { return neighbourhood(seeds, k, marks); }
+  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k, Marks& m) const {
+    if (m.mark.size() != n) m.mark.assign(n, 0);
+    auto& mark = m.mark;
+    const unsigned mark_stamp = ++m.stamp;
     std::vector<int> out;
     for (int s : seeds)
       if (mark[U(s)] != mark_stamp) { mark[U(s)] = mark_stamp; out.push_back(s); }
@@ -716,18 +727,52 @@ struct Constrictor2::Impl {
   // docs/benchmarks.md).
   // Cached per pair: an entry answers every threshold up to the one it was searched for (a partial
   // one, every threshold above both its values).
+  // The caches are memos only: delta_at_least answers the same with or without them. The graph
+  // tests side by side (graph_tests_ahead) read the shared caches and add to their thread's own,
+  // which are merged into the shared ones after each batch.
   struct SideCache { double ga, gb; bool blocked; double below; bool partial, one_sided; };
   static bool answers(const SideCache& c, double t) {
     if (c.blocked) return true;
     if (c.partial) return c.ga < t && c.gb < t;
     return t <= c.below && (!c.one_sided || std::min(c.ga, c.gb) < t);
   }
-  std::unordered_map<std::uint64_t, SideCache> side_cache;
-  void sides_below(int i, int j, double t, double& ga, double& gb, bool& blocked) {
+  struct WitnessCache {
+    int side;
+    double thr;
+    bool found;
+  };
+  struct SideCaches {
+    std::unordered_map<std::uint64_t, SideCache> side;
+    std::unordered_map<std::uint64_t, WitnessCache> witness;
+  };
+  SideCaches shared_caches;
+  tbb::enumerable_thread_specific<SideCaches> fresh_caches;
+  // The entry for key that `usable` accepts, in `fresh` (the caller's own) or else in `shared`;
+  // the callers store in `fresh` (which may be `shared`).
+  template <class Map, class Usable>
+  static const typename Map::mapped_type* cached(const Map& fresh, const Map& shared, std::uint64_t key,
+                                                 Usable&& usable) {
+    if (const auto it = fresh.find(key); it != fresh.end() && usable(it->second)) return &it->second;
+    if (&fresh == &shared) return nullptr;
+    const auto it = shared.find(key);
+    return it != shared.end() && usable(it->second) ? &it->second : nullptr;
+  }
+  void merge_fresh_caches() {
+    for (SideCaches& f : fresh_caches) {
+      for (auto& [k, v] : f.side) shared_caches.side.insert_or_assign(k, v);
+      for (auto& [k, v] : f.witness) shared_caches.witness.insert_or_assign(k, v);
+      f.side.clear();
+      f.witness.clear();
+    }
+  }
+  void sides_below(int i, int j, double t, double& ga, double& gb, bool& blocked, const SideCaches& shared,
+                   SideCaches& fresh) const {
+    auto& side_cache = fresh.side;
     const std::uint64_t key = detail::edge_key(i, j);
-    if (const auto it = side_cache.find(key);
-        it != side_cache.end() && answers(it->second, t)) {
-      ga = it->second.ga; gb = it->second.gb; blocked = it->second.blocked;
+    if (const SideCache* c = cached(fresh.side, shared.side, key, [t](const SideCache& e) { return answers(e, t); })) {
+      ga = c->ga;
+      gb = c->gb;
+      blocked = c->blocked;
       return;
     }
     const double* a = P(i);
@@ -815,12 +860,12 @@ struct Constrictor2::Impl {
   // Δ(u, v) >= gamma0 (< 0) with two bounded searches: first all points with apex value < gamma0;
   // if a side m < gamma0 exists, the pair is in iff the other side is >= |m| (magnitude rule of
   // filtration_value), decided by the points with apex value < |m|.
-  bool delta_at_least(int u, int v, double gamma0) {
+  bool delta_at_least(int u, int v, double gamma0, const SideCaches& shared, SideCaches& fresh) const {
     const int i = std::min(u, v), j = std::max(u, v);
     double ga, gb;
     bool blocked;
     // m below is the exact minimum whenever m < gamma0 (sides_below).
-    sides_below(i, j, gamma0, ga, gb, blocked);
+    sides_below(i, j, gamma0, ga, gb, blocked, shared, fresh);
     if (blocked) return false;
     // Both sides below gamma0: the smaller m < gamma0 and the other side < gamma0 < 0 <= -m, out
     // by the magnitude rule (also from a partial search).
@@ -834,18 +879,17 @@ struct Constrictor2::Impl {
     // later stages of the γ0 schedule, which test the same pairs again.
     const int side = ga == m ? -1 : 1;
     const std::uint64_t key = detail::edge_key(i, j);
-    if (const auto it = witness_cache.find(key); it != witness_cache.end() && it->second.side == side && it->second.thr == -m)
-      return !it->second.found;
+    if (const WitnessCache* c = cached(fresh.witness, shared.witness, key,
+                                       [&](const WitnessCache& e) { return e.side == side && e.thr == -m; }))
+      return !c->found;
     const bool found = witness_below(i, j, side, -m);
-    witness_cache[key] = WitnessCache{side, -m, found};
+    fresh.witness[key] = WitnessCache{side, -m, found};
     return !found;
   }
-  struct WitnessCache { int side; double thr; bool found; };
-  std::unordered_map<std::uint64_t, WitnessCache> witness_cache;
 
   // Is there a point p with orient2(x_i, x_j, p) == side and apex value < thr, or a point in the
   // open segment ij? Ring search around the midpoint, nearest cells first, first witness wins.
-  bool witness_below(int i, int j, int side, double thr) {
+  bool witness_below(int i, int j, int side, double thr) const {
     const double* a = P(i);
     const double* b = P(j);
     const double mx = 0.5 * a[0] + 0.5 * b[0], my = 0.5 * a[1] + 0.5 * b[1];  // no overflow
@@ -875,13 +919,19 @@ struct Constrictor2::Impl {
     if (g == Graph::Complete) return true;
     if (is_dt_edge(u, v)) return true;
     if (g == Graph::Degree4) return aug.count(detail::edge_key(u, v)) > 0;
-    return delta_at_least(u, v, gamma0);
+    const std::uint64_t key = detail::edge_key(u, v);
+    if (const auto it = gamma0_known.find(key); it != gamma0_known.end()) return it->second;
+    const bool in = delta_at_least(u, v, gamma0, shared_caches, shared_caches);
+    gamma0_known.emplace(key, in);
+    return in;
   }
+  // The γ0 graph's answers of this stage (in_graph, graph_tests_ahead), by pair.
+  std::unordered_map<std::uint64_t, bool> gamma0_known;
 
   // Δ(u, v) < gamma0 (< 0) shown by the DT neighbours of u and v alone: a point on the open
   // segment, or points with apex value below gamma0 on both sides (the magnitude rule, as for a
   // partial search in delta_at_least). Exact; false when these few points do not decide it.
-  bool outside_near(int u, int v, double gamma0) {
+  bool outside_near(int u, int v, double gamma0) const {
     if (is_dt_edge(u, v)) return false;
     double ga = 1, gb = 1;
     bool blocked = false;
@@ -903,44 +953,140 @@ struct Constrictor2::Impl {
   // fails when it comes out. The repair's candidates (every boundary edge within k hops, k up to
   // N) are tested before queueing, so that its heap holds only the valid ones.
   void push_candidate(Heap& h, Graph g, double gamma0, int a, int z) {
+    Entry e;
+    if (candidate(g, gamma0, a, z, e) && (g != Graph::Complete || test_candidate(e, g, gamma0))) h.push(e);
+  }
+  // The entry of boundary edge a->nxt[a] and stuck point z, unless ruled out at once.
+  bool candidate(Graph g, double gamma0, int a, int z, Entry& e) const {
     const int b = nxt[U(a)];
-    if (b < 0 || onb[U(z)]) return;
-    if (orient2_fast(P(a), P(b), P(z)) <= 0) return;
+    if (b < 0 || onb[U(z)]) return false;
+    if (orient2_fast(P(a), P(b), P(z)) <= 0) return false;
     // Witnesses among the endpoints' neighbours rule most pairs out at once (a long pair across
     // an empty interior has very obtuse angles behind both ends), which keeps the heap small.
-    if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return;
-    const Entry e{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0};
-    if (g != Graph::Complete || test_candidate(e, g, gamma0)) h.push(e);
+    if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return false;
+    e = Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0};
+    return true;
   }
+  // Is the entry's triangle still one to insert? (It only stops being one: spec §3.6.)
+  bool entry_live(const Entry& e) const { return !onb[U(e.y)] && onb[U(e.a)] && nxt[U(e.a)] == e.b; }
   // The graph test (its side searches read little, sides_below) before the geometric one, which
   // rejects few and reads a long candidate's whole strip.
   bool test_candidate(const Entry& e, Graph g, double gamma0) {
     const int a = e.a, b = e.b, z = e.y;
-    if (onb[U(z)] || !onb[U(a)] || nxt[U(a)] != b) return false;
+    if (!entry_live(e)) return false;
     if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return false;
     return valid_insert(a, b, z);
   }
 
-  // Candidate boundary edges for apex z: those with an endpoint within k hops of z.
-  void push_candidates_of(Heap& h, Graph g, double gamma0, int z, int k) {
-    std::vector<int> region = neighbourhood({z}, k);
+  // Candidate boundary edges for apex z: those with an endpoint within k hops of z (their start
+  // vertices, ascending).
+  std::vector<int> candidate_starts(int z, int k, Marks& m) const {
     std::vector<int> starts;
-    for (int u : region)
+    for (int u : neighbourhood({z}, k, m))
       if (onb[U(u)]) { starts.push_back(u); starts.push_back(prv[U(u)]); }
     std::sort(starts.begin(), starts.end());
     starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
-    for (int a : starts) push_candidate(h, g, gamma0, a, z);
+    return starts;
+  }
+  // The first heap of a stage: every stuck point's candidates. For the γ0 and degree-4 graphs
+  // they are made side by side (candidate() reads only), by fixed blocks of stuck points joined
+  // in order; the heap's order is a strict total order of the entries (key, then the sorted
+  // input ids: two entries of one triangle would need its apex both stuck and on the boundary),
+  // so the pops do not depend on how the heap was filled. The repair tests each candidate in
+  // full (test_candidate), in sequence.
+  Heap first_heap(Graph g, double gamma0, int k) {
+    std::vector<int> stuck;
+    for (std::size_t z = 0; z < n; ++z)
+      if (!onb[z]) stuck.push_back(static_cast<int>(z));
+    Heap h;
+    if (g == Graph::Complete) {
+      for (const int z : stuck)
+        for (const int a : candidate_starts(z, k, marks)) push_candidate(h, g, gamma0, a, z);
+      return h;
+    }
+    constexpr std::size_t kBlock = 256;
+    const std::size_t nb = (stuck.size() + kBlock - 1) / kBlock;
+    std::vector<std::vector<Entry>> parts(nb);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      Marks& m = worker_marks.local();
+      for (std::size_t q = r.begin(); q != r.end(); ++q)
+        for (std::size_t i = q * kBlock; i < std::min(stuck.size(), (q + 1) * kBlock); ++i) {
+          Entry e;
+          for (const int a : candidate_starts(stuck[i], k, m))
+            if (candidate(g, gamma0, a, stuck[i], e)) parts[q].push_back(e);
+        }
+    });
+    std::vector<Entry> all;
+    std::size_t total = 0;
+    for (const auto& p : parts) total += p.size();
+    all.reserve(total);
+    for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    return Heap(EntryLess{}, std::move(all));
+  }
+
+  // The γ0 graph tests of the next entries of the heap, side by side; in_graph then finds their
+  // answers. An answer is a property of the pair and the stage (delta_at_least, whatever its
+  // caches hold), so the insertions are those of testing each entry as it comes out, on any
+  // thread count; a test of an entry that a nearer insertion makes dead is wasted, not wrong.
+  // Dead entries met on the way are dropped (they would fail when they come out).
+  void graph_tests_ahead(Heap& h, double gamma0, std::size_t count) {
+    std::vector<Entry> ahead;
+    while (!h.empty() && ahead.size() < count) {
+      const Entry e = h.top();
+      h.pop();
+      if (entry_live(e)) ahead.push_back(e);
+    }
+    // Per entry its two pairs in test order (a, z), (b, z); answers: -1 untested, 0, 1.
+    std::vector<std::array<signed char, 2>> res(ahead.size(), {{-1, -1}});
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, ahead.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+          SideCaches& fresh = fresh_caches.local();
+          for (std::size_t i = r.begin(); i != r.end(); ++i)
+            for (int s = 0; s < 2; ++s) {
+              const int u = s == 0 ? ahead[i].a : ahead[i].b, z = ahead[i].y;
+              bool in;
+              if (is_dt_edge(u, z)) {
+                in = true;
+              } else if (const auto it = gamma0_known.find(detail::edge_key(u, z)); it != gamma0_known.end()) {
+                in = it->second;
+              } else {
+                in = delta_at_least(u, z, gamma0, shared_caches, fresh);
+                res[i][U(s)] = static_cast<signed char>(in);
+              }
+              if (!in) break;
+            }
+        });
+    merge_fresh_caches();
+    for (std::size_t i = 0; i < ahead.size(); ++i) {
+      for (int s = 0; s < 2; ++s)
+        if (res[i][U(s)] >= 0)
+          gamma0_known.emplace(detail::edge_key(s == 0 ? ahead[i].a : ahead[i].b, ahead[i].y), res[i][U(s)] == 1);
+      h.push(ahead[i]);
+    }
+  }
+  // Does the entry's γ0 graph test still need a search (a pair not yet answered, the first of
+  // the two in graph)?
+  bool graph_pending(const Entry& e) const {
+    for (const int u : {e.a, e.b}) {
+      if (is_dt_edge(u, e.y)) continue;
+      const auto it = gamma0_known.find(detail::edge_key(u, e.y));
+      if (it == gamma0_known.end()) return true;
+      if (!it->second) return false;
+    }
+    return false;
   }
 
   // Constricts the region still inside by inserting stuck points into boundary edges, widest
   // apex angle first (same criterion as §3.4; spec §3.6 "cheaper variant"). Returns points placed.
   std::size_t local_constrict(Graph g, double gamma0, int k, const std::string& stage) {
     emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, stage.c_str());
-    Heap h;
-    for (std::size_t z = 0; z < n; ++z)
-      if (!onb[z]) push_candidates_of(h, g, gamma0, static_cast<int>(z), k);
+    gamma0_known.clear();
+    Heap h = first_heap(g, gamma0, k);
     std::size_t placed = 0;
     while (!h.empty() && n_onb < n) {
+      if (g == Graph::Gamma0 && opt.fallback_tests_ahead > 0 && entry_live(h.top()) && graph_pending(h.top()))
+        graph_tests_ahead(h, gamma0, opt.fallback_tests_ahead);
+      if (h.empty()) break;
       const Entry e = h.top();
       h.pop();
       if (!test_candidate(e, g, gamma0)) continue;  // validity only decays (spec §3.6)
@@ -1223,13 +1369,14 @@ struct Constrictor2::Impl {
     grid = Grid{};
     std::vector<BEdge>().swap(bedges);
     std::vector<int>().swap(out_edge);
-    std::vector<unsigned>().swap(mark);
+    marks = Marks{};
+    worker_marks.clear();
     std::vector<int>().swap(vt_off);
     std::vector<int>().swap(vt);
     decltype(delta_cache)().swap(delta_cache);
     decltype(aug)().swap(aug);
-    decltype(side_cache)().swap(side_cache);
-    decltype(witness_cache)().swap(witness_cache);
+    shared_caches = SideCaches{};
+    fresh_caches.clear();
   }
 
   // The engine's input again (input ids, unscaled), from the ranked points: init's caller need

@@ -282,6 +282,52 @@ TEST(Constrict2Unit, ThreadCountIndependent) {
   }
 }
 
+// The γ0 fallback tests the graph edges of the next candidates side by side
+// (Constrict2Options::fallback_tests_ahead). A test's answer is a property of the pair and the
+// stage, so the insertions must be those of testing each candidate as it comes out (width 0),
+// whatever the width: the same polygon, stages and counts for 1, 2, 16 and 64 candidates ahead. A uniform square and
+// a noisy circle, both of which lock and fall back; the refinement is off, so the fallback's
+// polygon is compared as it is.
+TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
+  const unsigned seed = 29;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> noise(0, 1);
+  const int n = 40000;
+  for (int shape = 0; shape < 2; ++shape) {
+    std::vector<std::array<double, 2>> xy;
+    for (int k = 0; k < n; ++k) {
+      if (shape == 0) {
+        xy.push_back({u(rng), u(rng)});
+      } else {
+        const double t = 2 * M_PI * u(rng), r = 1 + 2 * M_PI / n * noise(rng);
+        xy.push_back({r * std::cos(t), r * std::sin(t)});
+      }
+    }
+    const PointSet p = test::make2(xy);
+    Constrict2Options o = Constrict2Options::paper();
+    o.fallback_tests_ahead = 0;
+    Polygon2Result one;
+    ASSERT_TRUE(reconstruct2(p, o, one).is_ok());
+    ASSERT_TRUE(one.valid());
+    ASSERT_GT(one.fallback_insertions, 100u) << "shape " << shape << ": expected the γ0 fallback to place many points";
+    ASSERT_EQ(one.stages.size() > 1 ? one.stages[1].name.rfind("gamma0=", 0) : 1u, 0u) << "shape " << shape;
+    for (const std::size_t ahead : {std::size_t{1}, std::size_t{2}, std::size_t{16}, std::size_t{64}}) {
+      o.fallback_tests_ahead = ahead;
+      Polygon2Result r;
+      ASSERT_TRUE(reconstruct2(p, o, r).is_ok());
+      EXPECT_EQ(r.boundary, one.boundary) << "seed " << seed << " shape " << shape << " ahead " << ahead;
+      ASSERT_EQ(r.stages.size(), one.stages.size()) << "shape " << shape << " ahead " << ahead;
+      for (std::size_t i = 0; i < r.stages.size(); ++i) {
+        EXPECT_EQ(r.stages[i].name, one.stages[i].name);
+        EXPECT_EQ(r.stages[i].placed, one.stages[i].placed)
+            << "shape " << shape << " ahead " << ahead << " stage " << i;
+      }
+    }
+  }
+}
+
 TEST(Constrict2Validator, Basics) {
   const PointSet sq = make2({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   PolygonCheck d;
