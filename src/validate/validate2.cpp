@@ -243,21 +243,25 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
   for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
   std::vector<std::size_t> items(start.back()), at(start.begin(), start.end() - 1);
   for (std::size_t e : odd) for_cells(e, [&](std::size_t c) { items[at[c]++] = e; });
-  // The candidates: the unflagged edges, and every edge whose box meets one of theirs.
+  // The candidates: the unflagged edges, and every edge whose box meets one of theirs (each edge
+  // on its own: both cores).
   only.assign(n, 0);
+  for (std::size_t e : odd) only[e] = 2;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t f = r.begin(); f != r.end(); ++f) {
+      if (only[f]) continue;
+      const Box bf = box(f);
+      bool hit = false;
+      for (std::size_t g : big) hit = hit || meet(bf, box(g));
+      int i0 = 0, i1 = -1, j0 = 0, j1 = -1;                         // (an empty range when the box test already hit)
+      if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
+      for (int j = j0; j <= j1 && !hit; ++j)
+        for (int i = i0; i <= i1 && !hit; ++i)
+          for (std::size_t k = start[cell(i, j)]; k < start[cell(i, j) + 1] && !hit; ++k) hit = meet(bf, box(items[k]));
+      only[f] = hit ? 1 : 0;
+    }
+  });
   for (std::size_t e : odd) only[e] = 1;
-  for (std::size_t f = 0; f < n; ++f) {
-    if (only[f]) continue;
-    const Box bf = box(f);
-    bool hit = false;
-    for (std::size_t g : big) hit = hit || meet(bf, box(g));
-    int i0 = 0, i1 = -1, j0 = 0, j1 = -1;  // (an empty range when the box test already hit)
-    if (!hit && cells_of(bf, i0, i1, j0, j1) > kBig) hit = true;  // long edge: keep it
-    for (int j = j0; j <= j1 && !hit; ++j)
-      for (int i = i0; i <= i1 && !hit; ++i)
-        for (std::size_t k = start[cell(i, j)]; k < start[cell(i, j) + 1] && !hit; ++k) hit = meet(bf, box(items[k]));
-    only[f] = hit ? 1 : 0;
-  }
   return true;
 }
 
@@ -347,7 +351,10 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
     bool subset = false;
     if (indices_in) {
       dt_edge.resize(P.n);
-      for (std::size_t k = 0; k < P.n; ++k) dt_edge[k] = static_cast<char>(found[static_cast<std::size_t>(boundary[k])].load(std::memory_order_relaxed));
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, P.n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k)
+          dt_edge[k] = static_cast<char>(found[static_cast<std::size_t>(boundary[k])].load(std::memory_order_relaxed));
+      });
       subset = conflict_candidates(P, dt_edge, only);
     }
     if (sweep.run(e, f, subset ? &only : nullptr)) return report_crossing(P, e, f, details);
