@@ -494,16 +494,32 @@ class Refiner {
       len = n_ - len;
     }
     work_ += len;
-    // a walks forward from i, b backward from j, both wrapping (no division per element: the
-    // reversals are most of a budget-bound refinement's element work).
-    for (std::size_t k = 0, a = i, b = j; k < len / 2; ++k) {
+    // The swaps k of a reversal touch disjoint positions and vertices, so a long one (most of a
+    // budget-bound refinement's element work is in reversals of 32 768 and more: 56 of 64 M on
+    // the uniform 10^6 square, all 50 M on the noisy curve) runs in blocks on both cores.
+    const std::size_t half = len / 2;
+    if (half < kParallelReversal)
+      swap_ends(i, j, 0, half);
+    else
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, half, kParallelReversal / 4),
+                        [&](const tbb::blocked_range<std::size_t>& r) { swap_ends(i, j, r.begin(), r.end()); });
+    check_budget();
+  }
+  static constexpr std::size_t kParallelReversal = std::size_t{1} << 15;
+  void check_budget() {
+    if (work_ > budget_) st_.budget_hit = true;
+  }
+  // Swaps k = k0..k1-1 of reversing positions i..j: i + k with j - k (cyclic). a walks forward, b
+  // backward, both wrapping (no division per element).
+  void swap_ends(std::size_t i, std::size_t j, std::size_t k0, std::size_t k1) {
+    std::size_t a = i + k0 >= n_ ? i + k0 - n_ : i + k0, b = j >= k0 ? j - k0 : j + n_ - k0;
+    for (std::size_t k = k0; k < k1; ++k) {
       std::swap(tour_[a], tour_[b]);
       pos_[U(tour_[a])] = static_cast<int>(a);
       pos_[U(tour_[b])] = static_cast<int>(b);
       a = a + 1 == n_ ? 0 : a + 1;
       b = b == 0 ? n_ - 1 : b - 1;
     }
-    if (work_ > budget_) st_.budget_hit = true;
   }
   // Replaces tour edges {u1,v1}, {u2,v2} (traversed u1->v1 and u2->v2 in the same direction) by
   // {u1,u2}, {v1,v2}: a 2-opt move.
@@ -933,7 +949,7 @@ class Refiner {
       q = q + 1 == n_ ? 0 : q + 1;
     }
     work_ += buf_.size();
-    if (work_ > budget_) st_.budget_hit = true;
+    check_budget();
   }
 
   // Writes the polygon back in input ids: CCW (exact turn at the lexicographically smallest

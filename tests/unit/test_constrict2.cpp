@@ -328,6 +328,36 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
   }
 }
 
+// A reversal of the refinement's tour of at least 65 536 positions runs in blocks on both cores
+// (refine2.cpp, reverse_positions). A uniform square of 150 000 points makes 28 of them; its
+// polygon must be the one of the sequential reversals, recorded here as a hash (the boundary in
+// input ids, h = h * 1000003 + id mod 2^64) with its perimeter, and the same on one core.
+TEST(Constrict2Unit, LongReversalsGiveTheSequentialPolygon) {
+  const unsigned seed = 31;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<double, 2>> xy;
+  for (int k = 0; k < 150000; ++k) xy.push_back({u(rng), u(rng)});
+  const PointSet p = test::make2(xy);
+  const auto hash = [](const std::vector<int>& b) {
+    std::uint64_t h = 0;
+    for (const int v : b) h = h * 1000003u + static_cast<std::uint64_t>(v);
+    return h;
+  };
+  Polygon2Result one, many;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    ASSERT_TRUE(reconstruct2(p, {}, one).is_ok());
+  }
+  ASSERT_TRUE(reconstruct2(p, {}, many).is_ok());
+  ASSERT_TRUE(many.valid());
+  EXPECT_EQ(many.refine_moves, 5803u);
+  EXPECT_EQ(hash(many.boundary), 0x2596565fef8f8652u);
+  EXPECT_EQ(many.perimeter, 316.9667057986449);
+  EXPECT_EQ(one.boundary, many.boundary);
+}
+
 TEST(Constrict2Validator, Basics) {
   const PointSet sq = make2({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   PolygonCheck d;
