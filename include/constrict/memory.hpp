@@ -16,6 +16,11 @@ namespace constrict {
 bool huge_pages_enabled() noexcept;
 
 namespace detail {
+/// Hands the allocator's free pages back to the system (glibc's malloc_trim; nothing elsewhere).
+/// For the end of a stage whose helper threads allocated: their arenas keep what they freed, and
+/// the next stage, allocating on the calling thread, cannot reuse it (the 2D fallback's parallel
+/// tests raised the peak of a 10^6 uniform square by 17 MB without it; the call took 6-7 ms).
+void return_free_memory() noexcept;
 /// The decision of huge_pages_enabled() from its inputs: the variable's value (null: unset) and
 /// the root of the virtio devices in sysfs (normally /sys/bus/virtio/devices).
 bool huge_pages_wanted(const char* no_hugepages_env, const std::string& virtio_devices) noexcept;

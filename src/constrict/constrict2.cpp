@@ -22,6 +22,7 @@
 #include "constrict/criterion.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
+#include "constrict/memory.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/refine2.hpp"
@@ -1281,6 +1282,7 @@ struct Constrictor2::Impl {
     r.complete = n_onb == n;
     std::vector<int> poly = boundary_list();  // ranked ids until the end
     release_stepping_state();
+    if (fb_ready) detail::return_free_memory();  // (the fallback's threads allocated: memory.hpp)
     bool refined = false;                        // the refinement's search ran
     std::vector<std::array<int, 2>> non_dt;      // the polygon's non-Delaunay edges (ranked ids)
     r.ms_delaunay = ms_delaunay;

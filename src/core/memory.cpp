@@ -7,6 +7,10 @@
 #include <string>
 #include <system_error>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace constrict {
 namespace detail {
 
@@ -34,6 +38,12 @@ bool reports_free_pages(const std::string& root) {
 }
 
 }  // namespace
+
+void return_free_memory() noexcept {
+#if defined(__GLIBC__)
+  (void)malloc_trim(0);
+#endif
+}
 
 bool huge_pages_wanted(const char* no_hugepages_env, const std::string& virtio_devices) noexcept {
   if (no_hugepages_env) return false;
