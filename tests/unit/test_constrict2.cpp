@@ -246,17 +246,14 @@ TEST(Constrict2Unit, CollinearHullPoints) {
   EXPECT_TRUE(validate_polygon(p, r.boundary).is_ok());
 }
 
-// The result does not depend on the thread count: inputs large enough for the parallel passes
-// (canonical order, duplicate check, the refinement's gathered candidate lists, validation) to
-// split into several blocks, a uniform square and a noisy circle (both lock, fall back and
-// refine), each with one thread and with all.
-TEST(Constrict2Unit, ThreadCountIndependent) {
-  const unsigned seed = 23;
+// Two inputs of n points that lock and fall back: a uniform square and a circle with normal noise
+// of one spacing (one generator, in that order; the seed is printed).
+std::vector<PointSet> locking_inputs(unsigned seed, int n) {
   std::printf("seed %u\n", seed);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> noise(0, 1);
-  const int n = 60000;
+  std::vector<PointSet> out;
   for (int shape = 0; shape < 2; ++shape) {
     std::vector<std::array<double, 2>> xy;
     for (int k = 0; k < n; ++k) {
@@ -267,7 +264,20 @@ TEST(Constrict2Unit, ThreadCountIndependent) {
         xy.push_back({r * std::cos(t), r * std::sin(t)});
       }
     }
-    const PointSet p = test::make2(xy);
+    out.push_back(test::make2(xy));
+  }
+  return out;
+}
+
+// The result does not depend on the thread count: inputs large enough for the parallel passes
+// (canonical order, duplicate check, the refinement's gathered candidate lists, validation) to
+// split into several blocks, a uniform square and a noisy circle (both lock, fall back and
+// refine), each with one thread and with all.
+TEST(Constrict2Unit, ThreadCountIndependent) {
+  const unsigned seed = 23;
+  const std::vector<PointSet> inputs = locking_inputs(seed, 60000);
+  for (int shape = 0; shape < 2; ++shape) {
+    const PointSet& p = inputs[static_cast<std::size_t>(shape)];
     Polygon2Result one, many;
     {
       tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
@@ -290,22 +300,9 @@ TEST(Constrict2Unit, ThreadCountIndependent) {
 // polygon is compared as it is.
 TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
   const unsigned seed = 29;
-  std::printf("seed %u\n", seed);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> noise(0, 1);
-  const int n = 40000;
+  const std::vector<PointSet> inputs = locking_inputs(seed, 40000);
   for (int shape = 0; shape < 2; ++shape) {
-    std::vector<std::array<double, 2>> xy;
-    for (int k = 0; k < n; ++k) {
-      if (shape == 0) {
-        xy.push_back({u(rng), u(rng)});
-      } else {
-        const double t = 2 * M_PI * u(rng), r = 1 + 2 * M_PI / n * noise(rng);
-        xy.push_back({r * std::cos(t), r * std::sin(t)});
-      }
-    }
-    const PointSet p = test::make2(xy);
+    const PointSet& p = inputs[static_cast<std::size_t>(shape)];
     Constrict2Options o = Constrict2Options::paper();
     o.fallback_tests_ahead = 0;
     Polygon2Result one;
