@@ -9,6 +9,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "constrict/predicates.hpp"
 #include "constrict/detail/segments2.hpp"
@@ -311,9 +312,13 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
   if (!st) return st;
   // Mark the polygon edges met as triangle edges: succ[u] is the vertex after u on the polygon.
   const std::size_t n = points.size();
+  // (check_indices: the boundary is a permutation of the points, so every write has its own slot.)
   std::vector<int> succ(n, -1);
-  for (std::size_t k = 0; k < boundary.size(); ++k)
-    succ[static_cast<std::size_t>(boundary[k])] = boundary[(k + 1) % boundary.size()];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundary.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t k = r.begin(); k != r.end(); ++k)
+                        succ[static_cast<std::size_t>(boundary[k])] = boundary[k + 1 == boundary.size() ? 0 : k + 1];
+                    });
   // found[u]: the polygon edge from u is a triangle edge. The pass over the triangles reads succ
   // at random and runs in parallel; a flag is only ever set to 1 (relaxed atomic stores), so the
   // flags do not depend on the schedule.
@@ -338,9 +343,15 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
       }
     }
   });
-  bool all_edges_in = indices_ok.load();
-  const bool indices_in = all_edges_in;
-  for (std::size_t u = 0; u < n && all_edges_in; ++u) all_edges_in = found[u].load(std::memory_order_relaxed) != 0;
+  const bool indices_in = indices_ok.load();
+  const bool all_edges_in = indices_in && tbb::parallel_reduce(
+                                              tbb::blocked_range<std::size_t>(0, n, 16384), true,
+                                              [&](const tbb::blocked_range<std::size_t>& r, bool all) {
+                                                for (std::size_t u = r.begin(); u != r.end() && all; ++u)
+                                                  all = found[u].load(std::memory_order_relaxed) != 0;
+                                                return all;
+                                              },
+                                              [](bool x, bool y) { return x && y; });
   Poly P{points, boundary, boundary.size()};
   if (!all_edges_in) {
     // Some edge is not a triangulation edge: the sweep decides, over the edges near those when
