@@ -35,6 +35,7 @@
 #include "core/detail/dense_segments.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
+#include "core/detail/ordered_pack.hpp"
 #include "core/detail/sparse_segments.hpp"
 #include "cgal/detail/delaunay_local.hpp"
 
@@ -452,8 +453,13 @@ struct Constrictor2::Impl {
                            nxt.assign(n, -1);
                            prv.assign(n, -1);
                          });
-    // Convex hull: DT edges without a neighbour; collinear hull points are hull vertices.
-    for (std::size_t t = 0; t < nt; ++t)
+    // Convex hull: DT edges without a neighbour; collinear hull points are hull vertices. The
+    // triangles with such an edge, in triangle order, found on both cores.
+    const std::vector<std::uint32_t> hull = detail::ordered_pack<std::uint32_t>(nt, [&](std::size_t t, auto&& push) {
+      const auto& nb = dt.neighbors[t];
+      if (nb[0] < 0 || nb[1] < 0 || nb[2] < 0) push(static_cast<std::uint32_t>(t));
+    });
+    for (const std::uint32_t t : hull)
       for (int i = 0; i < 3; ++i)
         if (dt.neighbors[t][U(i)] < 0) {
           const int a = dt.triangles[t][U((i + 1) % 3)], b = dt.triangles[t][U((i + 2) % 3)];
@@ -462,7 +468,7 @@ struct Constrictor2::Impl {
           if (!onb[U(a)]) { onb[U(a)] = 1; ++n_onb; }
           if (!onb[U(b)]) { onb[U(b)] = 1; ++n_onb; }
         }
-    for (std::size_t t = 0; t < nt; ++t)
+    for (const std::uint32_t t : hull)
       for (int i = 0; i < 3; ++i)
         if (dt.neighbors[t][U(i)] < 0) push_triangle(static_cast<int>(t));
     ready = true;
