@@ -65,8 +65,8 @@ struct Constrict2Options {
   /// moved (the polygon stays simple when the bound stops it; Polygon2Result::refine_budget_hit).
   std::size_t refine_work_per_point = 64;
   /// The γ0 fallback's graph tests done side by side ahead of its queue (0: each test as its
-  /// candidate comes out). A tuning knob only: the polygon is the same for every value and
-  /// thread count.
+  /// candidate comes out; at most 1024 are used). A tuning knob only: the polygon is the same for
+  /// every value and thread count.
   std::size_t fallback_tests_ahead = 16;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
   /// then incomplete (no fallback runs) unless all points were already on the boundary.

@@ -20,6 +20,7 @@ namespace detail {
 /// For the end of a stage whose helper threads allocated: their arenas keep what they freed, and
 /// the next stage, allocating on the calling thread, cannot reuse it (the 2D fallback's parallel
 /// tests raised the peak of a 10^6 uniform square by 17 MB without it; the call took 6-7 ms).
+/// It trims every arena of the process, the host application's too (which only gives memory back).
 void return_free_memory() noexcept;
 /// The decision of huge_pages_enabled() from its inputs: the variable's value (null: unset) and
 /// the root of the virtio devices in sysfs (normally /sys/bus/virtio/devices).

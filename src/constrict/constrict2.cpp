@@ -372,7 +372,6 @@ struct Constrictor2::Impl {
     unsigned stamp = 0;
   };  // (neighbourhood)
   Marks marks;
-  tbb::enumerable_thread_specific<Marks> worker_marks;  // (first_heap)
 
   const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
@@ -666,13 +665,10 @@ struct Constrictor2::Impl {
     ++n_onb;
   }
 
-  // Vertices within k DT hops of the seeds (marks them with a fresh stamp; m.mark is made on first
-  // use).
-  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) { return neighbourhood(seeds, k, marks); }
-  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k, Marks& m) const {
-    if (m.mark.size() != n) m.mark.assign(n, 0);
-    auto& mark = m.mark;
-    const unsigned mark_stamp = ++m.stamp;
+  // Vertices within k DT hops of the seeds (marks them with a fresh stamp).
+  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) {
+    auto& mark = marks.mark;
+    const unsigned mark_stamp = ++marks.stamp;
     std::vector<int> out;
     for (int s : seeds)
       if (mark[U(s)] != mark_stamp) { mark[U(s)] = mark_stamp; out.push_back(s); }
@@ -986,14 +982,28 @@ struct Constrictor2::Impl {
   }
 
   // Candidate boundary edges for apex z: those with an endpoint within k hops of z (their start
-  // vertices, ascending).
-  std::vector<int> candidate_starts(int z, int k, Marks& m) const {
+  // vertices, ascending), from the vertices within k hops (in any order).
+  std::vector<int> candidate_starts(const std::vector<int>& region) const {
     std::vector<int> starts;
-    for (int u : neighbourhood({z}, k, m))
+    for (int u : region)
       if (onb[U(u)]) { starts.push_back(u); starts.push_back(prv[U(u)]); }
     std::sort(starts.begin(), starts.end());
     starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
     return starts;
+  }
+  // The vertices within k DT hops of z, without the shared marks (for the side-by-side first heap;
+  // k is 2 there): each hop adds the neighbours of all so far, then sorts and dedups. The same set
+  // as neighbourhood({z}, k).
+  std::vector<int> within_hops(int z, int k) const {
+    std::vector<int> all{z};
+    for (int d = 0; d < k; ++d) {
+      const std::size_t m = all.size();
+      for (std::size_t i = 0; i < m; ++i)
+        for (int w = adj_off[U(all[i])]; w < adj_off[U(all[i]) + 1]; ++w) all.push_back(adj[U(w)]);
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+    }
+    return all;
   }
   // The first heap of a stage: every stuck point's candidates. For the γ0 and degree-4 graphs
   // they are made side by side (candidate() reads only), by fixed blocks of stuck points joined
@@ -1008,18 +1018,17 @@ struct Constrictor2::Impl {
     Heap h;
     if (g == Graph::Complete) {
       for (const int z : stuck)
-        for (const int a : candidate_starts(z, k, marks)) push_candidate(h, g, gamma0, a, z);
+        for (const int a : candidate_starts(neighbourhood({z}, k))) push_candidate(h, g, gamma0, a, z);
       return h;
     }
     constexpr std::size_t kBlock = 256;
     const std::size_t nb = (stuck.size() + kBlock - 1) / kBlock;
     std::vector<std::vector<Entry>> parts(nb);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      Marks& m = worker_marks.local();
       for (std::size_t q = r.begin(); q != r.end(); ++q)
         for (std::size_t i = q * kBlock; i < std::min(stuck.size(), (q + 1) * kBlock); ++i) {
           Entry e;
-          for (const int a : candidate_starts(stuck[i], k, m))
+          for (const int a : candidate_starts(within_hops(stuck[i], k)))
             if (candidate(g, gamma0, a, stuck[i], e)) parts[q].push_back(e);
         }
     });
@@ -1036,6 +1045,7 @@ struct Constrictor2::Impl {
   // caches hold), so the insertions are those of testing each entry as it comes out, on any
   // thread count; a test of an entry that a nearer insertion makes dead is wasted, not wrong.
   // Dead entries met on the way are dropped (they would fail when they come out).
+  static constexpr std::size_t kMaxTestsAhead = 1024;  // (each batch pops and pushes its entries)
   void graph_tests_ahead(Heap& h, double gamma0, std::size_t count) {
     std::vector<Entry> ahead;
     while (!h.empty() && ahead.size() < count) {
@@ -1092,7 +1102,7 @@ struct Constrictor2::Impl {
     std::size_t placed = 0;
     while (!h.empty() && n_onb < n) {
       if (g == Graph::Gamma0 && opt.fallback_tests_ahead > 0 && entry_live(h.top()) && graph_pending(h.top()))
-        graph_tests_ahead(h, gamma0, opt.fallback_tests_ahead);
+        graph_tests_ahead(h, gamma0, std::min<std::size_t>(opt.fallback_tests_ahead, kMaxTestsAhead));
       if (h.empty()) break;
       const Entry e = h.top();
       h.pop();
@@ -1378,7 +1388,6 @@ struct Constrictor2::Impl {
     std::vector<BEdge>().swap(bedges);
     std::vector<int>().swap(out_edge);
     marks = Marks{};
-    worker_marks.clear();
     std::vector<int>().swap(vt_off);
     std::vector<int>().swap(vt);
     decltype(delta_cache)().swap(delta_cache);

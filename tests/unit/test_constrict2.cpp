@@ -328,7 +328,9 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
 // A reversal of the refinement's tour of at least 65 536 positions runs in blocks on both cores
 // (refine2.cpp, reverse_positions). A uniform square of 150 000 points makes 28 of them; its
 // polygon must be the one of the sequential reversals, recorded here as a hash (the boundary in
-// input ids, h = h * 1000003 + id mod 2^64) with its perimeter, and the same on one core.
+// input ids, h = h * 1000003 + id mod 2^64) with its perimeter, and the same on one core. (One
+// core runs the same blocks in sequence, so the recorded hash is the check; it was taken from the
+// build before the blocks. If the threshold of 65 536 is raised, make the input larger.)
 TEST(Constrict2Unit, LongReversalsGiveTheSequentialPolygon) {
   const unsigned seed = 31;
   std::printf("seed %u\n", seed);
