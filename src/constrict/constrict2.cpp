@@ -367,11 +367,8 @@ struct Constrictor2::Impl {
   std::vector<int> out_edge;              // boundary edge id of (v, nxt[v])
   std::unordered_map<std::uint64_t, double> delta_cache;
   std::unordered_set<std::uint64_t> aug;  // degree-4 augmentation edges
-  struct Marks {
-    std::vector<unsigned> mark;
-    unsigned stamp = 0;
-  };  // (neighbourhood)
-  Marks marks;
+  std::vector<unsigned> mark;
+  unsigned mark_stamp = 0;
 
   const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
@@ -540,7 +537,7 @@ struct Constrictor2::Impl {
       }
     // The Delaunay adjacency beside the grids (neither reads the other).
     tbb::parallel_invoke([&] { build_adjacency(); }, [&] { build_grid(); });
-    marks.mark.assign(n, 0);
+    mark.assign(n, 0);
   }
   void build_grid() {
     // The median boundary edge (largest coordinate difference) sizes a sparse grid's cells.
@@ -667,8 +664,7 @@ struct Constrictor2::Impl {
 
   // Vertices within k DT hops of the seeds (marks them with a fresh stamp).
   std::vector<int> neighbourhood(const std::vector<int>& seeds, int k) {
-    auto& mark = marks.mark;
-    const unsigned mark_stamp = ++marks.stamp;
+    ++mark_stamp;
     std::vector<int> out;
     for (int s : seeds)
       if (mark[U(s)] != mark_stamp) { mark[U(s)] = mark_stamp; out.push_back(s); }
@@ -922,14 +918,20 @@ struct Constrictor2::Impl {
     if (g == Graph::Complete) return true;
     if (is_dt_edge(u, v)) return true;
     if (g == Graph::Degree4) return aug.count(detail::edge_key(u, v)) > 0;
-    const std::uint64_t key = detail::edge_key(u, v);
-    if (const auto it = gamma0_known.find(key); it != gamma0_known.end()) return it->second;
+    if (const int known = gamma0_answer(u, v); known >= 0) return known == 1;
     const bool in = delta_at_least(u, v, gamma0, shared_caches, shared_caches);
-    gamma0_known.emplace(key, in);
+    gamma0_known.emplace(detail::edge_key(u, v), in);
     return in;
   }
   // The γ0 graph's answers of this stage (in_graph, graph_tests_ahead), by pair.
   std::unordered_map<std::uint64_t, bool> gamma0_known;
+  // Pair (u, v)'s answer in this γ0 stage if known without a search: 1 (a Delaunay edge, or
+  // answered in), 0 (answered out), -1 (not yet).
+  int gamma0_answer(int u, int v) const {
+    if (is_dt_edge(u, v)) return 1;
+    const auto it = gamma0_known.find(detail::edge_key(u, v));
+    return it == gamma0_known.end() ? -1 : it->second ? 1 : 0;
+  }
 
   // Δ(u, v) < gamma0 (< 0) shown by the DT neighbours of u and v alone: a point on the open
   // segment, or points with apex value below gamma0 on both sides (the magnitude rule, as for a
@@ -1021,22 +1023,15 @@ struct Constrictor2::Impl {
         for (const int a : candidate_starts(neighbourhood({z}, k))) push_candidate(h, g, gamma0, a, z);
       return h;
     }
-    constexpr std::size_t kBlock = 256;
-    const std::size_t nb = (stuck.size() + kBlock - 1) / kBlock;
-    std::vector<std::vector<Entry>> parts(nb);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nb, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t q = r.begin(); q != r.end(); ++q)
-        for (std::size_t i = q * kBlock; i < std::min(stuck.size(), (q + 1) * kBlock); ++i) {
+    constexpr std::size_t kBlock = 256;  // stuck points per block (thousands at 10^6)
+    std::vector<Entry> all = detail::ordered_pack<Entry>(
+        stuck.size(),
+        [&](std::size_t i, auto&& push) {
           Entry e;
           for (const int a : candidate_starts(within_hops(stuck[i], k)))
-            if (candidate(g, gamma0, a, stuck[i], e)) parts[q].push_back(e);
-        }
-    });
-    std::vector<Entry> all;
-    std::size_t total = 0;
-    for (const auto& p : parts) total += p.size();
-    all.reserve(total);
-    for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+            if (candidate(g, gamma0, a, stuck[i], e)) push(e);
+        },
+        kBlock);
     return Heap(EntryLess{}, std::move(all));
   }
 
@@ -1061,15 +1056,9 @@ struct Constrictor2::Impl {
           for (std::size_t i = r.begin(); i != r.end(); ++i)
             for (int s = 0; s < 2; ++s) {
               const int u = s == 0 ? ahead[i].a : ahead[i].b, z = ahead[i].y;
-              bool in;
-              if (is_dt_edge(u, z)) {
-                in = true;
-              } else if (const auto it = gamma0_known.find(detail::edge_key(u, z)); it != gamma0_known.end()) {
-                in = it->second;
-              } else {
-                in = delta_at_least(u, z, gamma0, shared_caches, fresh);
-                res[i][U(s)] = static_cast<signed char>(in);
-              }
+              const int known = gamma0_answer(u, z);  // (gamma0_known is only read here)
+              const bool in = known >= 0 ? known == 1 : delta_at_least(u, z, gamma0, shared_caches, fresh);
+              if (known < 0) res[i][U(s)] = static_cast<signed char>(in);
               if (!in) break;
             }
         });
@@ -1085,10 +1074,9 @@ struct Constrictor2::Impl {
   // the two in graph)?
   bool graph_pending(const Entry& e) const {
     for (const int u : {e.a, e.b}) {
-      if (is_dt_edge(u, e.y)) continue;
-      const auto it = gamma0_known.find(detail::edge_key(u, e.y));
-      if (it == gamma0_known.end()) return true;
-      if (!it->second) return false;
+      const int known = gamma0_answer(u, e.y);
+      if (known < 0) return true;
+      if (known == 0) return false;
     }
     return false;
   }
@@ -1387,7 +1375,7 @@ struct Constrictor2::Impl {
     grid = Grid{};
     std::vector<BEdge>().swap(bedges);
     std::vector<int>().swap(out_edge);
-    marks = Marks{};
+    std::vector<unsigned>().swap(mark);
     std::vector<int>().swap(vt_off);
     std::vector<int>().swap(vt);
     decltype(delta_cache)().swap(delta_cache);

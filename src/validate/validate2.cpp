@@ -247,10 +247,12 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
   // The candidates: the unflagged edges, and every edge whose box meets one of theirs (each edge
   // on its own: both cores).
   only.assign(n, 0);
-  for (std::size_t e : odd) only[e] = 2;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t f = r.begin(); f != r.end(); ++f) {
-      if (only[f]) continue;
+      if (!dt[f]) {  // (one of odd)
+        only[f] = 1;
+        continue;
+      }
       const Box bf = box(f);
       bool hit = false;
       for (std::size_t g : big) hit = hit || meet(bf, box(g));
@@ -262,7 +264,6 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
       only[f] = hit ? 1 : 0;
     }
   });
-  for (std::size_t e : odd) only[e] = 1;
   return true;
 }
 
