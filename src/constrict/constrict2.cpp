@@ -36,6 +36,7 @@
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/ordered_pack.hpp"
+#include "core/detail/quad_heap.hpp"
 #include "core/detail/sparse_segments.hpp"
 #include "cgal/detail/delaunay_local.hpp"
 
@@ -112,8 +113,7 @@ struct TriEntryLess {
     return ties->of(l.t) > ties->of(r.t);
   }
 };
-using TriHeap = std::priority_queue<TriEntry, std::vector<TriEntry>, TriEntryLess>;
-
+using TriHeap = detail::QuadHeap<TriEntry, TriEntryLess>;
 
 // Bucket grids of the points and of the boundary edges, for the fallback's local tests. Cell
 // indices are monotone in the coordinates, so a query over the cells a shape can touch finds
@@ -376,15 +376,17 @@ struct Constrictor2::Impl {
   int G(int v) const { return v < 0 ? v : gid[U(v)]; }
   std::array<int, 3> sorted_gid3(int a, int b, int c) const { return sorted3(G(a), G(b), G(c)); }
 
-  // stage: a C string, so that the million removals without a visitor build no std::string.
+  // stage: a C string, so that the million removals without a visitor build no std::string;
+  // with one (the CLI's progress), the event is reused and its stage name copied only when the
+  // stage changes.
+  Constrict2Event event;
   void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const char* stage) {
     if (!visitor) return;
-    Constrict2Event ev;
-    ev.kind = k;
-    ev.triangle = {{G(a), G(b), G(y)}};
-    ev.criterion = crit;
-    ev.stage = stage;
-    visitor->on_event(ev);
+    event.kind = k;
+    event.triangle = {{G(a), G(b), G(y)}};
+    event.criterion = crit;
+    if (event.stage != stage) event.stage = stage;
+    visitor->on_event(event);
   }
 
   // Key of removing triangle (a, b, y) through boundary edge a->b: 1 - γ(ab; y) (§3.4) or the

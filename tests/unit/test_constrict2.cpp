@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <queue>
 #include <random>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "constrict/constrict.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/validate.hpp"
+#include "core/detail/quad_heap.hpp"
 #include "test_fixtures.hpp"
 
 namespace constrict {
@@ -392,6 +395,66 @@ TEST(Constrict2Validator, TouchingAndCollinear) {
   const Status s1 = validate_polygon(v, {0, 1, 2, 3, 4, 5}, &d1);
   const Status s2 = validate_polygon_brute_force(v, {0, 1, 2, 3, 4, 5}, &d2);
   EXPECT_EQ(s1.is_ok(), s2.is_ok());
+}
+
+// QuadHeap (core/detail/quad_heap.hpp, the 2D constriction's queue) pops what std::priority_queue
+// pops under a strict total order: random pushes and pops with keys drawn from a few values (ties
+// broken by a second field through a comparator with state, as the constriction's are), runs of
+// pushes across its growth steps, draining, and a move mid-way.
+TEST(Constrict2Unit, QuadHeapPopsInTheOrderOfAStdHeap) {
+  struct Item {
+    double key;
+    std::uint32_t id;
+  };
+  struct Less {
+    const int* sign = nullptr;  // state: the tie order
+    bool operator()(const Item& l, const Item& r) const {
+      if (l.key != r.key) return l.key < r.key;
+      return *sign * static_cast<int>(l.id) < *sign * static_cast<int>(r.id);
+    }
+  };
+  for (const int sign : {1, -1})
+    for (const std::size_t keys : {std::size_t{3}, std::size_t{1000000}})
+      for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", keys " + std::to_string(keys) + ", sign " +
+                     std::to_string(sign));
+        std::uint64_t s = seed;
+        detail::QuadHeap<Item, Less> q(Less{&sign});
+        std::priority_queue<Item, std::vector<Item>, Less> want(Less{&sign});
+        std::uint32_t next_id = 0;
+        std::size_t bad = 0;
+        for (int round = 0; round < 6; ++round) {
+          // push-heavy, pop-heavy, then balanced phases: the size crosses 1021, 2045, 4093, ...
+          const std::uint64_t push_share = round % 3 == 0 ? 9 : round % 3 == 1 ? 2 : 5;
+          for (int step = 0; step < 20000; ++step) {
+            const std::uint64_t r = test::splitmix64(s);
+            if (r % 10 < push_share || want.empty()) {
+              const Item it{static_cast<double>((r >> 8) % keys) * 0.25, next_id++};
+              q.push(it);
+              want.push(it);
+            } else {
+              ASSERT_FALSE(q.empty());
+              bad += q.top().id != want.top().id;
+              q.pop();
+              want.pop();
+            }
+            bad += q.size() != want.size();
+          }
+          if (round == 3) {
+            detail::QuadHeap<Item, Less> moved(Less{&sign});
+            moved = std::move(q);
+            q = std::move(moved);
+          }
+        }
+        while (!want.empty()) {
+          ASSERT_FALSE(q.empty());
+          bad += q.top().id != want.top().id;
+          q.pop();
+          want.pop();
+        }
+        EXPECT_TRUE(q.empty());
+        EXPECT_EQ(bad, 0u);
+      }
 }
 
 }  // namespace
