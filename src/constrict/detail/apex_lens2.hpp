@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Where the points with a small apex value lie, for the 2D fallback's side searches
-// (constrict2.cpp, sides_below). A point p sees segment ab under the angle θ = ∠apb; its apex
+// (fallback2.cpp, sides_below). A point p sees segment ab under the angle θ = ∠apb; its apex
 // value (spec §2.1) is below t < 0 iff θ > π - α with α = asin(1 + t). On each side of ab those
 // points lie under a circular arc through a and b that meets the segment at the angle α and rises
 // to (|ab| / 2) tan(α / 2) over its midpoint (a lens, thin at the segment's ends); the arc is

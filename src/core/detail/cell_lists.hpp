@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One id list per grid cell, for the segment grids of the 2D fallback and refinement
-// (sparse_segments.hpp, the dense layers in constrict2.cpp and refine2.cpp). Those grids are
+// (sparse_segments.hpp, the dense layers in fallback2.cpp and refine2.cpp). Those grids are
 // filled once with a whole polygon (10^6 edges) and then changed by a few edges per move. One
 // std::vector per cell cost a heap allocation per non-empty cell, and on the uniform 10^6 square
 // the filling and freeing were a tenth of the run. Here the first filling is a counting sort into
