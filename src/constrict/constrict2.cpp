@@ -3,6 +3,7 @@
 // of local fallbacks after a lock (paper §4.3; spec §3.6, §3.7; their steps are in fallback2.cpp)
 // and a final repair. See docs/reconstruction-2d.md for the algorithm and its guarantees.
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include "constrict/detail/constrict2_impl.hpp"
 #include "constrict/detail/refine2.hpp"
@@ -123,6 +124,21 @@ bool Constrictor2::Impl::step() {
 
 void Constrictor2::Impl::run_all() {
   const auto t0 = Clock::now();
+  // The constriction runs on one core. Meanwhile the second one builds what a lock's fallback
+  // reads first and does not depend on where the constriction stops: the Delaunay adjacency (the
+  // refinement reads it too) and the points' coarse grid. They read only the points, the
+  // triangles and their neighbours, which the constriction does not change, and they are the
+  // same whenever they are built. (Without a lock and a refinement they are not needed: a core's
+  // otherwise idle time.)
+  struct Side {
+    tbb::task_group group;
+    ~Side() { group.wait(); }
+  } side;
+  if (ready && !locked && !stopped && n_onb < n)
+    side.group.run([this] {
+      build_adjacency();
+      if (!grid.points_built()) grid.build_points(*pts);
+    });
   while (step_untimed()) {}
   ms_constrict += ms_since(t0);
 }

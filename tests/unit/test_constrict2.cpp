@@ -295,6 +295,32 @@ TEST(Constrict2Unit, ThreadCountIndependent) {
   }
 }
 
+// finish() after steps by hand gives the result of one call: the fallback's adjacency and point
+// grid are built beside the rest of the constriction when finish() runs it, and by the fallback
+// itself when the steps already ran into the lock. A uniform square and a noisy circle (both lock,
+// fall back and refine), stepped 0, 1000 and all steps.
+TEST(Constrict2Unit, SteppedThenFinishedIsTheWholeRun) {
+  const unsigned seed = 31;
+  const std::vector<PointSet> inputs = locking_inputs(seed, 20000);
+  for (int shape = 0; shape < 2; ++shape) {
+    const PointSet& p = inputs[static_cast<std::size_t>(shape)];
+    Polygon2Result whole;
+    ASSERT_TRUE(reconstruct2(p, {}, whole).is_ok());
+    ASSERT_TRUE(whole.valid());
+    ASSERT_GT(whole.fallback_insertions, 0u) << "shape " << shape << ": expected a lock";
+    for (const std::size_t steps : {std::size_t{0}, std::size_t{1000}, ~std::size_t{0}}) {
+      Constrictor2 c;
+      ASSERT_TRUE(c.init(p, {}).is_ok());
+      for (std::size_t k = 0; k < steps && c.step(); ++k) {}
+      Polygon2Result r;
+      ASSERT_TRUE(c.finish(r).is_ok());
+      EXPECT_EQ(r.boundary, whole.boundary) << "seed " << seed << " shape " << shape << " steps " << steps;
+      EXPECT_EQ(r.fallback_insertions, whole.fallback_insertions) << "shape " << shape << " steps " << steps;
+      EXPECT_EQ(r.refine_moves, whole.refine_moves) << "shape " << shape << " steps " << steps;
+    }
+  }
+}
+
 // The γ0 fallback tests the graph edges of the next candidates side by side
 // (Constrict2Options::fallback_tests_ahead). A test's answer is a property of the pair and the
 // stage, so the insertions must be those of testing each candidate as it comes out (width 0),
