@@ -4,6 +4,7 @@
 // Brute force: random shapes (long thin ones included) on grids at several scales and offsets,
 // points sampled inside them and on their edges, each point's cell must have been visited.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <algorithm>
@@ -303,6 +304,47 @@ TEST(GridCells, CellListsMatchAMultiset) {
       EXPECT_EQ(calls, 1);
       break;
     }
+}
+
+// CellLists::build_in_blocks (two ranges of items side by side, from 2^16 items on) gives the
+// lists of build() in the same order, cell by cell, on any thread count; 0 to 3 cells per item,
+// runs of one cell and scattered ones.
+TEST(GridCells, CellListsInBlocksAreTheSequentialLists) {
+  const unsigned seed = 17;
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  const std::size_t cells = 5003;
+  for (const std::size_t count : {std::size_t{1000}, std::size_t{65536}, std::size_t{200001}}) {
+    std::vector<std::vector<std::size_t>> item_cells(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t m = rng() % 4, c0 = k % 7 == 0 ? rng() % cells : (k / 40) % cells;
+      for (std::size_t j = 0; j < m; ++j) item_cells[k].push_back((c0 + j * (rng() % 3)) % cells);
+    }
+    const auto visit = [&](std::size_t k0, std::size_t k1, auto&& emit) {
+      for (std::size_t k = k0; k < k1; ++k)
+        for (const std::size_t c : item_cells[k]) emit(c, static_cast<int>(k));
+    };
+    const auto lists_of = [&](const detail::CellLists<int>& l) {
+      std::vector<std::vector<int>> out(cells);
+      for (std::size_t c = 0; c < cells; ++c)
+        l.any(c, [&](int id) {
+          out[c].push_back(id);
+          return false;
+        });
+      return out;
+    };
+    detail::CellLists<int> seq, blocks, one;
+    seq.build(cells, [&](auto&& emit) { visit(0, count, emit); });
+    blocks.build_in_blocks(cells, count, visit);
+    {
+      tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+      one.build_in_blocks(cells, count, visit);
+    }
+    const auto want = lists_of(seq);
+    EXPECT_EQ(blocks.size(), cells);
+    EXPECT_TRUE(lists_of(blocks) == want) << "seed " << seed << ", " << count << " items";
+    EXPECT_TRUE(lists_of(one) == want) << "seed " << seed << ", " << count << " items, one thread";
+  }
 }
 
 // CellTable against std::map: cells along curves and scattered ones (growth, collisions), far

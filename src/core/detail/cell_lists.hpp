@@ -8,9 +8,12 @@
 // either part. The order of the ids in a list is not part of the interface: every query asks
 // whether any registered segment meets a new one, so its answer does not depend on it.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 namespace constrict::detail {
 
@@ -54,6 +57,39 @@ template <class Id> class CellLists {
     bulk_.resize(at[cells]);
     visit([&](std::size_t c, Id id) { bulk_[at[c]++] = id; });
   }
+  /// build() for the ids that visit(k0, k1, emit) emits for items [k0, k1) of count, counted and
+  /// placed in kBlocks fixed ranges of items side by side. Every cell emitted must be below
+  /// `cells`. The lists are those of build() over the items in order (in each cell, a block's ids
+  /// follow the earlier blocks'), whatever the thread count. Below kBlocksFrom items, build().
+  template <class Visit>
+  void build_in_blocks(std::size_t cells, std::size_t count, Visit&& visit) {
+    if (count < kBlocksFrom) return build(cells, [&](auto&& emit) { visit(std::size_t{0}, count, emit); });
+    clear();
+    grow(cells);
+    const auto first = [count](std::size_t b) { return count * b / kBlocks; };
+    // Per block and cell: the count, then the position of the block's next id in the cell (32
+    // bits: together as much memory as build()'s one array of positions).
+    std::array<std::vector<std::uint32_t>, kBlocks> at;
+    tbb::parallel_for(std::size_t{0}, kBlocks, [&](std::size_t b) {
+      at[b].assign(cells, 0);
+      visit(first(b), first(b + 1), [&](std::size_t c, Id) { ++at[b][c]; });
+    });
+    std::size_t total = 0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      start_[c] = total;
+      for (std::size_t b = 0; b < kBlocks; ++b) {
+        const std::size_t k = at[b][c];
+        at[b][c] = static_cast<std::uint32_t>(total);
+        total += k;
+      }
+      len_[c] = static_cast<std::uint32_t>(total - start_[c]);
+    }
+    if (total > UINT32_MAX) return build(cells, [&](auto&& emit) { visit(std::size_t{0}, count, emit); });
+    bulk_.resize(total);
+    tbb::parallel_for(std::size_t{0}, kBlocks, [&](std::size_t b) {
+      visit(first(b), first(b + 1), [&](std::size_t c, Id id) { bulk_[at[b][c]++] = id; });
+    });
+  }
   void add(std::size_t c, Id id) {
     int k = free_;
     if (k >= 0) {
@@ -95,6 +131,9 @@ template <class Id> class CellLists {
   }
 
  private:
+  // build_in_blocks: two ranges (one per core of the machines it is made for; a fixed number, so
+  // that nothing depends on the thread count), from 2^16 items on.
+  static constexpr std::size_t kBlocks = 2, kBlocksFrom = std::size_t{1} << 16;
   struct Node {
     Id id;
     int next;
@@ -110,7 +149,12 @@ template <class Id> class CellLists {
 /// The bulk fills of the segment grids (sparse_segments.hpp, dense_segments.hpp) take their
 /// segments as seg(k, a, b, id) for k < count; this calls f(a, b, id) for each.
 template <class Id, class Seg, class F> void for_each_segment(std::size_t count, Seg& seg, F&& f) {
-  for (std::size_t k = 0; k < count; ++k) {
+  for_each_segment<Id>(0, count, seg, f);
+}
+/// The same for k in [k0, k1).
+template <class Id, class Seg, class F>
+void for_each_segment(std::size_t k0, std::size_t k1, Seg& seg, F&& f) {
+  for (std::size_t k = k0; k < k1; ++k) {
     const double* a = nullptr;
     const double* b = nullptr;
     Id id{};

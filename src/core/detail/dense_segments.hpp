@@ -32,8 +32,10 @@ template <class Id> class DenseSegments {
   /// Registers count segments on an empty grid (after reset()), seg(k, a, b, id) giving the k-th
   /// (the same each call): what count calls of add() would do, in one counting sort.
   template <class Seg> void add_all(std::size_t count, Seg&& seg) {
-    lists_.build(lists_.size(), [&](auto&& emit) {
-      for_each_segment<Id>(count, seg, [&](const double* a, const double* b, Id id) {
+    // (In two ranges side by side for long inputs, CellLists::build_in_blocks: seg must allow
+    // concurrent calls.)
+    lists_.build_in_blocks(lists_.size(), count, [&](std::size_t k0, std::size_t k1, auto&& emit) {
+      for_each_segment<Id>(k0, k1, seg, [&](const double* a, const double* b, Id id) {
         strip_cells(a, b, [&](std::size_t c) { emit(c, id); });
       });
     });
