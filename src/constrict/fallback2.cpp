@@ -37,8 +37,7 @@ void Constrictor2::Impl::build_grid() {
   }
   const auto mid = len.begin() + static_cast<std::ptrdiff_t>(len.size() / 2);
   std::nth_element(len.begin(), mid, len.end());
-  if (!grid.points_built()) grid.build_points(*pts);  // (else built beside the constriction)
-  grid.build_edge_layers(*pts, len.empty() ? 0.0 : *mid);
+  grid.build(*pts, len.empty() ? 0.0 : *mid);
   // The edges run by their first vertex; the second one's coordinates are a random read, so
   // they are prefetched a few edges ahead.
   grid.add_edges(bedges.size(), [&](std::size_t k, const double*& a, const double*& b, int& id) {

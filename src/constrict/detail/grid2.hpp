@@ -4,7 +4,6 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -30,14 +29,7 @@ namespace constrict::engine2 {
 // Either layer offers every point and edge a query can need, so the decisions are the same.
 class Grid {
  public:
-  /// build_points(pts) then build_edges_layers(pts, median_edge).
   void build(const PointSet& pts, double median_edge) {
-    build_points(pts);
-    build_edge_layers(pts, median_edge);
-  }
-  /// The coarse layer of the points: it depends on the points alone, so the engine builds it
-  /// while the constriction runs (Constrictor2::Impl::run_all).
-  void build_points(const PointSet& pts) {
     const std::size_t n = pts.size();
     double minx = pts[0][0], maxx = pts[0][0], miny = pts[0][1], maxy = pts[0][1];
     for (std::size_t i = 1; i < n; ++i) {
@@ -46,32 +38,19 @@ class Grid {
       miny = std::min(miny, pts[i][1]);
       maxy = std::max(maxy, pts[i][1]);
     }
-    box_ = {minx, miny, maxx, maxy};
     // Half units throughout (grid_cells.hpp): no overflow or underflow at any scale.
     const double w = detail::half_span(minx, maxx), h = detail::half_span(miny, maxy);
     const double mag = detail::box_magnitude(minx, miny, maxx, maxy);
     const double hcs = std::max({detail::balanced_cell(w, h, n), w / kMaxCells, h / kMaxCells});
     coarse_.frame = detail::GridFrame{
         minx, miny, mag, hcs, detail::cell_count(w, hcs, kMaxCells), detail::cell_count(h, hcs, kMaxCells)};
+    const double fine = Sparse::sparse_half_cell(median_edge, w, h, mag, hcs);
+    fine_on_ = fine > 0;
     std::vector<int> cell(n);
     const std::size_t nc = static_cast<std::size_t>(coarse_.frame.nx) * static_cast<std::size_t>(coarse_.frame.ny);
     for (std::size_t i = 0; i < n; ++i) cell[i] = static_cast<int>(coarse_.index(pts[i]));
     coarse_.group(cell, nc, false);
-    points_built_ = true;
-  }
-  bool points_built() const { return points_built_; }
-  /// The fine layer of the points, when the median boundary edge is far below the coarse cell,
-  /// and the empty edge layers. @pre build_points(pts).
-  void build_edge_layers(const PointSet& pts, double median_edge) {
-    const std::size_t n = pts.size();
-    const auto [minx, miny, maxx, maxy] = box_;
-    const double w = detail::half_span(minx, maxx), h = detail::half_span(miny, maxy);
-    const double mag = detail::box_magnitude(minx, miny, maxx, maxy);
-    const double hcs = coarse_.frame.half_cell;
-    const double fine = Sparse::sparse_half_cell(median_edge, w, h, mag, hcs);
-    fine_on_ = fine > 0;
     if (fine_on_) {
-      std::vector<int> cell(n);
       fine_.frame = detail::GridFrame{minx,
                                       miny,
                                       mag,
@@ -84,7 +63,6 @@ class Grid {
       fine_.group(cell, fine_.table.size(), true);
       edges_fine_.reset(minx, miny, maxx, maxy, fine);
       // The fine search stops where its cells would outnumber a few coarse cells' points.
-      const std::size_t nc = static_cast<std::size_t>(coarse_.frame.nx) * static_cast<std::size_t>(coarse_.frame.ny);
       std::size_t occupied = 0;
       for (std::size_t c = 0; c < nc; ++c) occupied += coarse_.start[c + 1] > coarse_.start[c];
       const double per_cell = static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(occupied, 1));
@@ -267,8 +245,6 @@ class Grid {
   static constexpr int kMaxFineCells = 1 << 28;  // per axis, fine (SparseSegments' bound)
   static constexpr double kFineBudget = 16;      // fine cells read per coarse cell's points, at most
   Layer coarse_, fine_;
-  std::array<double, 4> box_{};  // min x, min y, max x, max y of the points
-  bool points_built_ = false;
   bool fine_on_ = false;
   double fine_cells_ = 0;  // fine cells a query may read (kFineBudget coarse cells' points)
   int fine_rings_ = 0;     // the rings of about that many cells
