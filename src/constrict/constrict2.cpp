@@ -96,12 +96,7 @@ bool Constrictor2::Impl::step_untimed() {
     const int y = tr[i], a = tr[(i + 1) % 3], b = tr[(i + 2) % 3];
     alive[U(t)] = 0;
     ++ver[U(t)];
-    nxt[U(a)] = y;
-    prv[U(y)] = a;
-    nxt[U(y)] = b;
-    prv[U(b)] = y;
-    onb[U(y)] = 1;
-    ++n_onb;
+    splice_boundary(a, y, b);
     ++removed;
     emit(Constrict2Event::Kind::RemoveTriangle, a, b, y, e.key, "gamma");
     for (int j = 0; j < 3; ++j) {

@@ -147,12 +147,7 @@ void Constrictor2::Impl::insert_point(int a, int b, int y) {
   bedges[U(out_edge[U(a)])].alive = false;
   out_edge[U(a)] = add_edge(a, y);
   out_edge[U(y)] = add_edge(y, b);
-  nxt[U(a)] = y;
-  prv[U(y)] = a;
-  nxt[U(y)] = b;
-  prv[U(b)] = y;
-  onb[U(y)] = 1;
-  ++n_onb;
+  splice_boundary(a, y, b);
 }
 
 // Vertices within k DT hops of the seeds (marks them with a fresh stamp).

@@ -257,6 +257,16 @@ struct Constrictor2::Impl {
     __builtin_prefetch(&dt.neighbors[t]);
     __builtin_prefetch(&dt.triangles[t]);
   }
+  // Point y joins the boundary between a and b = nxt[a] (a removal through edge a->b, or a
+  // fallback insertion).
+  void splice_boundary(int a, int y, int b) {
+    nxt[U(a)] = y;
+    prv[U(y)] = a;
+    nxt[U(y)] = b;
+    prv[U(b)] = y;
+    onb[U(y)] = 1;
+    ++n_onb;
+  }
   bool is_dt_edge(int u, int v) const {
     return std::binary_search(adj.begin() + adj_off[U(u)], adj.begin() + adj_off[U(u) + 1], v);
   }
