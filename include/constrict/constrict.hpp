@@ -118,7 +118,8 @@ struct Constrict2Event {
   std::string stage;                          ///< stage name
 };
 
-/// Observer of the constriction (for figures, debugging, tests). Called synchronously.
+/// Observer of the constriction (for figures, debugging, tests). Called synchronously, on the
+/// thread that runs the constriction; it must not call back into the Constrictor2 it observes.
 class Constrict2Visitor {
  public:
   virtual ~Constrict2Visitor() = default;

@@ -16,7 +16,8 @@
 #include "cgal/detail/delaunay_local.hpp"
 
 namespace constrict {
-using namespace engine2;  // the engine's own types (detail/constrict2_impl.hpp)
+using engine2::Clock;  // (the engine's names: detail/constrict2_impl.hpp)
+using engine2::ms_since;
 
 // ---- the Delaunay stage (spec §3.5) ------------------------------------------------------------
 Status Constrictor2::Impl::init(const PointSet& points) {
@@ -125,13 +126,21 @@ void Constrictor2::Impl::run_all() {
   // whenever it is built. (Without a lock and a refinement it is not needed: a core's otherwise
   // idle time. The points' grid was built here too and saved about 30 ms more on the 10^6
   // square, but its arrays, allocated on a TBB thread, raised the noisy curve's peak by 4 MB.)
-  struct Side {
-    tbb::task_group group;
-    ~Side() { group.wait(); }
-  } side;
-  if (ready && !locked && !stopped && n_onb < n)
-    side.group.run([this] { build_adjacency(); });
-  while (step_untimed()) {}
+  const bool beside = ready && !locked && !stopped && n_onb < n && removed < opt.stop_after && !adj_ready &&
+                      (opt.fallback != Fallback::None || opt.refine != Refine2::None);
+  tbb::task_group side;
+  if (beside) side.run([this] { build_adjacency(); });
+  try {
+    while (step_untimed()) {}
+  } catch (...) {
+    // Wait for the task (not ~task_group, which would cancel the adjacency's sorts midway),
+    // and report the constriction's exception rather than the task's.
+    try {
+      side.wait();
+    } catch (...) {}
+    throw;
+  }
+  side.wait();  // (counted in the constriction's time when the adjacency takes longer)
   ms_constrict += ms_since(t0);
 }
 
@@ -290,6 +299,10 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
     r.ms_validate = ms_since(tv);
     CONSTRICT_CHECK(vs.is_ok() || !r.complete, "reconstruct2 produced an invalid polygon: " + vs.message());
   }
+  // The adjacency (built beside the constriction, or by the fallback) is not read after this.
+  std::vector<int>().swap(adj_off);
+  std::vector<int>().swap(adj);
+  adj_ready = false;
   return Status::ok();
 }
 
@@ -343,11 +356,16 @@ struct Constrictor2::Canonical {
   struct IdMap final : Constrict2Visitor {
     Constrict2Visitor* inner = nullptr;
     const std::vector<int>* order = nullptr;
+    Constrict2Event mapped;  // reused: its stage name is copied only when it changes
     void on_event(const Constrict2Event& e) override {
-      Constrict2Event m = e;
-      for (int& v : m.triangle)
-        if (v >= 0) v = (*order)[static_cast<std::size_t>(v)];
-      inner->on_event(m);
+      mapped.kind = e.kind;
+      mapped.criterion = e.criterion;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const int v = e.triangle[k];
+        mapped.triangle[k] = v >= 0 ? (*order)[static_cast<std::size_t>(v)] : v;
+      }
+      if (mapped.stage != e.stage) mapped.stage = e.stage;
+      inner->on_event(mapped);
     }
   } id_map;
   int to_input(int v) const { return v < 0 ? v : order[static_cast<std::size_t>(v)]; }

@@ -6,11 +6,15 @@
 // declared in detail/constrict2_impl.hpp. See docs/reconstruction-2d.md §4.
 #include <tbb/parallel_invoke.h>
 
+#include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/constrict2_impl.hpp"
 #include "core/detail/ordered_pack.hpp"
 
 namespace constrict {
-using namespace engine2;  // the engine's own types (detail/constrict2_impl.hpp)
+using detail::closed_segments_meet;
+using detail::orient2_fast;
+using detail::same_side_collinear;
+using engine2::EntryLess;  // (the engine's names: detail/constrict2_impl.hpp)
 
 // ---- infrastructure: the boundary edges, the Delaunay adjacency, the grids ----------------------
 void Constrictor2::Impl::build_fallback() {
@@ -52,7 +56,6 @@ void Constrictor2::Impl::build_adjacency() {
   if (adj_ready) return;
   CONSTRICT_CHECK(dt.neighbors.size() == dt.triangles.size(),
                   "Constrictor2: the adjacency is asked for after the refinement");
-  adj_ready = true;
   // Adjacency by counting sort: the counter-clockwise edge u->v of a triangle gives u its
   // neighbour v (the reverse comes from the triangle across), and a hull edge also gives v its
   // neighbour u; so every neighbour comes exactly once. Lists sorted for is_dt_edge(). (Two
@@ -79,6 +82,7 @@ void Constrictor2::Impl::build_adjacency() {
     for (std::size_t v = r.begin(); v != r.end(); ++v)
       std::sort(adj.begin() + adj_off[v], adj.begin() + adj_off[v + 1]);
   });
+  adj_ready = true;  // (last: an exception above leaves it unset)
 }
 
 // Vertex -> incident triangles (CSR, by triangle index), for the degree-4 augmentation only.

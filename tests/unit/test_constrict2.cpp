@@ -295,9 +295,9 @@ TEST(Constrict2Unit, ThreadCountIndependent) {
   }
 }
 
-// finish() after steps by hand gives the result of one call: the fallback's adjacency and point
-// grid are built beside the rest of the constriction when finish() runs it, and by the fallback
-// itself when the steps already ran into the lock. A uniform square and a noisy circle (both lock,
+// finish() after steps by hand gives the result of one call: the Delaunay adjacency is built
+// beside the rest of the constriction when finish() runs it, and by the fallback itself when the
+// steps already ran into the lock. A uniform square and a noisy circle (both lock,
 // fall back and refine), stepped 0, 1000 and all steps.
 TEST(Constrict2Unit, SteppedThenFinishedIsTheWholeRun) {
   const unsigned seed = 31;

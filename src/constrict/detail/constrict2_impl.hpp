@@ -29,7 +29,6 @@
 #include "constrict/delaunay.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
-#include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/grid2.hpp"
 #include "constrict/detail/segments2.hpp"
 #include "core/detail/edge_key.hpp"
@@ -37,11 +36,6 @@
 
 namespace constrict {
 namespace engine2 {
-using detail::closed_segments_meet;
-using detail::on_closed_segment;
-using detail::orient2_fast;
-using detail::same_side_collinear;
-
 using Clock = std::chrono::steady_clock;
 inline double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -143,11 +137,17 @@ struct Constrictor2::Impl {
   TriHeap heap{TriEntryLess{&ties}};
   bool locked = false, stopped = false;
   double ms_delaunay = 0, ms_constrict = 0;
-  int scale_exp = 0;  // rpts = ranked input * 2^-scale_exp (exact; init)
+  int scale_exp = 0;                         // rpts = ranked input * 2^-scale_exp (exact; init)
+  Constrict2Event event;                     // reused by emit()
+  std::unique_ptr<Polygon2Result> finished;  // the result of the first finish()
+
+  // The Delaunay adjacency (built beside the constriction, or at the lock; freed by the
+  // refinement or at the end of finish).
+  bool adj_ready = false;
+  std::vector<int> adj_off, adj;  // DT adjacency (CSR)
 
   // Fallback state (built on lock; fallback2.cpp).
-  bool fb_ready = false, adj_ready = false;
-  std::vector<int> adj_off, adj;  // DT adjacency (CSR)
+  bool fb_ready = false;
   std::vector<int> vt_off, vt;    // vertex -> incident triangles (CSR)
   Grid grid;
   struct BEdge {
@@ -160,7 +160,6 @@ struct Constrictor2::Impl {
   std::unordered_set<std::uint64_t> aug;  // degree-4 augmentation edges
   std::vector<unsigned> mark;
   unsigned mark_stamp = 0;
-  Constrict2Event event;                             // reused by emit()
   static constexpr std::size_t kPrefetchAhead = 16;  // build_grid's prefetch distance, in edges
   // Side values of pair (i, j) for a threshold t < 0 (delta_at_least): on each side the exact
   // minimum when it is below t, else a value >= t; or, once both sides have a value below t, those
@@ -199,9 +198,10 @@ struct Constrictor2::Impl {
   std::unordered_map<std::uint64_t, bool> gamma0_known;
   static constexpr std::size_t kMaxTestsAhead = 1024;  // graph_tests_ahead's batch, at most
 
-  std::unique_ptr<Polygon2Result> finished;  // the result of the first finish()
-
-  // ---------------------------------------------------------------- small helpers (both files)
+  // ---------------------------------------------------------------- inline helpers
+  // Defined here because the two files' inner loops call them: the ids and points (both files),
+  // emit, criterion_key and the removability of a triangle (the constriction's loop), the side
+  // searches' visitor and caches, the γ0 answers and the entries' liveness (the fallback's).
   const double* P(int i) const { return (*pts)[static_cast<std::size_t>(i)]; }
   static std::size_t U(int i) { return static_cast<std::size_t>(i); }
   int G(int v) const { return v < 0 ? v : gid[U(v)]; }

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
+
 #include "constrict/points.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/dense_segments.hpp"
@@ -110,7 +112,8 @@ class Grid {
     edges_coarse_.add(a, b, id);
   }
   /// On a just built grid: add_edge(a, b, id) for count edges, seg(k, a, b, id) giving the k-th
-  /// (the same each call), in one counting sort per layer (CellLists::build).
+  /// (the same each call), in one counting sort per layer (CellLists::build, or build_in_blocks on both cores for the
+  /// coarse layer of a long boundary).
   /// The two layers are filled side by side (seg must allow concurrent calls).
   template <class Seg>
   void add_edges(std::size_t count, Seg&& seg) {

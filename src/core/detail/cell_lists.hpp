@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One id list per grid cell, for the segment grids of the 2D fallback and refinement
-// (sparse_segments.hpp, the dense layers in fallback2.cpp and refine2.cpp). Those grids are
+// (sparse_segments.hpp, the dense layers in constrict/detail/grid2.hpp and refine2.cpp). Those grids are
 // filled once with a whole polygon (10^6 edges) and then changed by a few edges per move. One
 // std::vector per cell cost a heap allocation per non-empty cell, and on the uniform 10^6 square
 // the filling and freeing were a tenth of the run. Here the first filling is a counting sort into
@@ -14,6 +14,8 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
+
+#include "constrict/status.hpp"
 
 namespace constrict::detail {
 
@@ -72,7 +74,10 @@ template <class Id> class CellLists {
     std::array<std::vector<std::uint32_t>, kBlocks> at;
     tbb::parallel_for(std::size_t{0}, kBlocks, [&](std::size_t b) {
       at[b].assign(cells, 0);
-      visit(first(b), first(b + 1), [&](std::size_t c, Id) { ++at[b][c]; });
+      visit(first(b), first(b + 1), [&](std::size_t c, Id) {
+        CONSTRICT_CHECK(c < cells, "CellLists::build_in_blocks: a cell beyond the grid");
+        ++at[b][c];
+      });
     });
     std::size_t total = 0;
     for (std::size_t c = 0; c < cells; ++c) {
@@ -84,7 +89,7 @@ template <class Id> class CellLists {
       }
       len_[c] = static_cast<std::uint32_t>(total - start_[c]);
     }
-    if (total > UINT32_MAX) return build(cells, [&](auto&& emit) { visit(std::size_t{0}, count, emit); });
+    CONSTRICT_CHECK(total <= UINT32_MAX, "CellLists::build_in_blocks: more than 2^32 registrations");
     bulk_.resize(total);
     tbb::parallel_for(std::size_t{0}, kBlocks, [&](std::size_t b) {
       visit(first(b), first(b + 1), [&](std::size_t c, Id id) { bulk_[at[b][c]++] = id; });

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The cells of a sparse uniform grid (sparse_segments.hpp, the 2D fallback's point grid in
-// fallback2.cpp): an open-addressing table (linear probing) from a cell (i, j) to a dense slot
-// number 0, 1, 2, ... in the order the cells were first added. Only non-empty cells are stored, so
+// constrict/detail/grid2.hpp): an open-addressing table (linear probing) from a cell (i, j) to a
+// dense slot number 0, 1, 2, ... in the order the cells were first added. Only non-empty cells are stored, so
 // a grid fine enough for the spacing along a curve costs memory for the cells the curve crosses,
 // not for the plane's area.
 #pragma once

@@ -8,14 +8,17 @@
 #include <type_traits>
 #include <utility>
 
+#include "constrict/status.hpp"
+
 namespace constrict::detail {
 
 /// A priority queue with the interface of std::priority_queue (push, top, pop, empty, size):
 /// `top()` is an element that no other element `less`-exceeds. Under a strict weak order the
 /// sequence of pops is the one of any other heap, except among equivalent elements; the 2D
 /// constriction's entries are equivalent only when they are two versions of one triangle, of
-/// which at most one is live (src/constrict/constrict2.cpp), so its removals do not depend on
-/// the heap kind.
+/// which at most one is live (TriEntry in src/constrict/detail/constrict2_impl.hpp,
+/// Constrictor2::Impl::step_untimed in constrict2.cpp), so its removals do not depend on the heap
+/// kind. The order must be a strict weak order (no NaN keys).
 ///
 /// Why four children: a pop of a binary heap of the constriction's 10^5-10^6 entries walks about
 /// twenty levels, each a cache miss below the top levels. Here a pop walks half as many levels,
@@ -42,9 +45,12 @@ class QuadHeap {
 
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
-  const T& top() const { return at(0); }
+  const T& top() const {
+    CONSTRICT_ASSERT(size_ > 0, "QuadHeap::top on an empty heap");
+    return at(0);
+  }
 
-  void push(const T& v) {
+  void push(T v) {  // (by value: v may be one of the heap's own elements, which grow() moves)
     if (size_ == capacity_) grow();
     std::size_t k = size_++;
     while (k > 0) {
@@ -57,6 +63,7 @@ class QuadHeap {
   }
 
   void pop() {
+    CONSTRICT_ASSERT(size_ > 0, "QuadHeap::pop on an empty heap");
     const std::size_t n = --size_;
     if (n == 0) return;
     // Bottom-up: the hole goes down along the larger children to a leaf, then the last element
@@ -89,14 +96,18 @@ class QuadHeap {
   }
 
  private:
-  static constexpr std::size_t kShift = 3;  // slot of node 0
+  // Node 0 at slot kShift: the children 4k+1..4k+4 of node k then start at slot 4k+4, a multiple
+  // of four slots, which is one 64-byte line for 16-byte elements.
+  static constexpr std::size_t kShift = 3;
   static constexpr std::align_val_t kAlign{64};
+  static constexpr std::size_t kFirstSlots = 1024;  // slots of the first allocation (16 KiB at 16 bytes)
 
   T& at(std::size_t k) { return data_[k + kShift]; }
   const T& at(std::size_t k) const { return data_[k + kShift]; }
 
   void grow() {
-    const std::size_t cap = capacity_ == 0 ? 1021 : 2 * capacity_ + kShift;
+    // Capacities kFirstSlots - kShift, then doubling the slots: the allocations are powers of two.
+    const std::size_t cap = capacity_ == 0 ? kFirstSlots - kShift : 2 * capacity_ + kShift;
     T* d = static_cast<T*>(::operator new(sizeof(T) * (cap + kShift), kAlign));
     if (size_ > 0) std::memcpy(static_cast<void*>(d + kShift), data_ + kShift, sizeof(T) * size_);
     release();

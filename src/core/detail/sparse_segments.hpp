@@ -34,7 +34,7 @@ template <class Id> class SparseSegments {
   /// The half cell edge of a sparse grid for items about median_edge long (largest coordinate
   /// difference) in a box of half spans hw, hh and magnitude mag, or 0 when area-sized cells of
   /// half edge area_half_cell serve as well (the sparse cells would not be under a quarter of
-  /// them). Used by the refinement's edge grid and the fallback's fine layer (fallback2.cpp):
+  /// them). Used by the refinement's edge grid and the fallback's fine layer (constrict/detail/grid2.hpp):
   /// every cell a query reads is a table lookup that mostly misses the cache, so the cells are
   /// wider than one edge: 16 median edges. Noisy 10⁶ curve, half-widths of 1 to 32 median edges,
   /// 3 runs each: refinement 3.95 s (1), 3.0 (2), 2.6-3.8 (4), 2.6 (8), 2.6-3.7 (16), 4.9 (32);
