@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <queue>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -319,6 +320,28 @@ TEST(Constrict2Unit, SteppedThenFinishedIsTheWholeRun) {
       EXPECT_EQ(r.refine_moves, whole.refine_moves) << "shape " << shape << " steps " << steps;
     }
   }
+}
+
+// A visitor that throws in the middle of the constriction: the exception reaches the caller
+// (after the adjacency built beside the constriction has finished, not a terminate), and the
+// next run on the same input gives the usual polygon.
+TEST(Constrict2Unit, AVisitorsExceptionReachesTheCaller) {
+  const unsigned seed = 37;
+  const PointSet p = locking_inputs(seed, 20000)[0];
+  struct Throwing final : Constrict2Visitor {
+    std::size_t removals = 0;
+    void on_event(const Constrict2Event& e) override {
+      if (e.kind == Constrict2Event::Kind::RemoveTriangle && ++removals == 5000) throw std::runtime_error("stop");
+    }
+  } throwing;
+  Polygon2Result before, r, after;
+  ASSERT_TRUE(reconstruct2(p, {}, before).is_ok());
+  ASSERT_GT(before.fallback_insertions, 0u) << "expected a lock (the adjacency is built beside)";
+  EXPECT_THROW((void)reconstruct2(p, {}, r, &throwing), std::runtime_error);
+  EXPECT_EQ(throwing.removals, 5000u);
+  ASSERT_TRUE(reconstruct2(p, {}, after).is_ok());
+  EXPECT_TRUE(after.valid());
+  EXPECT_EQ(after.boundary, before.boundary) << "seed " << seed;
 }
 
 // The γ0 fallback tests the graph edges of the next candidates side by side
