@@ -52,14 +52,7 @@ class QuadHeap {
 
   void push(T v) {  // (by value: v may be one of the heap's own elements, which grow() moves)
     if (size_ == capacity_) grow();
-    std::size_t k = size_++;
-    while (k > 0) {
-      const std::size_t parent = (k - 1) / 4;
-      if (!less_(at(parent), v)) break;
-      at(k) = std::move(at(parent));
-      k = parent;
-    }
-    at(k) = v;
+    rise(size_++, v);
   }
 
   void pop() {
@@ -85,14 +78,7 @@ class QuadHeap {
       at(k) = at(best);
       k = best;
     }
-    const T v = at(n);
-    while (k > 0) {
-      const std::size_t parent = (k - 1) / 4;
-      if (!less_(at(parent), v)) break;
-      at(k) = at(parent);
-      k = parent;
-    }
-    at(k) = v;
+    rise(k, at(n));
   }
 
  private:
@@ -104,6 +90,18 @@ class QuadHeap {
 
   T& at(std::size_t k) { return data_[k + kShift]; }
   const T& at(std::size_t k) const { return data_[k + kShift]; }
+
+  // Puts v into the hole at node k after moving down the ancestors it outranks. (Inlined into
+  // push and pop: as a call, the 10^6 square's constriction took 10-15 % longer.)
+  __attribute__((always_inline)) void rise(std::size_t k, const T v) {
+    while (k > 0) {
+      const std::size_t parent = (k - 1) / 4;
+      if (!less_(at(parent), v)) break;
+      at(k) = at(parent);
+      k = parent;
+    }
+    at(k) = v;
+  }
 
   void grow() {
     // Capacities kFirstSlots - kShift, then doubling the slots: the allocations are powers of two.
