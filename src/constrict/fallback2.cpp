@@ -398,11 +398,21 @@ bool Constrictor2::Impl::candidate(Graph g, double gamma0, int a, int z, Entry& 
   const int b = nxt[U(a)];
   if (b < 0 || onb[U(z)]) return false;
   if (orient2_fast(P(a), P(b), P(z)) <= 0) return false;
+  if (g != Graph::Complete && needle(a, b, z)) return false;  // left to the repair
   // Witnesses among the endpoints' neighbours rule most pairs out at once (a long pair across
   // an empty interior has very obtuse angles behind both ends), which keeps the heap small.
   if (g == Graph::Gamma0 && (outside_near(a, z, gamma0) || outside_near(b, z, gamma0))) return false;
   e = Entry{criterion_key(a, b, z), sorted_gid3(a, b, z), a, b, z, -1, 0};
   return true;
+}
+
+// Is the triangle (a, b, z) a needle: |az| or |bz| longer than opt.fallback_needle_ratio · |ab|?
+// Exact (compare_gap2). Such an insertion joins z to an edge far across the region still inside.
+bool Constrictor2::Impl::needle(int a, int b, int z) const {
+  const double t = opt.fallback_needle_ratio;
+  if (!(t > 0) || !std::isfinite(t)) return false;
+  const double* ab[2] = {P(a), P(b)};
+  return compare_gap2(P(z), P(a), &ab[0], &ab[1], 1, t) > 0 || compare_gap2(P(z), P(b), &ab[0], &ab[1], 1, t) > 0;
 }
 
 // The graph test (its side searches read little, sides_below) before the geometric one, which

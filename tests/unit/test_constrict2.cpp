@@ -16,6 +16,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/delaunay.hpp"
+#include "constrict/predicates.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/quad_heap.hpp"
 #include "test_fixtures.hpp"
@@ -377,6 +378,65 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
   }
 }
 
+// The γ0 and degree-4 stages leave needles to the repair (Constrict2Options::fallback_needle_ratio).
+// On a five-petal curve with noise of one spacing (the 10⁶ benchmark's shape, 20 000 points), points
+// locked inside the band have Delaunay neighbours across the whole figure, and the fallback joined
+// some of them to a boundary edge on the far side: without the limit the paper-mode polygon has
+// edges of 0.74–0.78 (the figure is 2.6 wide) and a perimeter 1.3–1.5 times the limited one's. With
+// it, no insertion of those stages has an edge longer than 4 |ab| (exact), no polygon edge is
+// longer than 0.05 and the perimeter is shorter. Seeds printed.
+TEST(Constrict2Unit, FallbackLeavesNeedlesToTheRepair) {
+  for (const unsigned seed : {41u, 42u, 43u}) {
+    std::printf("seed %u\n", seed);
+    const int n = 20000;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::normal_distribution<double> noise(0, 2 * M_PI * 1.25 / n);
+    std::vector<std::array<double, 2>> xy;
+    for (int k = 0; k < n; ++k) {
+      const double t = 2 * M_PI * u(rng), r = 1 + 0.3 * std::cos(5 * t);
+      xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
+    }
+    const PointSet p = test::make2(xy);
+    const auto longest = [&](const std::vector<int>& b) {
+      double m = 0;
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        const double* u = p[static_cast<std::size_t>(b[i])];
+        const double* v = p[static_cast<std::size_t>(b[(i + 1) % b.size()])];
+        m = std::max(m, std::hypot(u[0] - v[0], u[1] - v[1]));
+      }
+      return m;
+    };
+    Constrict2Options o = Constrict2Options::paper();
+    o.fallback_needle_ratio = 0;
+    Polygon2Result off;
+    ASSERT_TRUE(reconstruct2(p, o, off).is_ok());
+    ASSERT_TRUE(off.valid()) << "seed " << seed;
+    o.fallback_needle_ratio = 4;
+    Polygon2Result on;
+    Recorder rec;
+    ASSERT_TRUE(reconstruct2(p, o, on, &rec).is_ok());
+    ASSERT_TRUE(on.valid()) << "seed " << seed;
+    std::printf("seed %u: longest edge %.4f -> %.4f, perimeter %.3f -> %.3f, method %s -> %s\n", seed,
+                longest(off.boundary), longest(on.boundary), off.perimeter, on.perimeter, off.method.c_str(),
+                on.method.c_str());
+    std::size_t checked = 0;
+    for (const Constrict2Event& e : rec.events) {
+      if (e.kind != Constrict2Event::Kind::InsertPoint || e.stage == "repair") continue;
+      const double* a = p[static_cast<std::size_t>(e.triangle[0])];
+      const double* b = p[static_cast<std::size_t>(e.triangle[1])];
+      const double* z = p[static_cast<std::size_t>(e.triangle[2])];
+      EXPECT_LE(compare_gap2(z, a, &a, &b, 1, 4.0), 0) << "seed " << seed << " stage " << e.stage;
+      EXPECT_LE(compare_gap2(z, b, &a, &b, 1, 4.0), 0) << "seed " << seed << " stage " << e.stage;
+      ++checked;
+    }
+    EXPECT_GT(checked, 10u) << "seed " << seed << ": expected the γ0 stages to place points";
+    EXPECT_GT(longest(off.boundary), 0.5) << "seed " << seed << ": the input no longer shows the needles";
+    EXPECT_LT(longest(on.boundary), 0.05) << "seed " << seed;
+    EXPECT_LT(on.perimeter, off.perimeter) << "seed " << seed;
+  }
+}
+
 // A reversal of the refinement's tour of at least 65 536 positions runs in blocks on both cores
 // (refine2.cpp, reverse_positions). A uniform square of 150 000 points makes 28 of them; its
 // polygon must be the one of the sequential reversals, recorded here as a hash (the boundary in
@@ -396,12 +456,16 @@ TEST(Constrict2Unit, LongReversalsGiveTheSequentialPolygon) {
     for (const int v : b) h = h * 1000003u + static_cast<std::uint64_t>(v);
     return h;
   };
+  // The fallback as it was when the hash was recorded (before the needle limit): the refinement's
+  // start, and so its reversals, are those of that build.
+  Constrict2Options o;
+  o.fallback_needle_ratio = 0;
   Polygon2Result one, many;
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-    ASSERT_TRUE(reconstruct2(p, {}, one).is_ok());
+    ASSERT_TRUE(reconstruct2(p, o, one).is_ok());
   }
-  ASSERT_TRUE(reconstruct2(p, {}, many).is_ok());
+  ASSERT_TRUE(reconstruct2(p, o, many).is_ok());
   ASSERT_TRUE(many.valid());
   EXPECT_EQ(many.refine_moves, 5803u);
   EXPECT_EQ(hash(many.boundary), 0x2596565fef8f8652u);

@@ -357,6 +357,7 @@ struct Constrictor2::Impl {
   bool outside_near(int u, int v, double gamma0) const;
   void push_candidate(Heap& h, Graph g, double gamma0, int a, int z);
   bool candidate(Graph g, double gamma0, int a, int z, Entry& e) const;
+  bool needle(int a, int b, int z) const;
   bool test_candidate(const Entry& e, Graph g, double gamma0);
   std::vector<int> candidate_starts(const std::vector<int>& region) const;
   std::vector<int> within_hops(int z, int k) const;
