@@ -102,7 +102,7 @@ struct TriEntryLess {
     return ties->of(l.t) > ties->of(r.t);
   }
 };
-using TriHeap = detail::QuadHeap<TriEntry, TriEntryLess>;
+using TriHeap = detail::TwoTierHeap<TriEntry, TriEntryLess>;
 
 }  // namespace engine2
 
