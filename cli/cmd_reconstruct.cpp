@@ -189,7 +189,10 @@ Rings2Options rings_options(const ReconstructArgs& a, const Constrict2Options& p
   (void)topology_from_name(a.topology, o.topology);
   o.topology_gap = a.topology_gap;
   o.infer_in_single = n <= kNoteMaxPoints;  // the note of single mode, where it is cheap
-  if (o.topology == Topology2::Single) o.infer_work_limit = kNoteWorkPerPoint * n;  // (and stays cheap)
+  if (o.topology == Topology2::Single) {    // (and stays cheap)
+    o.infer_work_limit = kNoteWorkPerPoint * n;
+    o.infer_multi_start = false;
+  }
   o.polygon = polygon;
   return o;
 }

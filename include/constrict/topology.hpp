@@ -89,6 +89,12 @@ struct Rings2Options {
   /// (Rings2Result::inferred). Off by default (single mode costs what it did); the CLI turns it on
   /// up to kNoteMaxPoints points.
   bool infer_in_single = false;
+  /// The inference's part polygons are refined from several starts, as polygon.refine_multi_start
+  /// says (the rings of Auto are those polygons). false: from one start whatever it says. The
+  /// CLI's single-mode note sets false: on area-like data of 10^4 points its 8-start refinements
+  /// of every small part took 10-15 times the single polygon's time; the notes of the 177 shared
+  /// 2D and topology sets are the same either way (docs/topology.md, "The note of single mode").
+  bool infer_multi_start = true;
   /// 0, or a bound on the inference's work: N per round of joins plus the points of the part
   /// polygons it makes. Past it the inference stops with RingsDecision::Capped. The CLI sets
   /// kNoteWorkPerPoint · N for the single mode's note: 2 000 separate small rings took a note of

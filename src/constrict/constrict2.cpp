@@ -245,7 +245,7 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
                                     }};
         },
         r.fallback_insertions == 0,  // after insertions (non-Delaunay edges) moves are the rule
-        &non_dt);
+        &non_dt, opt.refine_multi_start);
     r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
     r.refine_budget_hit = rs.budget_hit;
     r.perimeter_before_refine = rs.length_before;

@@ -1184,10 +1184,9 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 
 }  // namespace
 
-bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order,
-                     const std::function<Adjacency2()>& adjacency, bool pretest,
-                     std::vector<std::array<int, 2>>* non_delaunay) {
+bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon, std::size_t work_budget,
+                     Refine2Stats& stats, const std::vector<int>* order, const std::function<Adjacency2()>& adjacency,
+                     bool pretest, std::vector<std::array<int, 2>>* non_delaunay, bool multi_start) {
   stats = Refine2Stats{};
   if (polygon.size() != points.size()) return false;
   if (polygon.size() < 4) {
@@ -1210,7 +1209,7 @@ bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   const Adjacency2 adj = adjacency ? adjacency() : Adjacency2{};
   const std::size_t n = polygon.size();
   const std::size_t lo = start_position([&](std::size_t i) { return &xy[2 * i]; }, polygon, order);
-  const std::size_t starts = n <= kMultiStartMaxPoints ? kStarts : 1;
+  const std::size_t starts = multi_start && n <= kMultiStartMaxPoints ? kStarts : 1;
   std::vector<int> best;
   double best_len = 0;
   for (std::size_t k = 0; k < starts; ++k) {

@@ -870,6 +870,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   out = RingsInference{};
   const double gap = options.topology_gap;
   out.gap_threshold = gap;
+  Constrict2Options part_options = options.polygon;  // the part polygons' options
+  part_options.refine_multi_start = options.polygon.refine_multi_start && options.infer_multi_start;
   if (!(gap >= 0) || !std::isfinite(gap))
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
   if (points.dim != 2 || adj.start.size() != points.size() + 1)
@@ -1038,7 +1040,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     // The polygons of the others are independent: on both cores (each the same whatever the threads).
     tbb::parallel_for(std::size_t{0}, need.size(), [&](std::size_t i) {
       const std::size_t k = need[i];
-      ok[k] = part_polygon(points, parts[k], options.polygon, rings[k]) ? 1 : 0;
+      ok[k] = part_polygon(points, parts[k], part_options, rings[k]) ? 1 : 0;
     });
     for (const std::size_t k : need) {
       if (!ok[k]) {
@@ -1066,7 +1068,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       std::vector<char> can(undo.size(), 1);
       tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
         for (Constituent& c : made_of[undo[i]]) {
-          if (!c.accepted && (collinear(points, c.points) || !part_polygon(points, c.points, options.polygon, c.ring))) {
+          if (!c.accepted && (collinear(points, c.points) || !part_polygon(points, c.points, part_options, c.ring))) {
             can[i] = 0;
             break;
           }

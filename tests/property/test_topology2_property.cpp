@@ -348,6 +348,44 @@ TEST(Topology2Property, SingleModeNoteIsBounded) {
   EXPECT_TRUE(bounded.valid());
 }
 
+// The single mode's note refines its part polygons from one start (Rings2Options::infer_multi_start
+// = false, as the CLI sets it): the same decision, ring count and roles as the inference from
+// several starts, on scan-like samples of every family (noise of half a spacing, gaps of 4-8
+// spacings; small parts, where the refinement runs from 8 starts), though some part polygons
+// differ, and the single polygon does not change.
+TEST(Topology2Property, SingleModeNoteFromOneStartDecidesTheSame) {
+  std::size_t several = 0, cases = 0, other_rings = 0;
+  for (const TopoFamily f : {TopoFamily::Annulus, TopoFamily::Holes, TopoFamily::Parts, TopoFamily::Nested})
+    for (const double gap : {4.0, 6.0, 8.0})
+      for (unsigned seed = 1; seed <= 4; ++seed) {
+        const auto s = test::make_topology(f, gap, seed, 1.0, 0.5);
+        SCOPED_TRACE(std::string(name(f)) + " gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+        Rings2Options o;
+        o.infer_in_single = true;
+        Rings2Result multi, one;
+        ASSERT_TRUE(reconstruct_rings2(s.points, o, multi).is_ok());
+        o.infer_multi_start = false;
+        ASSERT_TRUE(reconstruct_rings2(s.points, o, one).is_ok());
+        EXPECT_EQ(one.inferred.decision, multi.inferred.decision);
+        EXPECT_EQ(one.inferred.rings.size(), multi.inferred.rings.size());
+        EXPECT_EQ(one.inferred.shells(), multi.inferred.shells());
+        EXPECT_EQ(one.inferred.holes(), multi.inferred.holes());
+        ASSERT_EQ(one.rings.size(), 1u);
+        ASSERT_EQ(multi.rings.size(), 1u);
+        EXPECT_EQ(one.rings[0].indices, multi.rings[0].indices);
+        several += multi.inferred.several();
+        bool same_rings = one.inferred.rings.size() == multi.inferred.rings.size();
+        for (std::size_t k = 0; same_rings && k < one.inferred.rings.size(); ++k)
+          same_rings = one.inferred.rings[k].indices == multi.inferred.rings[k].indices;
+        other_rings += !same_rings;
+        ++cases;
+      }
+  std::printf("note from one start: %zu cases, %zu with several rings, %zu with other ring polygons\n", cases, several,
+              other_rings);
+  EXPECT_GT(several, cases / 4) << "the inputs should show several rings often";
+  EXPECT_GT(other_rings, 0u) << "no case where the starts change a part polygon: the test says nothing";
+}
+
 // A huge gap threshold never splits; a bad one is refused.
 TEST(Topology2Property, GapOptionMovesTheThreshold) {
   const auto s = test::make_topology(TopoFamily::Annulus, 4, 32);

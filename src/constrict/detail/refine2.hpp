@@ -37,6 +37,7 @@ namespace constrict::detail {
 ///   2^20 Lin–Kernighan nodes and 16 N + 2^20 double-bridge nodes). Deterministic.
 /// @param[out] non_delaunay optional: when the search ran, set to the edges of the result that are
 ///   not Delaunay edges (pairs of polygon ids, in no particular order); otherwise untouched
+/// @param[in] multi_start false: one start also on small inputs (Constrict2Options::refine_multi_start)
 /// @return whether the search ran (false: the polygon was only normalised, e.g. the pretest found
 ///   no possible move)
 struct Adjacency2 {
@@ -44,9 +45,9 @@ struct Adjacency2 {
   const int* nb = nullptr;
   std::function<void()> release;  ///< optional: called once the lists are no longer read
 };
-bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon,
-                     std::size_t work_budget, Refine2Stats& stats, const std::vector<int>* order = nullptr,
+bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon, std::size_t work_budget,
+                     Refine2Stats& stats, const std::vector<int>* order = nullptr,
                      const std::function<Adjacency2()>& adjacency = {}, bool pretest = true,
-                     std::vector<std::array<int, 2>>* non_delaunay = nullptr);
+                     std::vector<std::array<int, 2>>* non_delaunay = nullptr, bool multi_start = true);
 
 }  // namespace constrict::detail
