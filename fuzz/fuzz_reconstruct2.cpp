@@ -32,6 +32,8 @@ Constrict2Options decode_options(constrict_fuzz::Bytes& in) {
   const Criterion criteria[] = {Criterion::Gamma, Criterion::MinAreaChange, Criterion::Boissonnat};
   o.criterion = criteria[((a >> 3) & 3) % 3];
   o.repair = (a & 0x20) == 0;
+  if (a & 0x40) o.fallback_needle_ratio = (a & 0x80) ? 1e-3 : 0;  // every insertion a needle, or no limit
+  o.refine_multi_start = (b & 0x40) == 0;
   if (b & 1) o.refine_work_per_point = b >> 1;  // small refinement budgets, 0 included
   if (b & 0x80) o.gamma0_schedule = {-0.5};
   return o;

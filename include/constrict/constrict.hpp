@@ -61,9 +61,11 @@ struct Constrict2Options {
   /// The γ0 and degree-4 stages insert a stuck point z into a boundary edge ab only when neither
   /// new edge is longer than this many times |ab| (exact): a longer one is a needle from z to an
   /// edge across an empty interior (the γ0 graph holds every Delaunay edge, and a point inside a
-  /// noisy band has Delaunay neighbours across the whole figure). Needles are left to the repair,
-  /// which takes them only where nothing nearer is valid. 0 turns the limit off (the fallbacks
-  /// before 2026-12-06). docs/reconstruction-2d.md §2.
+  /// noisy band has Delaunay neighbours across the whole figure). Needles are left to the repair
+  /// (the complete graph, no limit), so with the repair the ladder still completes; without it
+  /// (repair = false) a point only a needle could place stays inside. A value that is not a
+  /// positive finite number turns the limit off (the fallbacks before 2026-12-06); a tiny positive
+  /// one leaves every insertion to the repair. docs/reconstruction-2d.md §2.
   double fallback_needle_ratio = 4;
   /// Post-pass on the complete polygon. Default LocalSearch (measured better on the shared ground
   /// truth, docs/reconstruction-2d.md); Refine2::None gives the paper's algorithm.

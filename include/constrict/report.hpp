@@ -33,8 +33,9 @@ std::string to_json(const Polygon2Result& result, const Constrict2Options& optio
 /// plus `"rings": [{"role": "shell"|"hole", "parent": k or -1, "indices": [...], "gap_spacings",
 /// "nearest_ring"}, ...]` and `"topology": {"mode", "gap_threshold", "inferred": {"decision",
 /// "rings", "shells", "holes", "parts", "parts_polygon", "bad_degree_points", "split_gap_spacings",
-/// "min_gap_spacings", "reason", "ring_list"}}` (ring_list: the inferred rings when they differ from "rings"; gaps in local
-/// spacings, null for none).
+/// "min_gap_spacings", "reason", "ring_list"}}` (ring_list: the inferred rings when they differ from "rings"; gaps in
+/// local spacings, null for none; with Rings2Options::infer_multi_start false, as in the CLI's single mode, their part
+/// polygons come from one start and may run through their points in another order than auto's).
 std::string to_json(const Rings2Result& result, const Rings2Options& options);
 
 }  // namespace constrict

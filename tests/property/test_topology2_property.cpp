@@ -459,6 +459,14 @@ TEST(Topology2Property, GapPredicateExact) {
   EXPECT_EQ(compare_gap2(pe, qe, a, be, 1, 1.0), 1);  // |pq|^2 = 1 + 2^-51 + 2^-104 > 1
   const double pa[2] = {0, 0}, qa[2] = {3, 0}, qb[2] = {0, 3};
   EXPECT_EQ(compare_distance2(pa, qa, qb), 0);
+  // A subnormal factor: t^2 = 1e-320 against |ab|^2 = 1e100, and |ab|^2 = 1e-320 against t^2 = 1e200
+  // (both products about 1e-220 with the wrong sign in doubles; exact answers by rational arithmetic).
+  const double q1[2] = {9.999972167879246e-111, 0}, b1[2] = {1e50, 0}, z2[2] = {9.999972167879244e-61, 0},
+               b2[2] = {1e-160, 0};
+  const double* ab1[1] = {b1};
+  const double* ab2[1] = {b2};
+  EXPECT_EQ(compare_gap2(p, q1, a, ab1, 1, 1e-160), -1);
+  EXPECT_EQ(compare_gap2(z2, a0, a, ab2, 1, 1e100), -1);
 }
 
 // The ring fatness predicate: exact at ties, any scale; 2|A|/Σ|e|² of a unit square is 1/2.

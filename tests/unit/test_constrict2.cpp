@@ -435,6 +435,18 @@ TEST(Constrict2Unit, FallbackLeavesNeedlesToTheRepair) {
     EXPECT_GT(longest(off.boundary), 0.5) << "seed " << seed << ": the input no longer shows the needles";
     EXPECT_LT(longest(on.boundary), 0.05) << "seed " << seed;
     EXPECT_LT(on.perimeter, off.perimeter) << "seed " << seed;
+    // A tiny ratio makes every insertion a needle: the γ0 and degree-4 stages place nothing, the
+    // repair places all (the ladder stays total); without the repair the result is incomplete.
+    o.fallback_needle_ratio = 1e-3;
+    Polygon2Result all_needles;
+    ASSERT_TRUE(reconstruct2(p, o, all_needles).is_ok());
+    EXPECT_TRUE(all_needles.valid()) << "seed " << seed;
+    EXPECT_EQ(all_needles.method, "repair") << "seed " << seed;
+    o.fallback = Fallback::Gamma0;
+    o.repair = false;
+    Polygon2Result no_repair;
+    ASSERT_TRUE(reconstruct2(p, o, no_repair).is_ok());
+    EXPECT_FALSE(no_repair.complete) << "seed " << seed;
   }
 }
 
@@ -557,8 +569,10 @@ std::size_t pops_like_a_std_heap() {
               want.pop();
             }
             bad += q.size() != want.size();
-            if constexpr (!std::is_same_v<Heap, detail::QuadHeap<HeapItem, HeapItemLess>>)
+            if constexpr (!std::is_same_v<Heap, detail::QuadHeap<HeapItem, HeapItemLess>>) {
               hot_max = std::max(hot_max, q.hot_size());
+              bad += q.hot_size() > 0 && q.hot_size() == q.size();  // hot entries over an empty main heap
+            }
           }
           if (round == 3) {
             Heap moved(HeapItemLess{&sign});

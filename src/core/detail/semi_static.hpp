@@ -18,9 +18,15 @@ inline bool safe_range(double m) { return m > 1e-250 && m < 1e250; }
 // sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) from lhs = k·|pq|^2 and sum = Σ|a_i b_i|^2, each squared
 // length summed coordinate by coordinate in D dimensions and the sum in any order (compare_gap2/3):
 // depth <= D + 1 + (k - 1) + D + 1 + 2, the bound uses 2k + 2D + 4.
+// The factors t^2 and sum must not be subnormal (nor within a factor 2^53 of it): a subnormal one
+// has a large relative error, which the product carries into the safe range (t = 1e-160 against a
+// sum of 1e100 gave the wrong sign); m's range alone does not see it.
+constexpr double kMinGapFactor = std::numeric_limits<double>::min() / kU;  // 2^-969
 inline int gap_filtered(double lhs, double sum, double t, int k, int dim, bool& ok) {
-  const double rhs = t * t * sum, d = lhs - rhs, m = lhs + rhs;  // every leaf product is a square: m is the |tree|
-  ok = std::isfinite(m) && safe_range(m) && std::fabs(d) > (2.0 * k + 2 * dim + 4) * kU * m;
+  const double tt = t * t, rhs = tt * sum, d = lhs - rhs,
+               m = lhs + rhs;  // every leaf product is a square: m is the |tree|
+  ok = std::isfinite(m) && safe_range(m) && (tt == 0 || tt >= kMinGapFactor) && (sum == 0 || sum >= kMinGapFactor) &&
+       std::fabs(d) > (2.0 * k + 2 * dim + 4) * kU * m;
   return d > 0 ? 1 : (d < 0 ? -1 : 0);
 }
 
