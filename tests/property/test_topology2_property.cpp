@@ -22,6 +22,7 @@
 #include "constrict/topology.hpp"
 #include "topology/detail/infer_rings2.hpp"
 #include "topology_gen.hpp"
+#include "unit/test_fixtures.hpp"
 
 namespace constrict {
 namespace {
@@ -58,22 +59,6 @@ Rings2Result run_checked(const PointSet& p) {
   RingsCheck bc;
   EXPECT_TRUE(validate_rings2_brute_force(p, a.rings, &bc).is_ok()) << bc.reason;
   return a;
-}
-
-// n points at uniformly random positions along a five-petal closed curve (about 7 long), with
-// normal noise of about one spacing per coordinate: large enough, it splits into arcs.
-PointSet noisy_petal_curve(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> along(0, 2 * M_PI);
-  std::normal_distribution<double> noise(0, 1);
-  const double h = 7.0 / static_cast<double>(n);
-  PointSet p;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
-    p.coords.push_back(r * std::cos(t) + h * noise(rng));
-    p.coords.push_back(r * std::sin(t) + h * noise(rng));
-  }
-  return p;
 }
 
 // The rings as sets of points, each with its role and its parent's point set (comparable across
@@ -653,7 +638,8 @@ TEST(Topology2Property, InferenceIsTheSameOnOneThread) {
     EXPECT_TRUE(infer_rings2(p, dt, o, r).is_ok());
     return r;
   };
-  std::vector<PointSet> inputs = {noisy_petal_curve(20000, 3), test::make_topology(TopoFamily::Nested, 2.5, 4, 1.0, 0.3).points,
+  std::vector<PointSet> inputs = {test::noisy_petal_curve(20000, 3),
+                                  test::make_topology(TopoFamily::Nested, 2.5, 4, 1.0, 0.3).points,
                                   test::make_topology(TopoFamily::Parts, 3.0, 2).points,
                                   test::make_topology(TopoFamily::Nested, 1.8, 1).points};  // (the walk's rings)
   for (std::size_t k = 0; k < inputs.size(); ++k) {
@@ -684,7 +670,7 @@ TEST(Topology2Property, NoisyLargeCurveIsOneRing) {
   std::size_t joined = 0, open = 0;
   for (unsigned seed = 1; seed <= 4; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const PointSet p = noisy_petal_curve(100000, seed);
+    const PointSet p = test::noisy_petal_curve(100000, seed);
     const Rings2Result a = run(p, Topology2::Auto);
     ASSERT_TRUE(a.valid()) << a.check.reason;
     EXPECT_EQ(a.rings.size(), 1u);
@@ -762,7 +748,7 @@ TEST(Topology2Property, OpenArcTestAgreesWithThePolygonRule) {
   // Noisy closed curves large enough to split into arcs (noise of one spacing, random positions).
   for (unsigned seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("noisy curve, seed " + std::to_string(seed));
-    const PointSet p = noisy_petal_curve(5000, seed);
+    const PointSet p = test::noisy_petal_curve(5000, seed);
     const Rings2Result a = run(p, Topology2::Auto);
     const Rings2Result b = run(p, Topology2::Auto, kDefaultTopologyGap, false);
     EXPECT_EQ(a.inferred.decision, b.inferred.decision);

@@ -390,15 +390,7 @@ TEST(Constrict2Unit, FallbackLeavesNeedlesToTheRepair) {
   for (const unsigned seed : {41u, 42u, 43u}) {
     std::printf("seed %u\n", seed);
     const int n = 20000;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    std::normal_distribution<double> noise(0, 2 * M_PI * 1.25 / n);
-    std::vector<std::array<double, 2>> xy;
-    for (int k = 0; k < n; ++k) {
-      const double t = 2 * M_PI * u(rng), r = 1 + 0.3 * std::cos(5 * t);
-      xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
-    }
-    const PointSet p = test::make2(xy);
+    const PointSet p = test::noisy_petal_curve(n, seed, 2 * M_PI * 1.25 / n);
     const auto longest = [&](const std::vector<int>& b) {
       double m = 0;
       for (std::size_t i = 0; i < b.size(); ++i) {

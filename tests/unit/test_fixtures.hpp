@@ -3,7 +3,9 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "constrict/points.hpp"
@@ -25,6 +27,24 @@ inline PointSet make2(const std::vector<std::array<double, 2>>& xy) {
   for (const auto& q : xy) {
     p.coords.push_back(q[0]);
     p.coords.push_back(q[1]);
+  }
+  return p;
+}
+
+/// n points at uniformly random positions along a five-petal closed curve (r = 1 + 0.3 cos 5t,
+/// about 7.3 long), with normal noise of standard deviation h per coordinate (default 7/n, about
+/// one spacing): large enough, it splits into arcs, and the 2D constriction locks inside the band.
+inline PointSet noisy_petal_curve(std::size_t n, unsigned seed, double h = -1) {
+  if (h < 0) h = 7.0 / static_cast<double>(n);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> along(0, 2 * M_PI);
+  std::normal_distribution<double> noise(0, 1);
+  PointSet p;
+  p.dim = 2;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = along(rng), r = 1 + 0.3 * std::cos(5 * t);
+    p.coords.push_back(r * std::cos(t) + h * noise(rng));
+    p.coords.push_back(r * std::sin(t) + h * noise(rng));
   }
   return p;
 }
