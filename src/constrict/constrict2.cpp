@@ -5,7 +5,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
-#include "constrict/detail/constrict2_impl.hpp"
+#include "constrict/detail/engine2.hpp"
 #include "constrict/detail/refine2.hpp"
 #include "constrict/detail/share2.hpp"
 #include "constrict/memory.hpp"
@@ -16,7 +16,7 @@
 #include "cgal/detail/delaunay_local.hpp"
 
 namespace constrict {
-using engine2::Clock;  // (the engine's names: detail/constrict2_impl.hpp)
+using engine2::Clock;  // (the engine's names: detail/engine2.hpp)
 using engine2::ms_since;
 
 // ---- the Delaunay stage (spec §3.5) ------------------------------------------------------------

@@ -3,18 +3,18 @@
 // the Delaunay adjacency it searches, the γ0 graph's side tests and their caches, the candidate
 // queues of the γ0 and degree-4 stages, the degree-4 augmentation and the star polygon. The
 // ladder that calls them is Constrictor2::Impl::finish_once (constrict2.cpp); the state is
-// declared in detail/constrict2_impl.hpp. See docs/reconstruction-2d.md §4.
+// declared in detail/engine2.hpp. See docs/reconstruction-2d.md §4.
 #include <tbb/parallel_invoke.h>
 
 #include "constrict/detail/apex_lens2.hpp"
-#include "constrict/detail/constrict2_impl.hpp"
+#include "constrict/detail/engine2.hpp"
 #include "core/detail/ordered_pack.hpp"
 
 namespace constrict {
 using detail::closed_segments_meet;
 using detail::orient2_fast;
 using detail::same_side_collinear;
-using engine2::EntryLess;  // (the engine's names: detail/constrict2_impl.hpp)
+using engine2::EntryLess;  // (the engine's names: detail/engine2.hpp)
 
 // ---- infrastructure: the boundary edges, the Delaunay adjacency, the grids ----------------------
 void Constrictor2::Impl::build_fallback() {

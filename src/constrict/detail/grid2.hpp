@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The 2D fallback's bucket grids of the points and of the boundary edges (fallback2.cpp), a
-// member of the engine's state (constrict2_impl.hpp).
+// member of the engine's state (engine2.hpp).
 #pragma once
 
 #include <algorithm>

@@ -16,7 +16,7 @@ namespace constrict::detail {
 /// `top()` is an element that no other element `less`-exceeds. Under a strict weak order the
 /// sequence of pops is the one of any other heap, except among equivalent elements; the 2D
 /// constriction's entries are equivalent only when they are two versions of one triangle, of
-/// which at most one is live (TriEntry in src/constrict/detail/constrict2_impl.hpp,
+/// which at most one is live (TriEntry in src/constrict/detail/engine2.hpp,
 /// Constrictor2::Impl::step_untimed in constrict2.cpp), so its removals do not depend on the heap
 /// kind. The order must be a strict weak order (no NaN keys).
 ///
