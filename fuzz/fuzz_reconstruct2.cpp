@@ -89,6 +89,18 @@ void check_refine(const PointSet& p, const Polygon2Result& r, std::size_t work) 
   require(v.is_ok(), "refine_polygon2 result invalid", v.message());
 }
 
+// The γ0 fallback's witness bound is a tuning knob only: one neighbour read per end gives the
+// same polygon as the default (the pairs it leaves are tested when they come out of the queue).
+void check_witness_reads(const PointSet& p, const Constrict2Options& options, const Polygon2Result& r) {
+  if (r.fallback_insertions == 0) return;
+  Constrict2Options o = options;
+  o.fallback_witness_reads = 1;
+  Polygon2Result one;
+  const Status st = reconstruct2(p, o, one);
+  require(st.is_ok(), "reconstruct2 with fallback_witness_reads = 1 failed", st.message());
+  require(one.boundary == r.boundary, "fallback_witness_reads changed the polygon");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -118,6 +130,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (r.complete) {
         check_complete(p, r);
         check_refine(p, r, options.refine_work_per_point);
+        check_witness_reads(p, options, r);
       } else {
         check_incomplete(p, r);
       }

@@ -81,6 +81,12 @@ struct Constrict2Options {
   /// candidate comes out; at most 1024 are used). A tuning knob only: the polygon is the same for
   /// every value and thread count.
   std::size_t fallback_tests_ahead = 16;
+  /// The γ0 fallback rules most candidate pairs out by witnesses among the Delaunay neighbours of
+  /// their two ends before queueing them; it reads at most this many neighbours of each end (0:
+  /// all). A tuning knob only: a pair not ruled out is tested exactly when it comes out of the
+  /// queue, so the polygon is the same for every value. Reading every neighbour of a point of
+  /// thousands (an outlier inside a sampled curve) for each pair at it made the stage quadratic.
+  std::size_t fallback_witness_reads = 32;
   /// Stop the Delaunay constriction after this many removals (debugging / figures). The result is
   /// then incomplete (no fallback runs) unless all points were already on the boundary.
   std::size_t stop_after = SIZE_MAX;

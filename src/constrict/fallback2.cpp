@@ -6,6 +6,8 @@
 // declared in detail/engine2.hpp. See docs/reconstruction-2d.md §4.
 #include <tbb/parallel_invoke.h>
 
+#include <climits>
+
 #include "constrict/detail/apex_lens2.hpp"
 #include "constrict/detail/engine2.hpp"
 #include "core/detail/ordered_pack.hpp"
@@ -367,13 +369,23 @@ bool Constrictor2::Impl::in_graph(Graph g, double gamma0, int u, int v) {
 // Δ(u, v) < gamma0 (< 0) shown by the DT neighbours of u and v alone: a point on the open
 // segment, or points with apex value below gamma0 on both sides (the magnitude rule, as for a
 // partial search in delta_at_least). Exact; false when these few points do not decide it.
+// At most opt.fallback_witness_reads neighbours of each end are read (the first ones of its
+// sorted list): a point of thousands of neighbours (an outlier inside a sampled curve, a
+// cluster's point facing a long arc) is an end of most pairs near it, and reading its whole
+// list for each of them made the stage quadratic (a circle of 10^5 points with 1 % outliers:
+// 20 s). Any subset gives the same insertions: a pair this test does not rule out is tested
+// exactly when it comes out of the heap (test_candidate).
 bool Constrictor2::Impl::outside_near(int u, int v, double gamma0) const {
   if (is_dt_edge(u, v)) return false;
   double ga = 1, gb = 1;
   bool blocked = false;
   auto visit = side_visitor(u, v, ga, gb, blocked);
+  const int reads = opt.fallback_witness_reads == 0 || opt.fallback_witness_reads > static_cast<std::size_t>(INT_MAX)
+                        ? INT_MAX
+                        : static_cast<int>(opt.fallback_witness_reads);
   for (const int w : {u, v})
-    for (int q = adj_off[U(w)]; q < adj_off[U(w) + 1]; ++q) {
+    for (int q = adj_off[U(w)], end = adj_off[U(w)] + std::min(reads, adj_off[U(w) + 1] - adj_off[U(w)]); q < end;
+         ++q) {
       visit(adj[U(q)]);
       if (blocked || (ga < gamma0 && gb < gamma0)) return true;
     }

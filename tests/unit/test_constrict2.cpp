@@ -379,6 +379,44 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
   }
 }
 
+// The γ0 fallback's cheap witness test reads at most Constrict2Options::fallback_witness_reads
+// neighbours of each end of a pair; a pair it does not rule out is tested exactly when it comes
+// out of the queue, so the polygon, the stages and their counts must not depend on the value.
+// A circle with 2 % outliers in its box: each outlier inside is a Delaunay neighbour of a long
+// arc (hundreds of neighbours), the case the bound is for; the refinement is off, so the
+// fallback's polygon is compared as it is. Seeds printed.
+TEST(Constrict2Unit, FallbackWitnessReadsDoNotChangeTheResult) {
+  for (const unsigned seed : {51u, 52u, 53u}) {
+    std::printf("seed %u\n", seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1), box(-1.2, 1.2);
+    std::vector<std::array<double, 2>> xy;
+    for (int k = 0; k < 4000; ++k) {
+      const double t = 2 * M_PI * u(rng);
+      xy.push_back({std::cos(t), std::sin(t)});
+    }
+    for (int k = 0; k < 80; ++k) xy.push_back({box(rng), box(rng)});
+    const PointSet p = test::make2(xy);
+    Constrict2Options o = Constrict2Options::paper();
+    o.fallback_witness_reads = 0;  // every neighbour
+    Polygon2Result all;
+    ASSERT_TRUE(reconstruct2(p, o, all).is_ok());
+    ASSERT_TRUE(all.valid());
+    ASSERT_GT(all.fallback_insertions, 50u) << "seed " << seed << ": expected the γ0 fallback to place many points";
+    for (const std::size_t reads : {std::size_t{1}, std::size_t{4}, std::size_t{32}}) {
+      o.fallback_witness_reads = reads;
+      Polygon2Result r;
+      ASSERT_TRUE(reconstruct2(p, o, r).is_ok());
+      EXPECT_EQ(r.boundary, all.boundary) << "seed " << seed << " reads " << reads;
+      ASSERT_EQ(r.stages.size(), all.stages.size()) << "seed " << seed << " reads " << reads;
+      for (std::size_t i = 0; i < r.stages.size(); ++i) {
+        EXPECT_EQ(r.stages[i].name, all.stages[i].name);
+        EXPECT_EQ(r.stages[i].placed, all.stages[i].placed) << "seed " << seed << " reads " << reads << " stage " << i;
+      }
+    }
+  }
+}
+
 // The γ0 and degree-4 stages leave needles to the repair (Constrict2Options::fallback_needle_ratio).
 // On a five-petal curve with noise of one spacing (the 10⁶ benchmark's shape, 20 000 points), points
 // locked inside the band have Delaunay neighbours across the whole figure, and the fallback joined
