@@ -100,6 +100,9 @@ struct Constrict2Options {
 struct Constrict2Stage {
   std::string name;        ///< "gamma", "gamma0=-0.1", "degree4", "repair", "star"
   std::size_t placed = 0;  ///< points that joined the boundary in this stage
+  /// Fallback stages: candidate insertions queued (the first queue and those offered after each
+  /// insertion; a work count, the same on every thread count).
+  std::size_t candidates = 0;
 };
 
 /// Result of reconstruct2().

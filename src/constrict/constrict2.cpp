@@ -189,7 +189,7 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
     auto run = [&](Graph g, double g0, int k, const std::string& name) {
       if (n_onb == n) return;
       const std::size_t placed = local_constrict(g, g0, k, name);
-      r.stages.push_back({name, placed});
+      r.stages.push_back({name, placed, stage_candidates});
       r.fallback_insertions += placed;
       if (placed > 0) r.method = name;
     };

@@ -149,15 +149,21 @@ bool Constrictor2::Impl::valid_insert(int a, int b, int y) {
   return true;
 }
 
+// The edge a->b leaves the grid too: a dead edge left in its cells was read by every later query
+// there, and insertions at one vertex of a long fan (an outlier inside a sampled circle, joined
+// to arc point after arc point) piled up thousands of long dead edges along it (10^6 points,
+// 1 % outliers: 40 000 edges read per query).
 void Constrictor2::Impl::insert_point(int a, int b, int y) {
-  bedges[U(out_edge[U(a)])].alive = false;
+  const int dead = out_edge[U(a)];
+  bedges[U(dead)].alive = false;
+  grid.remove_edge(P(bedges[U(dead)].u), P(bedges[U(dead)].v), dead);
   out_edge[U(a)] = add_edge(a, y);
   out_edge[U(y)] = add_edge(y, b);
   splice_boundary(a, y, b);
 }
 
 // Vertices within k DT hops of the seeds (marks them with a fresh stamp).
-std::vector<int> Constrictor2::Impl::neighbourhood(const std::vector<int>& seeds, int k) {
+std::vector<int> Constrictor2::Impl::neighbourhood(const std::vector<int>& seeds, int k, bool through_hubs) {
   ++mark_stamp;
   std::vector<int> out;
   for (int s : seeds)
@@ -169,7 +175,8 @@ std::vector<int> Constrictor2::Impl::neighbourhood(const std::vector<int>& seeds
   for (int d = 0; d < k; ++d) {
     const std::size_t hi = out.size();
     if (lo == hi) break;
-    for (std::size_t q = lo; q < hi; ++q)
+    for (std::size_t q = lo; q < hi; ++q) {
+      if (!through_hubs && hub(out[q])) continue;
       for (int w = adj_off[U(out[q])]; w < adj_off[U(out[q]) + 1]; ++w) {
         const int v = adj[U(w)];
         if (mark[U(v)] != mark_stamp) {
@@ -177,6 +184,7 @@ std::vector<int> Constrictor2::Impl::neighbourhood(const std::vector<int>& seeds
           out.push_back(v);
         }
       }
+    }
     lo = hi;
   }
   return out;
@@ -402,7 +410,10 @@ bool Constrictor2::Impl::outside_near(int u, int v, double gamma0) const {
 // N) are tested before queueing, so that its heap holds only the valid ones.
 void Constrictor2::Impl::push_candidate(Heap& h, Graph g, double gamma0, int a, int z) {
   Entry e;
-  if (candidate(g, gamma0, a, z, e) && (g != Graph::Complete || test_candidate(e, g, gamma0))) h.push(e);
+  if (candidate(g, gamma0, a, z, e) && (g != Graph::Complete || test_candidate(e, g, gamma0))) {
+    h.push(e);
+    ++stage_candidates;
+  }
 }
 
 // The entry of boundary edge a->nxt[a] and stuck point z, unless ruled out at once.
@@ -432,8 +443,22 @@ bool Constrictor2::Impl::needle(int a, int b, int z) const {
 bool Constrictor2::Impl::test_candidate(const Entry& e, Graph g, double gamma0) {
   const int a = e.a, b = e.b, z = e.y;
   if (!entry_live(e)) return false;
-  if (!in_graph(g, gamma0, a, z) || !in_graph(g, gamma0, b, z)) return false;
+  const std::array<int, 2> ends = test_ends(e);
+  if (!in_graph(g, gamma0, ends[0], z) || !in_graph(g, gamma0, ends[1], z)) return false;
   return valid_insert(a, b, z);
+}
+
+// The order in which an entry's two pairs (a, z), (b, z) are tested: the shorter one first. Both
+// must be in the graph, so the order changes no answer; a short pair's side search reads few
+// points, and it fails as often (an arc point joined to a hub inside a sampled circle: the long
+// pair from the hub reads the arc, the short one is out at once).
+std::array<int, 2> Constrictor2::Impl::test_ends(const Entry& e) const {
+  auto d2 = [&](int u) {
+    const double dx = P(u)[0] - P(e.y)[0], dy = P(u)[1] - P(e.y)[1];
+    return dx * dx + dy * dy;
+  };
+  if (d2(e.b) < d2(e.a)) return {{e.b, e.a}};
+  return {{e.a, e.b}};
 }
 
 // Candidate boundary edges for apex z: those with an endpoint within k hops of z (their start
@@ -450,15 +475,16 @@ std::vector<int> Constrictor2::Impl::candidate_starts(const std::vector<int>& re
   return starts;
 }
 
-// The vertices within k DT hops of z, without the shared marks (for the side-by-side first heap;
-// k is 2 there): each hop adds the neighbours of all so far, then sorts and dedups. The same set
-// as neighbourhood({z}, k).
+// The vertices within k DT hops of z, without the shared marks (for the side-by-side first heap
+// of the γ0 and degree-4 stages; k is 2 there): each hop adds the neighbours of all so far but
+// hubs, then sorts and dedups. The same set as neighbourhood({z}, k, false).
 std::vector<int> Constrictor2::Impl::within_hops(int z, int k) const {
   std::vector<int> all{z};
   for (int d = 0; d < k; ++d) {
     const std::size_t m = all.size();
     for (std::size_t i = 0; i < m; ++i)
-      for (int w = adj_off[U(all[i])]; w < adj_off[U(all[i]) + 1]; ++w) all.push_back(adj[U(w)]);
+      if (!hub(all[i]))
+        for (int w = adj_off[U(all[i])]; w < adj_off[U(all[i]) + 1]; ++w) all.push_back(adj[U(w)]);
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
   }
@@ -490,6 +516,7 @@ auto Constrictor2::Impl::first_heap(Graph g, double gamma0, int k) -> Heap {
           if (candidate(g, gamma0, a, stuck[i], e)) push(e);
       },
       kBlock);
+  stage_candidates += all.size();
   return Heap(EntryLess{}, std::move(all));
 }
 
@@ -506,13 +533,13 @@ void Constrictor2::Impl::graph_tests_ahead(Heap& h, double gamma0, std::size_t c
     h.pop();
     if (entry_live(e)) ahead.push_back(e);
   }
-  // Per entry its two pairs in test order (a, z), (b, z); answers: -1 untested, 0, 1.
+  // Per entry its two pairs in test order (test_ends); answers: -1 untested, 0, 1.
   std::vector<std::array<signed char, 2>> res(ahead.size(), {{-1, -1}});
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ahead.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
     SideCaches& fresh = fresh_caches.local();
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       for (int s = 0; s < 2; ++s) {
-        const int u = s == 0 ? ahead[i].a : ahead[i].b, z = ahead[i].y;
+        const int u = test_ends(ahead[i])[U(s)], z = ahead[i].y;
         const int known = gamma0_answer(u, z);  // (gamma0_known is only read here)
         const bool in = known >= 0 ? known == 1 : delta_at_least(u, z, gamma0, shared_caches, fresh);
         if (known < 0) res[i][U(s)] = static_cast<signed char>(in);
@@ -523,7 +550,7 @@ void Constrictor2::Impl::graph_tests_ahead(Heap& h, double gamma0, std::size_t c
   for (std::size_t i = 0; i < ahead.size(); ++i) {
     for (int s = 0; s < 2; ++s)
       if (res[i][U(s)] >= 0)
-        gamma0_known.emplace(detail::edge_key(s == 0 ? ahead[i].a : ahead[i].b, ahead[i].y), res[i][U(s)] == 1);
+        gamma0_known.emplace(detail::edge_key(test_ends(ahead[i])[U(s)], ahead[i].y), res[i][U(s)] == 1);
     h.push(ahead[i]);
   }
 }
@@ -531,7 +558,7 @@ void Constrictor2::Impl::graph_tests_ahead(Heap& h, double gamma0, std::size_t c
 // Does the entry's γ0 graph test still need a search (a pair not yet answered, the first of
 // the two in graph)?
 bool Constrictor2::Impl::graph_pending(const Entry& e) const {
-  for (const int u : {e.a, e.b}) {
+  for (const int u : test_ends(e)) {
     const int known = gamma0_answer(u, e.y);
     if (known < 0) return true;
     if (known == 0) return false;
@@ -544,6 +571,7 @@ bool Constrictor2::Impl::graph_pending(const Entry& e) const {
 std::size_t Constrictor2::Impl::local_constrict(Graph g, double gamma0, int k, const std::string& stage) {
   emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, stage.c_str());
   gamma0_known.clear();
+  stage_candidates = 0;
   Heap h = first_heap(g, gamma0, k);
   std::size_t placed = 0;
   while (!h.empty() && n_onb < n) {
@@ -557,7 +585,7 @@ std::size_t Constrictor2::Impl::local_constrict(Graph g, double gamma0, int k, c
     ++placed;
     emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage.c_str());
     // Only the two new edges are new candidates; stuck points near them get them offered.
-    for (int z : neighbourhood({e.a, e.y, e.b}, k)) {
+    for (int z : neighbourhood({e.a, e.y, e.b}, k, g == Graph::Complete)) {
       if (onb[U(z)]) continue;
       push_candidate(h, g, gamma0, e.a, z);
       push_candidate(h, g, gamma0, e.y, z);

@@ -114,7 +114,11 @@ std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
   j["locked"] = r.locked_at_gamma0;
   j["stuck_points"] = r.stuck_points;
   nlohmann::json stages = nlohmann::json::array();
-  for (const auto& s : r.stages) stages.push_back({{"name", s.name}, {"placed", s.placed}});
+  for (const auto& s : r.stages) {
+    nlohmann::json st = {{"name", s.name}, {"placed", s.placed}};
+    if (s.candidates > 0) st["candidates"] = s.candidates;
+    stages.push_back(std::move(st));
+  }
   j["stages"] = stages;
   j["removed_simplices"] = r.removed_simplices;
   j["fallback_insertions"] = r.fallback_insertions;

@@ -417,6 +417,37 @@ TEST(Constrict2Unit, FallbackWitnessReadsDoNotChangeTheResult) {
   }
 }
 
+// An outlier inside a sampled circle is a Delaunay neighbour of a long arc (a hub). The γ0
+// stages offer the two new edges of an insertion to the stuck points within two hops, but not
+// through a hub: else every insertion at a hub offered its whole arc again (a circle of 10^6
+// points with 1 % outliers: over 10 minutes). Measured by the stages' candidate counts (a work
+// count, not a time): at most 30 per stuck point here (7.5-10.6), where expanding through hubs
+// queued 129-217. The polygon stays valid and complete. Seeds printed.
+TEST(Constrict2Unit, FallbackDoesNotOfferAHubsWholeArc) {
+  for (const unsigned seed : {61u, 62u, 63u}) {
+    std::printf("seed %u\n", seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1), box(-1.2, 1.2);
+    std::vector<std::array<double, 2>> xy;
+    for (int k = 0; k < 20000; ++k) {
+      const double t = 2 * M_PI * u(rng);
+      xy.push_back({std::cos(t), std::sin(t)});
+    }
+    for (int k = 0; k < 400; ++k) xy.push_back({box(rng), box(rng)});
+    const PointSet p = test::make2(xy);
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(p, Constrict2Options::paper(), r).is_ok());
+    ASSERT_TRUE(r.valid()) << r.check.reason;
+    std::size_t queued = 0;
+    for (const Constrict2Stage& st : r.stages)
+      if (st.name.rfind("gamma0=", 0) == 0) queued += st.candidates;
+    const std::size_t stuck = r.stuck_points.size();
+    std::printf("  %zu stuck points, %zu candidates queued by the gamma0 stages\n", stuck, queued);
+    ASSERT_GT(stuck, 500u) << "seed " << seed << ": expected a lock with many points inside";
+    EXPECT_LE(queued, 30 * stuck) << "seed " << seed;
+  }
+}
+
 // The γ0 and degree-4 stages leave needles to the repair (Constrict2Options::fallback_needle_ratio).
 // On a five-petal curve with noise of one spacing (the 10⁶ benchmark's shape, 20 000 points), points
 // locked inside the band have Delaunay neighbours across the whole figure, and the fallback joined

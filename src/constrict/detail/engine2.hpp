@@ -196,6 +196,7 @@ struct Constrictor2::Impl {
   enum class Graph { Gamma0, Degree4, Complete };
   // The γ0 graph's answers of this stage (in_graph, graph_tests_ahead), by pair.
   std::unordered_map<std::uint64_t, bool> gamma0_known;
+  std::size_t stage_candidates = 0;  // candidates queued in the current fallback stage (Constrict2Stage)
   static constexpr std::size_t kMaxTestsAhead = 1024;  // graph_tests_ahead's batch, at most
 
   // ---------------------------------------------------------------- inline helpers
@@ -344,7 +345,13 @@ struct Constrictor2::Impl {
   bool edge_blocks(const BEdge& e, int s, int t) const;
   bool valid_insert(int a, int b, int y);
   void insert_point(int a, int b, int y);
-  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k);
+  // The vertices within k DT hops of the seeds; through_hubs false: a hub's neighbours are not
+  // reached through it (the γ0 and degree-4 stages' candidates; the repair reaches everything).
+  std::vector<int> neighbourhood(const std::vector<int>& seeds, int k, bool through_hubs = true);
+  // A vertex of more than kHubDegree Delaunay neighbours (an outlier inside a sampled curve sees
+  // a whole arc): "near" it says nothing, and every insertion at it offered its whole arc again.
+  static constexpr int kHubDegree = 64;
+  bool hub(int v) const { return adj_off[U(v) + 1] - adj_off[U(v)] > kHubDegree; }
   void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked);
   void merge_fresh_caches();
   void sides_below(int i, int j, double t, double& ga, double& gb, bool& blocked, const SideCaches& shared,
@@ -363,6 +370,7 @@ struct Constrictor2::Impl {
   std::vector<int> within_hops(int z, int k) const;
   Heap first_heap(Graph g, double gamma0, int k);
   void graph_tests_ahead(Heap& h, double gamma0, std::size_t count);
+  std::array<int, 2> test_ends(const Entry& e) const;
   bool graph_pending(const Entry& e) const;
   std::size_t local_constrict(Graph g, double gamma0, int k, const std::string& stage);
   void augment_degree4();

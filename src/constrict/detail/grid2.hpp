@@ -111,6 +111,11 @@ class Grid {
     if (fine_on_) edges_fine_.add(a, b, id);
     edges_coarse_.add(a, b, id);
   }
+  /// Takes edge id (added with the same a, b) out of both layers.
+  void remove_edge(const double* a, const double* b, int id) {
+    if (fine_on_) edges_fine_.remove(a, b, id);
+    edges_coarse_.remove(a, b, id);
+  }
   /// On a just built grid: add_edge(a, b, id) for count edges, seg(k, a, b, id) giving the k-th
   /// (the same each call), in one counting sort per layer (CellLists::build, or build_in_blocks on both cores for the
   /// coarse layer of a long boundary).
