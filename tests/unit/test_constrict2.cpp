@@ -379,6 +379,21 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
   }
 }
 
+// n points on the unit circle and m outliers uniform in the box [-1.2, 1.2]^2 (seed printed): an
+// outlier inside the circle is a Delaunay neighbour of a long arc.
+PointSet circle_with_outliers(int n, int m, unsigned seed) {
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1), box(-1.2, 1.2);
+  std::vector<std::array<double, 2>> xy;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * M_PI * u(rng);
+    xy.push_back({std::cos(t), std::sin(t)});
+  }
+  for (int k = 0; k < m; ++k) xy.push_back({box(rng), box(rng)});
+  return test::make2(xy);
+}
+
 // The γ0 fallback's cheap witness test reads at most Constrict2Options::fallback_witness_reads
 // neighbours of each end of a pair; a pair it does not rule out is tested exactly when it comes
 // out of the queue, so the polygon, the stages and their counts must not depend on the value.
@@ -387,16 +402,7 @@ TEST(Constrict2Unit, FallbackTestsAheadDoNotChangeTheResult) {
 // fallback's polygon is compared as it is. Seeds printed.
 TEST(Constrict2Unit, FallbackWitnessReadsDoNotChangeTheResult) {
   for (const unsigned seed : {51u, 52u, 53u}) {
-    std::printf("seed %u\n", seed);
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1), box(-1.2, 1.2);
-    std::vector<std::array<double, 2>> xy;
-    for (int k = 0; k < 4000; ++k) {
-      const double t = 2 * M_PI * u(rng);
-      xy.push_back({std::cos(t), std::sin(t)});
-    }
-    for (int k = 0; k < 80; ++k) xy.push_back({box(rng), box(rng)});
-    const PointSet p = test::make2(xy);
+    const PointSet p = circle_with_outliers(4000, 80, seed);
     Constrict2Options o = Constrict2Options::paper();
     o.fallback_witness_reads = 0;  // every neighbour
     Polygon2Result all;
@@ -425,16 +431,7 @@ TEST(Constrict2Unit, FallbackWitnessReadsDoNotChangeTheResult) {
 // queued 129-217. The polygon stays valid and complete. Seeds printed.
 TEST(Constrict2Unit, FallbackDoesNotOfferAHubsWholeArc) {
   for (const unsigned seed : {61u, 62u, 63u}) {
-    std::printf("seed %u\n", seed);
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1), box(-1.2, 1.2);
-    std::vector<std::array<double, 2>> xy;
-    for (int k = 0; k < 20000; ++k) {
-      const double t = 2 * M_PI * u(rng);
-      xy.push_back({std::cos(t), std::sin(t)});
-    }
-    for (int k = 0; k < 400; ++k) xy.push_back({box(rng), box(rng)});
-    const PointSet p = test::make2(xy);
+    const PointSet p = circle_with_outliers(20000, 400, seed);
     Polygon2Result r;
     ASSERT_TRUE(reconstruct2(p, Constrict2Options::paper(), r).is_ok());
     ASSERT_TRUE(r.valid()) << r.check.reason;
