@@ -444,7 +444,7 @@ bool Constrictor2::Impl::test_candidate(const Entry& e, Graph g, double gamma0) 
   const int a = e.a, b = e.b, z = e.y;
   if (!entry_live(e)) return false;
   const std::array<int, 2> ends = test_ends(e);
-  if (!in_graph(g, gamma0, ends[0], z) || !in_graph(g, gamma0, ends[1], z)) return false;
+  if (!graph_implied(g, gamma0) && (!in_graph(g, gamma0, ends[0], z) || !in_graph(g, gamma0, ends[1], z))) return false;
   return valid_insert(a, b, z);
 }
 
@@ -575,7 +575,8 @@ std::size_t Constrictor2::Impl::local_constrict(Graph g, double gamma0, int k, c
   Heap h = first_heap(g, gamma0, k);
   std::size_t placed = 0;
   while (!h.empty() && n_onb < n) {
-    if (g == Graph::Gamma0 && opt.fallback_tests_ahead > 0 && entry_live(h.top()) && graph_pending(h.top()))
+    if (g == Graph::Gamma0 && !graph_implied(g, gamma0) && opt.fallback_tests_ahead > 0 && entry_live(h.top()) &&
+        graph_pending(h.top()))
       graph_tests_ahead(h, gamma0, std::min<std::size_t>(opt.fallback_tests_ahead, kMaxTestsAhead));
     if (h.empty()) break;
     const Entry e = h.top();

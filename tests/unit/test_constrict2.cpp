@@ -17,6 +17,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/delaunay.hpp"
+#include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/quad_heap.hpp"
@@ -443,6 +444,63 @@ TEST(Constrict2Unit, FallbackDoesNotOfferAHubsWholeArc) {
     ASSERT_GT(stuck, 500u) << "seed " << seed << ": expected a lock with many points inside";
     EXPECT_LE(queued, 30 * stuck) << "seed " << seed;
   }
+}
+
+// Every insertion of a γ0 stage joins its apex by two edges of that stage's graph: Δ >= γ0 by
+// brute force over all points (spec §2.1, §2.2: a point on the open segment blocks; else each
+// side's smallest apex value, and Δ = filtration_value). At γ0 = -1 the engine skips the graph
+// test (graph_implied: only a blocked pair is out, and its point would lie in the triangle that
+// the insertion requires empty), so this also checks that shortcut. A noisy spiral of 10 turns
+// and 12 000 points locks (the channel between its turns is 100 spacings wide) and uses the whole
+// schedule down to -1; the refinement is off. Seeds printed.
+TEST(Constrict2Unit, GammaZeroInsertionsAreInTheirStagesGraph) {
+  std::size_t at_minus_one = 0, checked = 0;
+  for (const unsigned seed : {71u, 72u, 73u, 74u, 75u, 76u}) {
+    std::printf("seed %u\n", seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::normal_distribution<double> noise(0, 1e-4);
+    std::vector<double> turn(12000);
+    for (double& v : turn) v = 20 * M_PI * u(rng);
+    std::sort(turn.begin(), turn.end());
+    std::vector<std::array<double, 2>> xy;
+    for (const double t : turn) {
+      const double r = 1 + t / (2 * M_PI);
+      xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
+    }
+    const PointSet p = test::make2(xy);
+    Recorder rec;
+    Polygon2Result r;
+    ASSERT_TRUE(reconstruct2(p, Constrict2Options::paper(), r, &rec).is_ok());
+    ASSERT_TRUE(r.valid()) << "seed " << seed;
+    auto delta = [&](int i, int j) {
+      double ga = 1, gb = 1;
+      for (std::size_t q = 0; q < p.size(); ++q) {
+        if (static_cast<int>(q) == i || static_cast<int>(q) == j) continue;
+        const int o = orient2(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)], p[q]);
+        if (o == 0) {
+          if (diametral_side2(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)], p[q]) < 0)
+            return -HUGE_VAL;
+          continue;
+        }
+        const double g = apex_gamma2(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)], p[q]);
+        (o > 0 ? ga : gb) = std::min(o > 0 ? ga : gb, g);
+      }
+      return filtration_value(ga, gb);
+    };
+    for (const Constrict2Event& e : rec.events) {
+      if (e.kind != Constrict2Event::Kind::InsertPoint || e.stage.rfind("gamma0=", 0) != 0) continue;
+      const double g0 = std::stod(e.stage.substr(7));
+      for (const int end : {e.triangle[0], e.triangle[1]})
+        EXPECT_GE(delta(end, e.triangle[2]), g0)
+            << "seed " << seed << " stage " << e.stage << " pair " << end << ' ' << e.triangle[2];
+      ++checked;
+      at_minus_one += g0 == -1;
+    }
+  }
+  std::printf("%zu insertions checked, %zu of them at gamma0 = -1\n", checked, at_minus_one);
+  EXPECT_GT(checked, 50u);
+  EXPECT_GT(at_minus_one, 0u) << "expected the stage gamma0 = -1 to place points";
 }
 
 // The γ0 and degree-4 stages leave needles to the repair (Constrict2Options::fallback_needle_ratio).
