@@ -446,6 +446,47 @@ TEST(Constrict2Unit, FallbackDoesNotOfferAHubsWholeArc) {
   }
 }
 
+// A spiral of the given turns (radius 1 + θ/2π, so turns 1 apart) through n points at uniform
+// random angles, with Gaussian noise of 1e-4 (seed printed). The channel between its turns is
+// many spacings wide: it locks, and uses the whole γ0 schedule and often the repair.
+PointSet noisy_spiral(int n, int turns, unsigned seed) {
+  std::printf("seed %u\n", seed);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> noise(0, 1e-4);
+  std::vector<double> turn(static_cast<std::size_t>(n));
+  for (double& v : turn) v = 2 * M_PI * turns * u(rng);
+  std::sort(turn.begin(), turn.end());
+  std::vector<std::array<double, 2>> xy;
+  for (const double t : turn) {
+    const double r = 1 + t / (2 * M_PI);
+    xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
+  }
+  return test::make2(xy);
+}
+
+// The repair's first round tests its candidates side by side (first_heap): the same polygon on
+// one thread and on all. Noisy spirals whose paper-mode fallback reaches the repair.
+TEST(Constrict2Unit, RepairFirstHeapThreadCountIndependent) {
+  std::size_t repaired = 0;
+  for (const unsigned seed : {81u, 82u, 83u}) {
+    const PointSet p = noisy_spiral(40000, 3, seed);
+    const Constrict2Options o = Constrict2Options::paper();
+    Polygon2Result one, many;
+    {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+      ASSERT_TRUE(reconstruct2(p, o, one).is_ok());
+    }
+    ASSERT_TRUE(reconstruct2(p, o, many).is_ok());
+    ASSERT_TRUE(one.valid()) << "seed " << seed;
+    EXPECT_EQ(one.boundary, many.boundary) << "seed " << seed;
+    for (const Constrict2Stage& st : one.stages)
+      if (st.name == "repair") repaired += st.placed;
+  }
+  std::printf("%zu points placed by the repair\n", repaired);
+  EXPECT_GT(repaired, 0u) << "expected the repair to place points";
+}
+
 // Every insertion of a γ0 stage joins its apex by two edges of that stage's graph: Δ >= γ0 by
 // brute force over all points (spec §2.1, §2.2: a point on the open segment blocks; else each
 // side's smallest apex value, and Δ = filtration_value). At γ0 = -1 the engine skips the graph
@@ -457,18 +498,7 @@ TEST(Constrict2Unit, GammaZeroInsertionsAreInTheirStagesGraph) {
   std::size_t at_minus_one = 0, checked = 0;
   for (const unsigned seed : {71u, 72u, 73u, 74u, 75u, 76u}) {
     std::printf("seed %u\n", seed);
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    std::normal_distribution<double> noise(0, 1e-4);
-    std::vector<double> turn(12000);
-    for (double& v : turn) v = 20 * M_PI * u(rng);
-    std::sort(turn.begin(), turn.end());
-    std::vector<std::array<double, 2>> xy;
-    for (const double t : turn) {
-      const double r = 1 + t / (2 * M_PI);
-      xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
-    }
-    const PointSet p = test::make2(xy);
+    const PointSet p = noisy_spiral(12000, 10, seed);
     Recorder rec;
     Polygon2Result r;
     ASSERT_TRUE(reconstruct2(p, Constrict2Options::paper(), r, &rec).is_ok());

@@ -343,7 +343,7 @@ struct Constrictor2::Impl {
   void build_vertex_triangles();
   int add_edge(int u, int v);
   bool edge_blocks(const BEdge& e, int s, int t) const;
-  bool valid_insert(int a, int b, int y);
+  bool valid_insert(int a, int b, int y) const;  // (read-only: called side by side)
   void insert_point(int a, int b, int y);
   // The vertices within k DT hops of the seeds; through_hubs false: a hub's neighbours are not
   // reached through it (the γ0 and degree-4 stages' candidates; the repair reaches everything).
@@ -375,7 +375,7 @@ struct Constrictor2::Impl {
   bool needle(int a, int b, int z) const;
   bool test_candidate(const Entry& e, Graph g, double gamma0);
   std::vector<int> candidate_starts(const std::vector<int>& region) const;
-  std::vector<int> within_hops(int z, int k) const;
+  std::vector<int> within_hops(int z, int k, bool through_hubs) const;
   Heap first_heap(Graph g, double gamma0, int k);
   void graph_tests_ahead(Heap& h, double gamma0, std::size_t count);
   std::array<int, 2> test_ends(const Entry& e) const;

@@ -128,7 +128,7 @@ class Grid {
   /// Calls f(id) for the registered edges that can meet segment ab (maybe more than once) until f
   /// returns true; true if it did.
   template <class F>
-  bool any_edge(const double* a, const double* b, F&& f) {
+  bool any_edge(const double* a, const double* b, F&& f) const {
     const double* seg[2] = {a, b};
     if (fine_on_ && fine_.hull_cells(seg, 2) <= fine_cells_) return edges_fine_.any(a, b, f);
     return edges_coarse_.any(a, b, f);
