@@ -212,16 +212,33 @@ bool conflict_candidates(const Poly& P, const std::vector<char>& dt, std::vector
   const auto meet = [](const Box& p, const Box& q) {
     return p.x0 <= q.x1 && q.x0 <= p.x1 && p.y0 <= q.y1 && q.y0 <= p.y1;
   };
-  double X0 = P.vtx(0)[0], X1 = X0, Y0 = P.vtx(0)[1], Y1 = Y0;
-  for (std::size_t i = 1; i < n; ++i) {
-    X0 = std::min(X0, P.vtx(i)[0]); X1 = std::max(X1, P.vtx(i)[0]);
-    Y0 = std::min(Y0, P.vtx(i)[1]); Y1 = std::max(Y1, P.vtx(i)[1]);
-  }
   const int G = static_cast<int>(std::min<std::size_t>(1024, 4 + 4 * static_cast<std::size_t>(std::sqrt(static_cast<double>(odd.size())))));
-  // Half units (grid_cells.hpp): no overflow or underflow at any scale.
-  const double cw = detail::half_span(X0, X1) / G, ch = detail::half_span(Y0, Y1) / G;
-  const auto cx = [&](double x) { return detail::cell_of(x, X0, cw, G); };
-  const auto cy = [&](double y) { return detail::cell_of(y, Y0, ch, G); };
+  // Columns and rows cut at quantiles of the unflagged boxes' lower corners, so that the grid
+  // follows where those edges are: a uniform grid over the polygon's box put them all in one cell
+  // on heavy-tailed inputs (10^6 Cauchy-distributed points: 27 s of pair tests). A box meets the
+  // columns from that of its x0 to that of its x1 (upper_bound is monotone, so two boxes that
+  // overlap share a column; exact comparisons).
+  std::vector<double> cut_x(odd.size()), cut_y(odd.size());
+  for (std::size_t k = 0; k < odd.size(); ++k) {
+    const Box b = box(odd[k]);
+    cut_x[k] = b.x0;
+    cut_y[k] = b.y0;
+  }
+  std::sort(cut_x.begin(), cut_x.end());
+  std::sort(cut_y.begin(), cut_y.end());
+  const auto quantiles = [&](std::vector<double>& v) {
+    std::vector<double> q(static_cast<std::size_t>(G - 1));
+    for (std::size_t k = 0; k < q.size(); ++k) q[k] = v[(k + 1) * v.size() / static_cast<std::size_t>(G)];
+    v = std::move(q);
+  };
+  quantiles(cut_x);
+  quantiles(cut_y);
+  const auto cx = [&](double x) {
+    return static_cast<int>(std::upper_bound(cut_x.begin(), cut_x.end(), x) - cut_x.begin());
+  };
+  const auto cy = [&](double y) {
+    return static_cast<int>(std::upper_bound(cut_y.begin(), cut_y.end(), y) - cut_y.begin());
+  };
   constexpr long long kBig = 4096;  // boxes over more cells are compared with every edge
   const auto cells_of = [&](const Box& b, int& i0, int& i1, int& j0, int& j1) {
     i0 = cx(b.x0); i1 = cx(b.x1); j0 = cy(b.y0); j1 = cy(b.y1);
