@@ -376,6 +376,7 @@ struct Constrictor2::Impl {
   bool test_candidate(const Entry& e, Graph g, double gamma0);
   std::vector<int> candidate_starts(const std::vector<int>& region) const;
   std::vector<int> within_hops(int z, int k, bool through_hubs) const;
+  bool boundary_within_two_hops(int z, bool through_hubs) const;
   Heap first_heap(Graph g, double gamma0, int k);
   void graph_tests_ahead(Heap& h, double gamma0, std::size_t count);
   std::array<int, 2> test_ends(const Entry& e) const;
