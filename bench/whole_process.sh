@@ -5,6 +5,9 @@
 # `constrict reconstruct` (read to written result), single mode and `--topology auto`, and writes
 # a Markdown table of the medians, their ratios and the peak memory (per point) to OUT/table.md.
 # Usage: bench/whole_process.sh [BUILD_DIR (build-bench)] [OUT (out/bench)] [ROUNDS (3)] [N (1000000)]
+# HOSTILE=1 adds the 2D families of docs/benchmarks.md "Hostile 2D families" that once had cliffs:
+# a circle with 1 % outliers in its box, a noisy spiral, Cauchy-distributed points, and a noisy
+# circle with 20 outer clusters (about 10-15 s each at 10^6).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build-bench}; OUT=${2:-out/bench}; ROUNDS=${3:-3}; N=${4:-1000000}
@@ -38,8 +41,24 @@ save("surface3.xyz", v * [2.0, 1.2, 0.8])
 # only carved). About 7.6 Delaunay tetrahedra per point instead of 4.6.
 th = np.arctan2(v[:, 1], v[:, 0]); ph = np.arccos(np.clip(v[:, 2], -1, 1))
 save("star3.xyz", v * (1 + 0.25 * np.sin(3 * th) * np.sin(ph) ** 3 + 0.15 * np.cos(4 * ph))[:, None])
+if os.environ.get("HOSTILE") == "1":
+    rng = np.random.default_rng(23)
+    m = n - n // 100
+    t = rng.random(m) * 2 * math.pi
+    save("outliers2.xy", np.vstack([np.c_[np.cos(t), np.sin(t)], rng.uniform(-1.2, 1.2, (n - m, 2))]))
+    u = np.sort(rng.random(n)) * 40 * math.pi
+    r = u / (40 * math.pi) * 10 + 1
+    save("spiral2.xy", np.c_[r * np.cos(u), r * np.sin(u)] + rng.normal(0, 1e-4, (n, 2)))
+    save("cauchy2.xy", rng.standard_cauchy((n, 2)))
+    k = n - 20 * 50
+    t = rng.random(k) * 2 * math.pi
+    ring = np.c_[np.cos(t), np.sin(t)] * (1 + rng.normal(0, 2 * math.pi / k, k))[:, None]
+    cl = np.vstack([rng.normal(2 * np.array([math.cos(a), math.sin(a)]), 0.02, (50, 2))
+                    for a in np.linspace(0, 2 * math.pi, 20, endpoint=False)])
+    save("clusters2.xy", np.vstack([ring, cl]))
 PY
 inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3" "star3.xyz 3")
+[ "${HOSTILE:-0}" = 1 ] && inputs+=("outliers2.xy 2" "spiral2.xy 2" "cauchy2.xy 2" "clusters2.xy 2")
 [ -f ../shared/data/3d/igea.xyz ] && inputs+=("../shared/data/3d/igea.xyz 3")
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 table="$OUT/table.md"
