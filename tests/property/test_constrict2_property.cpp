@@ -224,31 +224,39 @@ TEST(Constrict2Property, ValidatorMatchesBruteForce) {
   std::printf("[ Constrict2Property ] validator: %d valid polygons of 3000\n", valid);
 }
 
+// A local defect (a short reversal, or a swap of nearby vertices; rng draws them) in p's
+// reconstructed polygon: validate_polygon_in_triangulation agrees with the brute-force validator,
+// on it and on its clockwise copy, and accepts the polygon itself.
+void check_local_defect(const PointSet& p, std::uint64_t seed, std::mt19937_64& rng, int& valid, int& invalid) {
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, {}, r).is_ok()) << "seed " << seed;
+  std::vector<int> b = r.boundary;
+  const std::size_t m = b.size(), i = rng() % m, len = 1 + rng() % 4;
+  if (seed % 3 == 0) {
+    std::swap(b[i], b[(i + 2 + rng() % 4) % m]);
+  } else {
+    for (std::size_t k = 0; k < (len + 1) / 2; ++k) std::swap(b[(i + k) % m], b[(i + len - k) % m]);
+  }
+  Delaunay2 dt;
+  ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
+  ASSERT_TRUE(validate_polygon_in_triangulation(p, r.boundary, dt.triangles).is_ok()) << "seed " << seed;
+  const bool slow = validate_polygon_brute_force(p, b).is_ok();
+  ASSERT_EQ(validate_polygon_in_triangulation(p, b, dt.triangles).is_ok(), slow) << "seed " << seed;
+  std::vector<int> rev(b.rbegin(), b.rend());
+  ASSERT_EQ(validate_polygon_in_triangulation(p, rev, dt.triangles).is_ok(),
+            validate_polygon_brute_force(p, rev).is_ok())
+      << "seed " << seed;
+  (slow ? valid : invalid)++;
+}
+
 // validate_polygon_in_triangulation with a few non-Delaunay edges sweeps only the edges near
-// them: local defects (a short reversal or a swap of nearby vertices) in large valid polygons,
-// against the brute-force validator.
+// them: local defects in large valid polygons, against the brute-force validator.
 TEST(Constrict2Property, TriangulationValidatorFindsLocalDefects) {
   int valid = 0, invalid = 0;
   for (std::uint64_t seed = 1; seed <= 250; ++seed) {
     std::mt19937_64 rng(seed);
     const PointSet p = make_points(seed % 2 ? 2 : 0, 200 + rng() % 300, rng);
-    Polygon2Result r;
-    ASSERT_TRUE(reconstruct2(p, {}, r).is_ok()) << "seed " << seed;
-    std::vector<int> b = r.boundary;
-    const std::size_t m = b.size(), i = rng() % m, len = 1 + rng() % 4;
-    if (seed % 3 == 0) {
-      std::swap(b[i], b[(i + 2 + rng() % 4) % m]);
-    } else {
-      for (std::size_t k = 0; k < (len + 1) / 2; ++k) std::swap(b[(i + k) % m], b[(i + len - k) % m]);
-    }
-    Delaunay2 dt;
-    ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
-    const bool slow = validate_polygon_brute_force(p, b).is_ok();
-    ASSERT_EQ(validate_polygon_in_triangulation(p, b, dt.triangles).is_ok(), slow) << "seed " << seed;
-    std::vector<int> rev(b.rbegin(), b.rend());
-    ASSERT_EQ(validate_polygon_in_triangulation(p, rev, dt.triangles).is_ok(),
-              validate_polygon_brute_force(p, rev).is_ok()) << "seed " << seed;
-    (slow ? valid : invalid)++;
+    check_local_defect(p, seed, rng, valid, invalid);
   }
   std::printf("[ Constrict2Property ] local defects: %d valid, %d invalid\n", valid, invalid);
   EXPECT_GT(valid, 20);
@@ -269,21 +277,7 @@ TEST(Constrict2Property, TriangulationValidatorFindsLocalDefectsOnHeavyTails) {
       p.coords.push_back(c(rng));
       p.coords.push_back(c(rng));
     }
-    Polygon2Result r;
-    ASSERT_TRUE(reconstruct2(p, {}, r).is_ok()) << "seed " << seed;
-    std::vector<int> b = r.boundary;
-    const std::size_t m = b.size(), i = rng() % m, len = 1 + rng() % 4;
-    if (seed % 3 == 0) {
-      std::swap(b[i], b[(i + 2 + rng() % 4) % m]);
-    } else {
-      for (std::size_t k = 0; k < (len + 1) / 2; ++k) std::swap(b[(i + k) % m], b[(i + len - k) % m]);
-    }
-    Delaunay2 dt;
-    ASSERT_TRUE(build_delaunay2(p, dt).is_ok());
-    const bool slow = validate_polygon_brute_force(p, b).is_ok();
-    ASSERT_EQ(validate_polygon_in_triangulation(p, b, dt.triangles).is_ok(), slow) << "seed " << seed;
-    ASSERT_TRUE(validate_polygon_in_triangulation(p, r.boundary, dt.triangles).is_ok()) << "seed " << seed;
-    (slow ? valid : invalid)++;
+    check_local_defect(p, seed, rng, valid, invalid);
   }
   std::printf("[ Constrict2Property ] heavy tails, local defects: %d valid, %d invalid\n", valid, invalid);
   EXPECT_GT(valid, 1);
