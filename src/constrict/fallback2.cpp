@@ -530,9 +530,8 @@ auto Constrictor2::Impl::first_heap(Graph g, double gamma0, int k) -> Heap {
       stuck.size(),
       [&](std::size_t i, auto&& push) {
         Entry e;
-        const bool through = g == Graph::Complete;
-        if (k == 2 && !boundary_within_two_hops(stuck[i], through)) return;
-        for (const int a : candidate_starts(within_hops(stuck[i], k, through)))
+        if (k == 2 && !boundary_within_two_hops(stuck[i], through_hubs(g))) return;
+        for (const int a : candidate_starts(within_hops(stuck[i], k, through_hubs(g))))
           if (candidate(g, gamma0, a, stuck[i], e) && (g != Graph::Complete || valid_insert(e.a, e.b, e.y))) push(e);
       },
       kBlock);
@@ -606,7 +605,7 @@ std::size_t Constrictor2::Impl::local_constrict(Graph g, double gamma0, int k, c
     ++placed;
     emit(Constrict2Event::Kind::InsertPoint, e.a, e.b, e.y, e.key, stage.c_str());
     // Only the two new edges are new candidates; stuck points near them get them offered.
-    for (int z : neighbourhood({e.a, e.y, e.b}, k, g == Graph::Complete)) {
+    for (int z : neighbourhood({e.a, e.y, e.b}, k, through_hubs(g))) {
       if (onb[U(z)]) continue;
       push_candidate(h, g, gamma0, e.a, z);
       push_candidate(h, g, gamma0, e.y, z);

@@ -352,6 +352,8 @@ struct Constrictor2::Impl {
   // a whole arc): "near" it says nothing, and every insertion at it offered its whole arc again.
   static constexpr int kHubDegree = 64;
   bool hub(int v) const { return adj_off[U(v) + 1] - adj_off[U(v)] > kHubDegree; }
+  // Which stages' candidate regions hop through hubs: only the repair's (it must reach everything).
+  static bool through_hubs(Graph g) { return g == Graph::Complete; }
   void side_values_within(int i, int j, double radius, double& ga, double& gb, bool& blocked);
   void merge_fresh_caches();
   void sides_below(int i, int j, double t, double& ga, double& gb, bool& blocked, const SideCaches& shared,
