@@ -131,7 +131,10 @@ void Constrictor2::Impl::run_all() {
   tbb::task_group side;
   if (beside) side.run([this] { build_adjacency(); });
   try {
-    while (step_untimed()) {}
+    // (A cancel is looked at every 4096 removals: a relaxed load, and the run stops within
+    // about a millisecond.)
+    for (std::size_t k = 1; step_untimed(); ++k)
+      if ((k & 4095) == 0 && cancelled()) break;
   } catch (...) {
     // Wait for the task (not ~task_group, which would cancel the adjacency's sorts midway),
     // and report the constriction's exception rather than the task's.
@@ -173,6 +176,7 @@ Status Constrictor2::Impl::finish(Polygon2Result& r) {
 
 Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
   run_all();
+  if (cancelled()) return detail::cancelled_status();
   r = Polygon2Result{};
   r.removed_simplices = removed;
   r.locked_at_gamma0 = locked;
@@ -187,7 +191,7 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
   } else if (locked) {
     build_fallback();
     auto run = [&](Graph g, double g0, int k, const std::string& name) {
-      if (n_onb == n) return;
+      if (n_onb == n || cancelled()) return;
       const std::size_t placed = local_constrict(g, g0, k, name);
       r.stages.push_back({name, placed, stage_candidates});
       r.fallback_insertions += placed;
@@ -200,16 +204,16 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
         std::snprintf(buf, sizeof buf, "gamma0=%g", g0);
         run(Graph::Gamma0, g0, 2, buf);
       }
-    if ((opt.fallback == Fallback::Auto || opt.fallback == Fallback::Degree4) && n_onb < n) {
+    if ((opt.fallback == Fallback::Auto || opt.fallback == Fallback::Degree4) && n_onb < n && !cancelled()) {
       augment_degree4();
       run(Graph::Degree4, 0, 2, "degree4");
     }
     if (opt.fallback == Fallback::Auto || opt.repair) {
-      for (int k = 2; n_onb < n; k *= 2) {
+      for (int k = 2; n_onb < n && !cancelled(); k *= 2) {
         run(Graph::Complete, 0, k, "repair");
         if (static_cast<std::size_t>(k) > n) break;
       }
-      if (n_onb < n) {
+      if (n_onb < n && !cancelled()) {
         const std::size_t placed = n - n_onb;
         star_polygon();
         r.stages.push_back({"star", placed});
@@ -218,6 +222,7 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
       }
     }
   }
+  if (cancelled()) return detail::cancelled_status();
   r.ms_fallback = ms_since(t0);
   r.complete = n_onb == n;
   std::vector<int> poly = boundary_list();  // ranked ids until the end
@@ -245,7 +250,8 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
                                     }};
         },
         r.fallback_insertions == 0,  // after insertions (non-Delaunay edges) moves are the rule
-        &non_dt, opt.refine_multi_start);
+        &non_dt, opt.refine_multi_start, cancel);
+    if (cancelled()) return detail::cancelled_status();
     r.refine_moves = rs.moves_2opt + rs.moves_oropt + rs.moves_deep;
     r.refine_budget_hit = rs.budget_hit;
     r.perimeter_before_refine = rs.length_before;
@@ -439,6 +445,7 @@ Status Constrictor2::finish(Polygon2Result& result) {
 }
 
 struct detail::Constrictor2Access {
+  static void set_cancel(Constrictor2& c, const std::atomic<bool>* cancel) { c.impl_->cancel = cancel; }
   static void share(const Constrictor2& c, const detail::Triangulation2Hook& hook) {
     const Constrictor2::Impl& e = *c.impl_;
     std::vector<int> to_input(e.n);
@@ -448,13 +455,17 @@ struct detail::Constrictor2Access {
 };
 
 Status detail::reconstruct2_sharing(const PointSet& points, const Constrict2Options& options, Polygon2Result& result,
-                                    Constrict2Visitor* visitor, const Triangulation2Hook& hook) {
+                                    Constrict2Visitor* visitor, const Triangulation2Hook& hook,
+                                    const std::atomic<bool>* cancel) {
   result = Polygon2Result{};
   Constrictor2 c;
   Status st = c.init(points, options, visitor);
   if (!st) return st;
+  Constrictor2Access::set_cancel(c, cancel);
   if (hook) Constrictor2Access::share(c, hook);
-  return c.finish(result);
+  st = c.finish(result);
+  if (!st) result = Polygon2Result{};  // (cancelled: no partial result)
+  return st;
 }
 
 Status reconstruct2(const PointSet& points, const Constrict2Options& options, Polygon2Result& result,

@@ -593,7 +593,8 @@ std::size_t Constrictor2::Impl::local_constrict(Graph g, double gamma0, int k, c
   stage_candidates = 0;
   Heap h = first_heap(g, gamma0, k);
   std::size_t placed = 0;
-  while (!h.empty() && n_onb < n) {
+  for (std::size_t popped = 1; !h.empty() && n_onb < n; ++popped) {
+    if ((popped & 255) == 0 && cancelled()) break;  // (finish() then returns no result)
     if (g == Graph::Gamma0 && !graph_implied(g, gamma0) && opt.fallback_tests_ahead > 0 && entry_live(h.top()) &&
         graph_pending(h.top()))
       graph_tests_ahead(h, gamma0, std::min<std::size_t>(opt.fallback_tests_ahead, kMaxTestsAhead));
@@ -642,7 +643,9 @@ void Constrictor2::Impl::augment_degree4() {
       if (tr[U(i)] != a && tr[U(i)] != b) return dt.neighbors[U(t)][U(i)];
     return -1;
   };
-  for (int v : verts) {
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    if ((i & 63) == 63 && cancelled()) return;  // (finish() then returns no result)
+    const int v = verts[i];
     const int d = degree(v);
     if (d >= 4) continue;
     std::vector<int> cand;

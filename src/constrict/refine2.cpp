@@ -149,8 +149,9 @@ class Refiner {
  public:
   // xy: the coordinates in polygon order (polygon_coordinates()).
   Refiner(const PointSet& points, std::vector<double> xy, const Delaunay2& dt, std::vector<int>& tour,
-          std::size_t budget, Refine2Stats& st, const std::vector<int>* order, Adjacency2 adjacency)
-      : poly_(tour), order_(order), budget_(budget), st_(st), n_(tour.size()) {
+          std::size_t budget, Refine2Stats& st, const std::vector<int>* order, Adjacency2 adjacency,
+          const std::atomic<bool>* cancel)
+      : poly_(tour), order_(order), budget_(budget), st_(st), n_(tour.size()), cancel_(cancel) {
     // Local ids = positions in the input polygon: the hot loops walk along the polygon, and the
     // input order of the points is arbitrary (often shuffled), so this relabelling turns random
     // memory accesses into nearly sequential ones.
@@ -225,6 +226,10 @@ class Refiner {
     std::size_t batch = kSpeculate;
     const auto drain = [&](bool deep) {
       while (!queue.empty() && !st_.budget_hit) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
+          st_.budget_hit = true;  // (ends every loop; the caller drops the polygon)
+          break;
+        }
         // Deep: the next kSpeculate vertices' searches side by side on the current polygon (few
         // find a move: 2 % on the noisy 10⁶ curve), then visited in queue order until one moves
         // the polygon; the searches after it are dropped (their vertices stay queued). Each
@@ -980,6 +985,7 @@ class Refiner {
   std::size_t budget_;
   Refine2Stats& st_;
   std::size_t n_;
+  const std::atomic<bool>* cancel_;  // stop at the next visited vertex (null: never)
   std::vector<int> pos_;
   std::vector<std::size_t> off_;
   std::vector<int> near_;
@@ -1186,7 +1192,8 @@ void normalise_polygon(const PointSet& pts, std::vector<int>& poly, const std::v
 
 bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon, std::size_t work_budget,
                      Refine2Stats& stats, const std::vector<int>* order, const std::function<Adjacency2()>& adjacency,
-                     bool pretest, std::vector<std::array<int, 2>>* non_delaunay, bool multi_start) {
+                     bool pretest, std::vector<std::array<int, 2>>* non_delaunay, bool multi_start,
+                     const std::atomic<bool>* cancel) {
   stats = Refine2Stats{};
   if (polygon.size() != points.size()) return false;
   if (polygon.size() < 4) {
@@ -1228,7 +1235,7 @@ bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
       pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
     }
     Refine2Stats st;
-    Refiner r(points, std::move(pxy), dt, poly, work_budget, st, order, adj);
+    Refiner r(points, std::move(pxy), dt, poly, work_budget, st, order, adj, cancel);
     if (starts == 1 && adj.release) adj.release();  // (the lists are the Refiner's now)
     r.run();
     // (One start: nothing to compare, and a pass of random reads saved.)
@@ -1242,6 +1249,7 @@ bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
     // No move from the first start: the polygon is a local optimum of every move, whatever the
     // start (the order only chooses among applicable moves).
     if (k == 0 && st.moves_2opt + st.moves_oropt + st.moves_deep == 0) break;
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
   }
   polygon.swap(best);
   if (starts > 1 && adj.release) adj.release();

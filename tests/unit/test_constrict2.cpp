@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -17,6 +18,7 @@
 
 #include "constrict/constrict.hpp"
 #include "constrict/delaunay.hpp"
+#include "constrict/detail/share2.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/validate.hpp"
@@ -463,6 +465,54 @@ PointSet noisy_spiral(int n, int turns, unsigned seed) {
     xy.push_back({r * std::cos(t) + noise(rng), r * std::sin(t) + noise(rng)});
   }
   return test::make2(xy);
+}
+
+// A run that its caller cancels (detail::reconstruct2_sharing, as the auto topology does once it
+// found several rings) returns cancelled_status() and no result, wherever the cancel comes: in
+// the constriction, at a fallback stage's start, in its insertions, after its last one. A cancel
+// flag that is never set changes nothing. The cancel is set by the visitor at its K-th event, so
+// the point is the same on every run. Noisy spirals that lock (seeds printed).
+class CancelAt : public Constrict2Visitor {
+ public:
+  CancelAt(std::size_t k, std::atomic<bool>* flag) : k_(k), flag_(flag) {}
+  void on_event(const Constrict2Event& e) override {
+    if (e.kind == Constrict2Event::Kind::StageBegin && first_stage == 0) first_stage = events + 1;
+    if (++events == k_) flag_->store(true);
+  }
+  std::size_t events = 0, first_stage = 0;
+
+ private:
+  std::size_t k_;
+  std::atomic<bool>* flag_;
+};
+
+TEST(Constrict2Unit, CancelledRunReturnsNoResultWhereverItStops) {
+  for (const unsigned seed : {91u, 92u}) {
+    const PointSet p = noisy_spiral(12000, 10, seed);
+    const Constrict2Options o;  // the default: fallback and refinement
+    Polygon2Result ref;
+    std::atomic<bool> never{false};
+    CancelAt count(0, &never);
+    ASSERT_TRUE(reconstruct2(p, o, ref, &count).is_ok());
+    ASSERT_TRUE(ref.valid() && ref.fallback_insertions > 0) << "seed " << seed << ": expected a lock";
+    const std::size_t total = count.events;
+    Polygon2Result same;
+    CancelAt none(0, &never);
+    ASSERT_TRUE(detail::reconstruct2_sharing(p, o, same, &none, {}, &never).is_ok());
+    EXPECT_EQ(same.boundary, ref.boundary) << "seed " << seed;
+    EXPECT_EQ(same.refine_moves, ref.refine_moves) << "seed " << seed;
+    for (const std::size_t k :
+         {std::size_t{1}, total / 3, count.first_stage, std::min(count.first_stage + 300, total), total}) {
+      std::atomic<bool> flag{false};
+      CancelAt at(k, &flag);
+      Polygon2Result r;
+      const Status s = detail::reconstruct2_sharing(p, o, r, &at, {}, &flag);
+      EXPECT_EQ(s.code(), StatusCode::Incomplete) << "seed " << seed << ", cancelled at event " << k << " of " << total;
+      EXPECT_EQ(s.message().rfind("cancelled", 0), 0u) << s.message();
+      EXPECT_LE(at.events, total) << "seed " << seed;
+      EXPECT_TRUE(r.boundary.empty()) << "seed " << seed << ": a cancelled run gave a polygon";
+    }
+  }
 }
 
 // The repair's first round tests its candidates side by side (first_heap): the same polygon on

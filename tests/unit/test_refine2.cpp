@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -275,6 +276,33 @@ TEST(Refine2, RandomStarPolygonsStaySimpleAndShorten) {
   EXPECT_GT(runs, 250);
   EXPECT_GT(deep, 0u);  // the deep phase (k-opt moves, double bridges) is exercised
   EXPECT_GT(rejected, 0u);  // the exact simplicity test is exercised
+}
+
+// A cancel flag (the auto topology's, detail::reconstruct2_sharing) set before the search stops it
+// at the first vertex it visits: no move, and the polygon stays simple and through all points. A
+// flag that is never set changes nothing. Random star polygons (seeds in the messages).
+TEST(Refine2, CancelledSearchStopsWithAValidPolygon) {
+  int runs = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    const Star s = random_star(seed, false);
+    if (!validate_polygon(s.points, s.polygon).is_ok()) continue;
+    Delaunay2 dt;
+    ASSERT_TRUE(build_delaunay2(s.points, dt).is_ok());
+    std::vector<int> plain = s.polygon, unset = s.polygon, stopped = s.polygon;
+    Refine2Stats a, b, c;
+    std::atomic<bool> no{false}, yes{true};
+    const std::size_t budget = 64 * s.points.size();
+    detail::refine_polygon2(s.points, dt, plain, budget, a);
+    detail::refine_polygon2(s.points, dt, unset, budget, b, nullptr, {}, true, nullptr, true, &no);
+    detail::refine_polygon2(s.points, dt, stopped, budget, c, nullptr, {}, true, nullptr, true, &yes);
+    EXPECT_EQ(unset, plain) << "seed " << seed;
+    EXPECT_EQ(b.moves_2opt + b.moves_oropt + b.moves_deep, a.moves_2opt + a.moves_oropt + a.moves_deep);
+    EXPECT_EQ(c.moves_2opt + c.moves_oropt + c.moves_deep, 0u) << "seed " << seed;
+    const Status v = validate_polygon_brute_force(s.points, stopped);
+    EXPECT_TRUE(v.is_ok()) << "seed " << seed << ": " << v.message();
+    runs += a.moves_2opt + a.moves_oropt + a.moves_deep > 0;
+  }
+  EXPECT_GT(runs, 30) << "expected polygons that the search moves";
 }
 
 // refine_polygon2's contract: the result is counter-clockwise, a triangle too.

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -126,6 +127,10 @@ struct Constrictor2::Impl {
   std::vector<int> gid;  // ranked id -> input id
   Constrict2Options opt;
   Constrict2Visitor* visitor = nullptr;
+  // Set by a caller that may drop the result (detail::reconstruct2_sharing): once it reads true,
+  // finish() stops at the next check and returns kCancelled (no result).
+  const std::atomic<bool>* cancel = nullptr;
+  bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
   bool ready = false;
   Delaunay2 dt;
   std::size_t n = 0;

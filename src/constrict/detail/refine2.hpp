@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -38,6 +39,8 @@ namespace constrict::detail {
 /// @param[out] non_delaunay optional: when the search ran, set to the edges of the result that are
 ///   not Delaunay edges (pairs of polygon ids, in no particular order); otherwise untouched
 /// @param[in] multi_start false: one start also on small inputs (Constrict2Options::refine_multi_start)
+/// @param[in] cancel optional: when another thread sets it, the search stops at the next vertex it
+///   visits (the polygon stays simple and through all points; the caller drops it)
 /// @return whether the search ran (false: the polygon was only normalised, e.g. the pretest found
 ///   no possible move)
 struct Adjacency2 {
@@ -48,6 +51,7 @@ struct Adjacency2 {
 bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<int>& polygon, std::size_t work_budget,
                      Refine2Stats& stats, const std::vector<int>* order = nullptr,
                      const std::function<Adjacency2()>& adjacency = {}, bool pretest = true,
-                     std::vector<std::array<int, 2>>* non_delaunay = nullptr, bool multi_start = true);
+                     std::vector<std::array<int, 2>>* non_delaunay = nullptr, bool multi_start = true,
+                     const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace constrict::detail
