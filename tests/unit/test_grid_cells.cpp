@@ -234,6 +234,63 @@ TEST(GridCells, DenseSegmentsFindEveryMeetingSegment) {
   });
 }
 
+// SparseSegments' levels (segments longer than kLongCells fine cells): on fine cells (1/4000 of
+// the box) random long segments of every length (many sharing end points, some collinear
+// overlaps), queries short and long, segments removed at random. Every live segment that meets a
+// query must be reported, none removed, and none twice: each is registered in several cells of
+// its level and reported only from one.
+TEST(GridCells, SparseSegmentsReportLongSegmentsOnce) {
+  for (const unsigned seed : {11u, 12u}) {
+    std::printf("seed %u\n", seed);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<std::array<double, 2>> pts;
+    for (int k = 0; k < 300; ++k) pts.push_back({u(rng), u(rng)});
+    for (int k = 0; k < 40; ++k) pts.push_back({0.25 + 0.01 * k, 0.5});  // collinear runs
+    detail::SparseSegments<int> grid;
+    const double half_cell = 1.0 / 8000;
+    grid.reset(0, 0, 1, 1, half_cell);
+    std::vector<std::array<int, 2>> segs;
+    std::vector<char> live;
+    std::size_t reported = 0, meeting = 0;
+    for (int step = 0; step < 4000; ++step) {
+      const int a = static_cast<int>(rng() % pts.size()), b = static_cast<int>(rng() % pts.size());
+      const double len = std::max(std::fabs(pts[a][0] - pts[b][0]), std::fabs(pts[a][1] - pts[b][1]));
+      if (a == b || len <= 32 * 2 * half_cell) continue;  // long ones only
+      if (step % 4 != 3 || segs.empty()) {
+        segs.push_back({a, b});
+        live.push_back(1);
+        grid.add(pts[a].data(), pts[b].data(), static_cast<int>(segs.size() - 1));
+      } else {
+        const std::size_t k = rng() % segs.size();
+        if (live[k]) grid.remove(pts[segs[k][0]].data(), pts[segs[k][1]].data(), static_cast<int>(k));
+        live[k] = 0;
+      }
+      // The query: from a random point to a near one or to any other.
+      const int qa = static_cast<int>(rng() % pts.size());
+      const double q1[2] = {pts[qa][0] + (rng() % 2 ? 1e-3 : 0.3) * (u(rng) - 0.5), pts[qa][1] + 1e-3 * (u(rng) - 0.5)};
+      const double* q0 = pts[qa].data();
+      std::vector<int> seen(segs.size(), 0);
+      grid.any(q0, q1, [&](int id) {
+        EXPECT_TRUE(live[static_cast<std::size_t>(id)]) << "seed " << seed << ": removed segment " << id << " reported";
+        ++seen[static_cast<std::size_t>(id)];
+        ++reported;
+        return false;
+      });
+      for (std::size_t k = 0; k < segs.size(); ++k) {
+        EXPECT_LE(seen[k], 1) << "seed " << seed << " step " << step << ": segment " << k << " reported twice";
+        const bool meets = detail::closed_segments_meet(q0, q1, pts[segs[k][0]].data(), pts[segs[k][1]].data());
+        meeting += live[k] && meets;
+        if (live[k] && meets && !seen[k])
+          ADD_FAILURE() << "seed " << seed << " step " << step << ": segment " << k
+                        << " meets the query but was not reported";
+      }
+    }
+    std::printf("  %zu segments, %zu reports, %zu of them meeting\n", segs.size(), reported, meeting);
+    EXPECT_GT(meeting, 100u);
+  }
+}
+
 // A long query on a grid of cells near the 2^-28 floor: its strip would be 2^28 rows; the query
 // reads the stored cells instead and still finds the short segment it crosses and the long one.
 TEST(GridCells, SparseSegmentsLongQueryOnFineCells) {
