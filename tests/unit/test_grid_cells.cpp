@@ -234,22 +234,23 @@ TEST(GridCells, DenseSegmentsFindEveryMeetingSegment) {
   });
 }
 
-// SparseSegments' levels (segments longer than kLongCells fine cells): on fine cells (1/4000 of
-// the box) random long segments of every length (many sharing end points, some collinear
-// overlaps), queries short and long, segments removed at random. Every live segment that meets a
-// query must be reported, none removed, and none twice: each is registered in several cells of
-// its level and reported only from one.
-TEST(GridCells, SparseSegmentsReportLongSegmentsOnce) {
-  for (const unsigned seed : {11u, 12u}) {
+// The long segments' levels (long_segments.hpp; longer than kLongCells cells of either grid): on
+// cells of 1/4000 of the box random long segments of every length (many sharing end points, some
+// collinear overlaps), queries short and long, segments removed at random. Every live segment that
+// meets a query must be reported, none removed, and none twice: each is registered in several
+// cells of its level and reported only from one.
+template <class Grid, class Reset>
+void report_long_segments_once(unsigned seed0, Reset&& reset) {
+  const double half_cell = 1.0 / 8000;
+  for (const unsigned seed : {seed0, seed0 + 1}) {
     std::printf("seed %u\n", seed);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<std::array<double, 2>> pts;
     for (int k = 0; k < 300; ++k) pts.push_back({u(rng), u(rng)});
     for (int k = 0; k < 40; ++k) pts.push_back({0.25 + 0.01 * k, 0.5});  // collinear runs
-    detail::SparseSegments<int> grid;
-    const double half_cell = 1.0 / 8000;
-    grid.reset(0, 0, 1, 1, half_cell);
+    Grid grid;
+    reset(grid, half_cell);
     std::vector<std::array<int, 2>> segs;
     std::vector<char> live;
     std::size_t reported = 0, meeting = 0;
@@ -289,6 +290,16 @@ TEST(GridCells, SparseSegmentsReportLongSegmentsOnce) {
     std::printf("  %zu segments, %zu reports, %zu of them meeting\n", segs.size(), reported, meeting);
     EXPECT_GT(meeting, 100u);
   }
+}
+
+TEST(GridCells, SparseSegmentsReportLongSegmentsOnce) {
+  report_long_segments_once<detail::SparseSegments<int>>(11, [](auto& grid, double h) { grid.reset(0, 0, 1, 1, h); });
+}
+
+TEST(GridCells, DenseSegmentsReportLongSegmentsOnce) {
+  report_long_segments_once<detail::DenseSegments<int>>(21, [](auto& grid, double h) {
+    grid.reset(detail::GridFrame{0, 0, 1, h, detail::cell_count(0.5, h, 1 << 20), detail::cell_count(0.5, h, 1 << 20)});
+  });
 }
 
 // A long query on a grid of cells near the 2^-28 floor: its strip would be 2^28 rows; the query

@@ -45,6 +45,12 @@ class CellTable {
     entries_[h] = Entry{k, static_cast<int>(size_++)};
     return entries_[h].slot;
   }
+  /// Calls f(i, j) for every cell added (in no particular order).
+  template <class F>
+  void for_each(F&& f) const {
+    for (const Entry& e : entries_)
+      if (e.key != kEmpty) f(static_cast<int>(e.key & 0xffffffffu), static_cast<int>(e.key >> 32));
+  }
 
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // no cell has it (i, j < 2^31)
