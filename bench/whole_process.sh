@@ -6,8 +6,9 @@
 # a Markdown table of the medians, their ratios and the peak memory (per point) to OUT/table.md.
 # Usage: bench/whole_process.sh [BUILD_DIR (build-bench)] [OUT (out/bench)] [ROUNDS (3)] [N (1000000)]
 # HOSTILE=1 adds the 2D families of docs/benchmarks.md "Hostile 2D families" that once had cliffs:
-# a circle with 1 % outliers in its box, a noisy spiral, Cauchy-distributed points, and a noisy
-# circle with 20 outer clusters (about 10-15 s each at 10^6).
+# a circle with 1 % outliers in its box, a noisy spiral, Cauchy-distributed points, a noisy
+# circle with 20 outer clusters (about 5-10 s each at 10^6), and two concentric circles (single
+# mode 11 s: a comb between the circles; auto 2 s: two rings).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build-bench}; OUT=${2:-out/bench}; ROUNDS=${3:-3}; N=${4:-1000000}
@@ -56,9 +57,12 @@ if os.environ.get("HOSTILE") == "1":
     cl = np.vstack([rng.normal(2 * np.array([math.cos(a), math.sin(a)]), 0.02, (50, 2))
                     for a in np.linspace(0, 2 * math.pi, 20, endpoint=False)])
     save("clusters2.xy", np.vstack([ring, cl]))
+    k = 2 * n // 3
+    t = rng.random(n) * 2 * math.pi
+    save("concentric2.xy", np.c_[np.cos(t), np.sin(t)] * np.where(np.arange(n) < k, 1.0, 0.5)[:, None])
 PY
 inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3" "star3.xyz 3")
-[ "${HOSTILE:-0}" = 1 ] && inputs+=("outliers2.xy 2" "spiral2.xy 2" "cauchy2.xy 2" "clusters2.xy 2")
+[ "${HOSTILE:-0}" = 1 ] && inputs+=("outliers2.xy 2" "spiral2.xy 2" "cauchy2.xy 2" "clusters2.xy 2" "concentric2.xy 2")
 [ -f ../shared/data/3d/igea.xyz ] && inputs+=("../shared/data/3d/igea.xyz 3")
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 table="$OUT/table.md"
@@ -79,9 +83,10 @@ for entry in "${inputs[@]}"; do
     hs+=("$( { /usr/bin/time -f "%e" env GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$YARD" "$dim" "$in" >/dev/null; } 2>&1 | tail -1)")
     line=$( { /usr/bin/time -f "%e %M" "$CLI" reconstruct "$in" -o "$OUT/result.$ext" -q >/dev/null; } 2>&1 | tail -1)
     cs+=("${line% *}"); mem+=("${line#* }")
-    # The same input with --topology auto (issues 16 and 19: within 1.3x of single mode). A run
-    # that fails (a 2D result of several rings cannot be written as .idx) counts as missing.
-    line=$( { /usr/bin/time -f "%e %M %x" "$CLI" reconstruct "$in" -o "$OUT/result_auto.$ext" -q --topology auto >/dev/null; } 2>&1 | tail -1) || true
+    # The same input with --topology auto (issues 16 and 19: within 1.3x of single mode), 2D
+    # written as .rings (one ring or several). A run that fails counts as missing.
+    aext=$([ "$dim" = 2 ] && echo rings || echo ply)
+    line=$( { /usr/bin/time -f "%e %M %x" "$CLI" reconstruct "$in" -o "$OUT/result_auto.$aext" -q --topology auto >/dev/null; } 2>&1 | tail -1) || true
     set -- $line
     if [ "${3:-1}" = 0 ]; then as+=("$1"); amem+=("$2"); fi
   done
