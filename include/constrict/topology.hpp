@@ -227,12 +227,15 @@ Status infer_rings2(const PointSet& points, const Delaunay2& dt, const Rings2Opt
 /// Auto: infer_rings2()'s rings when it decides RingsDecision::Rings, else the Single polygon.
 /// @param[in] points dim == 2, at least 3 points, no duplicates, not all collinear
 /// @param[out] result the rings, the single-mode run and the inference
-/// @param[in] visitor observes the reconstruct2() run
+/// @param[in] visitor observes the reconstruct2() run (in Auto, when the inference finds several
+///   rings, that run is stopped where it is then: the visitor sees a prefix of its events, of a
+///   length that depends on timing; the result does not)
 /// @return Ok, the check_points() status for bad input, InvalidArgument for a bad topology_gap,
 ///   Internal if a complete ring set fails validation (a bug)
 /// @note Guarantee: with validate, a complete result is a valid ring set (validate_rings2()).
 ///   Auto costs one Delaunay triangulation and O(N log N) more than Single, run on a second
-///   thread beside reconstruct2() (whose polygon is dropped when the inference finds several rings).
+///   thread beside reconstruct2() (whose polygon is dropped, and its run stopped, when the
+///   inference finds several rings).
 Status reconstruct_rings2(const PointSet& points, const Rings2Options& options, Rings2Result& result,
                           Constrict2Visitor* visitor = nullptr);
 

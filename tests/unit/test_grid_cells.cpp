@@ -24,6 +24,7 @@
 #include "core/detail/cell_lists.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/dense_segments.hpp"
+#include "core/detail/long_segments.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/sparse_segments.hpp"
 
@@ -300,6 +301,26 @@ TEST(GridCells, DenseSegmentsReportLongSegmentsOnce) {
   report_long_segments_once<detail::DenseSegments<int>>(21, [](auto& grid, double h) {
     grid.reset(detail::GridFrame{0, 0, 1, h, detail::cell_count(0.5, h, 1 << 20), detail::cell_count(0.5, h, 1 << 20)});
   });
+}
+
+// LongSegments on a box of subnormal size with a first cell edge of 0 (min_half_cell gives 0
+// there): the levels end at once (one cell takes everything) instead of growing a cell of edge 0
+// forever, and a query still finds the segments it meets.
+TEST(GridCells, LongSegmentsWithACellEdgeOfZero) {
+  detail::LongSegments<int> l;
+  l.reset(0, 0, 5e-321, 5e-321, 1e-320, 0.0);
+  const double a[2] = {0, 0}, b[2] = {1e-320, 1e-320}, c[2] = {0, 1e-320}, d[2] = {1e-320, 0};
+  const double e[2] = {0, 2e-321}, f[2] = {2e-321, 0};
+  l.add(a, b, 1);
+  l.add(e, f, 2);  // parallel to the query, its box meets the query's
+  std::vector<int> seen;
+  l.any(c, d, [&](int id) {
+    seen.push_back(id);
+    return false;
+  });
+  EXPECT_EQ(seen, (std::vector<int>{1}));
+  l.remove(a, b, 1);
+  EXPECT_EQ(l.size(), 1u);
 }
 
 // A long query on a grid of cells near the 2^-28 floor: its strip would be 2^28 rows; the query

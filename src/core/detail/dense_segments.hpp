@@ -27,7 +27,7 @@ template <class Id> class DenseSegments {
     lists_.clear();
     lists_.grow(static_cast<std::size_t>(frame.nx) * static_cast<std::size_t>(frame.ny));
     long_.reset(frame.lo_x, frame.lo_y, frame.half_cell * frame.nx, frame.half_cell * frame.ny, frame.magnitude,
-                frame.half_cell * (kLongCells / LongSegments<Id>::kGrowth));
+                frame.half_cell * kLongCells);
   }
   /// Longer segments (in cells, along either axis) go to long_segments.hpp's levels.
   static constexpr double kLongCells = 32;

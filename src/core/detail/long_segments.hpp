@@ -37,7 +37,9 @@ template <class Id> class LongSegments {
   static constexpr double kGrowth = 2;
 
   /// Empty, for segments in the box from (lo_x, lo_y) with half spans hw, hh and largest
-  /// coordinate magnitude mag; the first level's cells have half edge first_half_cell.
+  /// coordinate magnitude mag; the first level's cells have half edge first_half_cell (the grid's
+  /// threshold length over 2 * kGrowth: its shortest long segments are 1 to kGrowth cells long
+  /// there).
   void reset(double lo_x, double lo_y, double hw, double hh, double mag, double first_half_cell) {
     levels_.clear();
     count_ = 0;
@@ -45,7 +47,9 @@ template <class Id> class LongSegments {
       Level l;
       l.frame = GridFrame{lo_x, lo_y, mag, h, cell_count(hw, h, kMaxCells), cell_count(hh, h, kMaxCells)};
       levels_.push_back(std::move(l));
-      if ((levels_.back().frame.nx == 1 && levels_.back().frame.ny == 1) || !std::isfinite(h * kGrowth)) break;
+      // (A cell edge of 0, from a subnormal box, would never grow: that level is the last.)
+      if ((levels_.back().frame.nx == 1 && levels_.back().frame.ny == 1) || !(h > 0) || !std::isfinite(h * kGrowth))
+        break;
     }
     Level& top = levels_.back();  // one cell, whatever the span: takes every segment
     top.frame.half_cell = HUGE_VAL;
@@ -115,7 +119,9 @@ template <class Id> class LongSegments {
       };
       const double cells = (static_cast<double>(l.frame.cx(hi[0])) - qi + 1) * (static_cast<double>(l.frame.cy(hi[1])) - qj + 1);
       bool done = false;
-      if (cells > static_cast<double>(l.table.size())) {  // a long query: every stored cell
+      // A query whose box has more cells than the level has entries reads every entry instead
+      // (either way at most about as many steps as the level has entries).
+      if (cells > static_cast<double>(l.count)) {
         for (std::size_t c = 0; c < l.cells.size() && !done; ++c) done = cell(c, l.cells[c][0], l.cells[c][1]);
       } else {
         l.box_cells(lo[0], lo[1], hi[0], hi[1], [&](int i, int j) {

@@ -52,8 +52,7 @@ template <class Id> class SparseSegments {
     lists_.clear();
     table_.clear();
     blocks_.clear();
-    long_.reset(lo_x, lo_y, half_span(lo_x, hi_x), half_span(lo_y, hi_y), frame_.magnitude,
-                half_cell * (kLongCells / LongSegments<Id>::kGrowth));
+    long_.reset(lo_x, lo_y, half_span(lo_x, hi_x), half_span(lo_y, hi_y), frame_.magnitude, half_cell * kLongCells);
   }
   double cell_size() const { return 2 * frame_.half_cell; }
   /// Does segment ab go to the long list (longer than kLongCells cells along an axis)?
