@@ -37,9 +37,8 @@ template <class Id> class LongSegments {
   static constexpr double kGrowth = 2;
 
   /// Empty, for segments in the box from (lo_x, lo_y) with half spans hw, hh and largest
-  /// coordinate magnitude mag; the first level's cells have half edge first_half_cell (the grid's
-  /// threshold length over 2 * kGrowth: its shortest long segments are 1 to kGrowth cells long
-  /// there).
+  /// coordinate magnitude mag; the first level's cells have half edge first_half_cell (half the
+  /// grid's threshold length: its shortest long segments are 1 to kGrowth cells long there).
   void reset(double lo_x, double lo_y, double hw, double hh, double mag, double first_half_cell) {
     levels_.clear();
     count_ = 0;
