@@ -774,14 +774,24 @@ void nest_surfaces(const Delaunay3& dt, const TriMesh3& mesh, std::vector<Surfac
     auto it = face_surface.find(key_of(v[uz(f[0])], v[uz(f[1])], v[uz(f[2])]));
     return it == face_surface.end() ? -1 : it->second;
   };
+  // Which faces of each tetrahedron are surface faces (bit i: face i), one lookup per face on both
+  // cores (the map is only read); the flood and the sides below read the bits. (Two lookups per
+  // face in sequence had been 15 % of an auto run on two concentric spheres of 2·10^5 points.)
+  std::vector<std::uint8_t> on_surface(T, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t != r.end(); ++t)
+      for (int i = 0; i < 4; ++i)
+        if (surf_of(t, i) >= 0) on_surface[t] = static_cast<std::uint8_t>(on_surface[t] | 1u << i);
+  });
   std::vector<int> region;
-  const int regions = surface_regions(dt, [&](std::size_t t, int i) { return surf_of(t, i) >= 0; }, region);
+  const int regions = surface_regions(
+      dt, [&](std::size_t t, int i) { return (on_surface[t] >> i & 1u) != 0; }, region);
   // Each surface separates two regions; BFS from the exterior orders them (outer side first).
   std::vector<std::array<int, 2>> sides(s.size(), {{-1, -1}});
   for (std::size_t t = 0; t < T; ++t)
     for (int i = 0; i < 4; ++i) {
+      if ((on_surface[t] >> i & 1u) == 0) continue;
       const int k = surf_of(t, i);
-      if (k < 0) continue;
       const int m = dt.neighbors[t][uz(i)];
       const int a = region[t], b = m < 0 ? 0 : region[uz(m)];
       sides[uz(k)] = {{std::min(a, b), std::max(a, b)}};
