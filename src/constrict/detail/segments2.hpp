@@ -8,13 +8,7 @@
 
 namespace constrict::detail {
 
-// orient2 (exact) with its semi-static filter inline: the hot loops of the fallback (segment and
-// side tests) call it hundreds of millions of times, and most signs are clear at once.
-inline int orient2_fast(const double* a, const double* b, const double* c) {
-  bool ok = false;
-  const int s = orient2_filtered(a, b, c, ok);
-  return ok ? s : orient2(a, b, c);
-}
+// (orient2_fast: core/detail/semi_static.hpp.)
 
 // q and r lie on the same side of v along their common line (all three collinear).
 inline bool same_side_collinear(const double* v, const double* q, const double* r) {

@@ -5,12 +5,11 @@
 // registered in the cells where a point of it can lie, and a query reads those of the query
 // segment (both for_cells_of_hull, grid_cells.hpp), so it reports every registered segment that
 // can meet it (exact candidate sets for exact tests), possibly more than once. A segment longer
-// than kLongCells cells goes to coarser levels instead (long_segments.hpp): a single polygon
+// than LongSegments::kLongCells cells goes to coarser levels instead (long_segments.hpp): a single polygon
 // through two concentric circles of 10^6 points registered its 270 000 edges across the annulus
 // in about 10^8 cells of the fallback's area-sized layer (1.2 GB), and a query read hundreds.
 #pragma once
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 
 #include "core/detail/cell_lists.hpp"
@@ -27,20 +26,15 @@ template <class Id> class DenseSegments {
     lists_.clear();
     lists_.grow(static_cast<std::size_t>(frame.nx) * static_cast<std::size_t>(frame.ny));
     long_.reset(frame.lo_x, frame.lo_y, frame.half_cell * frame.nx, frame.half_cell * frame.ny, frame.magnitude,
-                frame.half_cell * kLongCells);
-  }
-  /// Longer segments (in cells, along either axis) go to long_segments.hpp's levels.
-  static constexpr double kLongCells = 32;
-  bool is_long(const double* a, const double* b) const {
-    return !(std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1])) <= kLongCells * 2 * frame_.half_cell);
+                frame.half_cell);
   }
   void add(const double* a, const double* b, Id id) {
-    if (is_long(a, b)) return long_.add(a, b, id);
+    if (long_.takes(a, b)) return long_.add(a, b, id);
     strip_cells(a, b, [&](std::size_t c) { lists_.add(c, id); });
   }
   /// Removes one registration of id (added with the same a, b).
   void remove(const double* a, const double* b, Id id) {
-    if (is_long(a, b)) return long_.remove(a, b, id);
+    if (long_.takes(a, b)) return long_.remove(a, b, id);
     strip_cells(a, b, [&](std::size_t c) { lists_.remove(c, id); });
   }
   /// Registers count segments on an empty grid (after reset()), seg(k, a, b, id) giving the k-th
@@ -50,11 +44,11 @@ template <class Id> class DenseSegments {
     // concurrent calls.)
     lists_.build_in_blocks(lists_.size(), count, [&](std::size_t k0, std::size_t k1, auto&& emit) {
       for_each_segment<Id>(k0, k1, seg, [&](const double* a, const double* b, Id id) {
-        if (!is_long(a, b)) strip_cells(a, b, [&](std::size_t c) { emit(c, id); });
+        if (!long_.takes(a, b)) strip_cells(a, b, [&](std::size_t c) { emit(c, id); });
       });
     });
     for_each_segment<Id>(count, seg, [&](const double* a, const double* b, Id id) {
-      if (is_long(a, b)) long_.add(a, b, id);
+      if (long_.takes(a, b)) long_.add(a, b, id);
     });
   }
   /// Calls f(id) for the registered segments that can meet segment ab until f returns true; true
@@ -80,7 +74,7 @@ template <class Id> class DenseSegments {
   }
   GridFrame frame_{0, 0, 0, 1, 1, 1};
   CellLists<Id> lists_;
-  LongSegments<Id> long_;  // the segments longer than kLongCells cells
+  LongSegments<Id> long_;  // the segments longer than LongSegments::kLongCells cells
 };
 
 }  // namespace constrict::detail

@@ -22,7 +22,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "constrict/predicates.hpp"
 #include "core/detail/cell_table.hpp"
 #include "core/detail/grid_cells.hpp"
 #include "core/detail/semi_static.hpp"
@@ -36,13 +35,18 @@ template <class Id> class LongSegments {
   /// 4, 3.42 s with 2).
   static constexpr double kGrowth = 2;
 
-  /// Empty, for segments in the box from (lo_x, lo_y) with half spans hw, hh and largest
-  /// coordinate magnitude mag; the first level's cells have half edge first_half_cell (half the
-  /// grid's threshold length: its shortest long segments are 1 to kGrowth cells long there).
-  void reset(double lo_x, double lo_y, double hw, double hh, double mag, double first_half_cell) {
+  /// A segment longer than this many of its grid's cells (along either axis) is long.
+  static constexpr double kLongCells = 32;
+
+  /// Empty, for the long segments of a grid of cells of half edge grid_half_cell over the box
+  /// from (lo_x, lo_y) with half spans hw, hh and largest coordinate magnitude mag. The first
+  /// level's cells are kLongCells grid cells wide: the shortest long segments are 1 to kGrowth
+  /// cells long there.
+  void reset(double lo_x, double lo_y, double hw, double hh, double mag, double grid_half_cell) {
     levels_.clear();
     count_ = 0;
-    for (double h = first_half_cell;; h *= kGrowth) {
+    limit_ = kLongCells * (2 * grid_half_cell);
+    for (double h = grid_half_cell * kLongCells;; h *= kGrowth) {
       Level l;
       l.frame = GridFrame{lo_x, lo_y, mag, h, cell_count(hw, h, kMaxCells), cell_count(hh, h, kMaxCells)};
       levels_.push_back(std::move(l));
@@ -56,6 +60,8 @@ template <class Id> class LongSegments {
   }
   /// Segments registered.
   std::size_t size() const { return count_; }
+  /// Is segment ab long (registered here rather than in its grid's cells)?
+  bool takes(const double* a, const double* b) const { return !(extent(a, b) <= limit_); }
 
   void add(const double* a, const double* b, Id id) {
     Level& l = levels_[level_of(a, b)];
@@ -111,7 +117,7 @@ template <class Id> class LongSegments {
           if (std::max(qi, e.first[0]) != i || std::max(qj, e.first[1]) != j) continue;
           const double p[2] = {e.box[0], e.rising ? e.box[1] : e.box[3]};
           const double q[2] = {e.box[2], e.rising ? e.box[3] : e.box[1]};
-          if (orient2_sign(p, q, a) * orient2_sign(p, q, b) > 0) continue;
+          if (orient2_fast(p, q, a) * orient2_fast(p, q, b) > 0) continue;
           if (f(e.id)) return true;
         }
         return false;
@@ -156,20 +162,20 @@ template <class Id> class LongSegments {
         for (int i = i0; i <= i1; ++i) f(i, j);
     }
   };
-  static int orient2_sign(const double* a, const double* b, const double* c) {
-    bool ok = false;
-    const int s = orient2_filtered(a, b, c, ok);
-    return ok ? s : orient2(a, b, c);
+  // The larger of the segment's extents along the axes.
+  static double extent(const double* a, const double* b) {
+    return std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1]));
   }
   // The first level where the segment is at most kGrowth cells long; the last one otherwise.
   std::size_t level_of(const double* a, const double* b) const {
-    const double extent = std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1]));
+    const double e = extent(a, b);
     std::size_t k = 0;
-    while (k + 1 < levels_.size() && !(extent <= kGrowth * 2 * levels_[k].frame.half_cell)) ++k;
+    while (k + 1 < levels_.size() && !(e <= kGrowth * 2 * levels_[k].frame.half_cell)) ++k;
     return k;
   }
   std::vector<Level> levels_;
   std::size_t count_ = 0;
+  double limit_ = HUGE_VAL;  // longer segments are long (kLongCells grid cells)
 };
 
 }  // namespace constrict::detail

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "constrict/predicates.hpp"
+
 namespace constrict::detail {
 
 // Semi-static filters. For an expression tree of +, -, * of depth d over exact double leaves,
@@ -37,6 +39,15 @@ inline int orient2_filtered(const double* a, const double* b, const double* c, b
   const double m = std::fabs(ux * vy) + std::fabs(uy * vx);
   ok = safe_range(m) && std::fabs(d) > 6 * kU * m;
   return d > 0 ? 1 : (d < 0 ? -1 : 0);
+}
+
+// orient2 (exact) with its semi-static filter inline: the hot loops of the 2D fallback (segment
+// and side tests) and the long segments' side test call it hundreds of millions of times, and
+// most signs are clear at once.
+inline int orient2_fast(const double* a, const double* b, const double* c) {
+  bool ok = false;
+  const int s = orient2_filtered(a, b, c, ok);
+  return ok ? s : orient2(a, b, c);
 }
 
 // sign((a-p).(b-p)); depth 3.

@@ -5,7 +5,7 @@
 // read them all (docs/benchmarks.md, the noisy curve). Only non-empty cells are stored: a
 // CellTable (cell_table.hpp) in front of one id list per cell. A segment is registered in
 // the cells its strip crosses (for_cells_of_hull, grid_cells.hpp); a segment longer than
-// kLongCells cells goes to coarser levels instead (a strip of thousands of fine cells each;
+// LongSegments::kLongCells cells goes to coarser levels instead (a strip of thousands of fine cells each;
 // long_segments.hpp). A query visits every cell where a point of the query segment can lie, so
 // it reports every registered segment that can meet it (exact candidate sets for exact tests),
 // possibly more than once.
@@ -25,8 +25,6 @@ namespace constrict::detail {
 
 template <class Id> class SparseSegments {
  public:
-  static constexpr double kLongCells = 32;  ///< longer segments (in cells, either axis): long_segments.hpp
-
   /// The smallest half cell edge for a box of half spans hw, hh and largest coordinate magnitude
   /// mag: the strips stay narrow (for_cells_of_hull) and the cell counts fit an int.
   static double min_half_cell(double hw, double hh, double mag) {
@@ -52,15 +50,11 @@ template <class Id> class SparseSegments {
     lists_.clear();
     table_.clear();
     blocks_.clear();
-    long_.reset(lo_x, lo_y, half_span(lo_x, hi_x), half_span(lo_y, hi_y), frame_.magnitude, half_cell * kLongCells);
+    long_.reset(lo_x, lo_y, half_span(lo_x, hi_x), half_span(lo_y, hi_y), frame_.magnitude, half_cell);
   }
   double cell_size() const { return 2 * frame_.half_cell; }
-  /// Does segment ab go to the long list (longer than kLongCells cells along an axis)?
-  bool is_long(const double* a, const double* b) const {
-    return !(std::max(std::fabs(a[0] - b[0]), std::fabs(a[1] - b[1])) <= kLongCells * cell_size());
-  }
   void add(const double* a, const double* b, Id id) {
-    if (is_long(a, b)) return long_.add(a, b, id);
+    if (long_.takes(a, b)) return long_.add(a, b, id);
     const double* seg[2] = {a, b};
     for_cells_of_hull(frame_, seg, 2, [&](int i, int j) {
       const std::size_t cells = table_.size();
@@ -78,12 +72,12 @@ template <class Id> class SparseSegments {
     if (lists_.size() != 0 || long_.size() != 0)
       return each([&](const double* a, const double* b, Id id) { add(a, b, id); });
     each([&](const double* a, const double* b, Id id) {
-      if (is_long(a, b)) long_.add(a, b, id);
+      if (long_.takes(a, b)) long_.add(a, b, id);
     });
     // Both passes insert (the second finds every cell the first added).
     lists_.build(0, [&](auto&& emit) {
       each([&](const double* a, const double* b, Id id) {
-        if (is_long(a, b)) return;
+        if (long_.takes(a, b)) return;
         const double* s[2] = {a, b};
         for_cells_of_hull(frame_, s, 2, [&](int i, int j) { emit(static_cast<std::size_t>(table_.insert(i, j)), id); });
       });
@@ -92,7 +86,7 @@ template <class Id> class SparseSegments {
   }
   /// Removes one registration of id (added with the same a, b).
   void remove(const double* a, const double* b, Id id) {
-    if (is_long(a, b)) return long_.remove(a, b, id);
+    if (long_.takes(a, b)) return long_.remove(a, b, id);
     stored_cells(a, b, [&](std::size_t c) {
       lists_.remove(c, id);
       return false;
@@ -152,7 +146,7 @@ template <class Id> class SparseSegments {
   CellLists<Id> lists_;                   // by slot
   CellTable table_;                       // cell -> slot
   CellTable blocks_;                      // the blocks of kBlock x kBlock cells with a stored cell
-  LongSegments<Id> long_;                 // the segments longer than kLongCells cells
+  LongSegments<Id> long_;                 // the segments longer than LongSegments::kLongCells cells
 };
 
 }  // namespace constrict::detail
