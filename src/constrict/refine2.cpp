@@ -61,6 +61,13 @@ constexpr int kMaxExchanged = kMaxDepth > 4 ? kMaxDepth : 4;
 constexpr std::size_t kDeepNodesPerPoint = 256;
 constexpr std::size_t kBridgeNodesPerPoint = 16;
 constexpr std::size_t kDeepNodesFloor = std::size_t{1} << 20;
+// The simplicity tests' bound: polygon edges tested against new edges, per point and in all.
+// Measured: at most 63 per point on the 10^5 and 10^6 benchmark and hostile families, at most
+// 976 per point (2 M in all) on the shared sets; 30 000 per point on a double logarithmic spiral
+// (13 decades of scale in 10^4 points: the grid's cells, sized by the median edge, hold the whole
+// centre), whose refinement took 146 s at 10^5 points.
+constexpr std::size_t kTestsPerPoint = 256;
+constexpr std::size_t kTestsFloor = std::size_t{1} << 26;
 // Vertices of the deep phase whose searches run side by side (Refiner::speculate): kSpeculate
 // after a move, twice as many after a batch without one, up to kSpeculateMax.
 constexpr std::size_t kSpeculate = 8;
@@ -157,6 +164,7 @@ class Refiner {
     // memory accesses into nearly sequential ones.
     id_ = tour;
     xy_ = std::move(xy);
+    test_budget_ = kTestsPerPoint * n_ + kTestsFloor;
     std::vector<int> local(n_);
     parallel_blocks(n_, [&](std::size_t i) { local[U(id_[i])] = static_cast<int>(i); });
     if (adjacency.off)
@@ -220,6 +228,7 @@ class Refiner {
       else
         moved = finish_lin_kernighan(sp->search);
       if (moved) requeue(a);
+      check_budget();  // (the simplicity tests' bound: between visits, in visit order)
       return moved;
     };
     std::vector<Speculation> spec;
@@ -273,6 +282,7 @@ class Refiner {
     }
     normalise();
     st_.length_after = length();
+    st_.simplicity_tests = tests_;
   }
 
   // The edges of the polygon that are not Delaunay edges, in input ids.
@@ -421,7 +431,7 @@ class Refiner {
   }
   bool valid(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) {
     if (!grid_.built() && !all_delaunay(rem, nr, add, na)) build_grid();
-    return valid_built(rem, nr, add, na);
+    return valid_built(rem, nr, add, na, tests_);
   }
   // Fast path: every polygon edge and every new edge is a Delaunay edge, and distinct edges of a
   // triangulation meet only at shared endpoints (no fold-back either).
@@ -433,7 +443,8 @@ class Refiner {
     return all_dt && non_dt_ == removed_non_dt;
   }
   // valid() once the grid is built (or the fast path applies). Read-only.
-  bool valid_built(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na) const {
+  // tests: counts the polygon edges tested against a new edge.
+  bool valid_built(const Edge* rem, std::size_t nr, const Edge* add, std::size_t na, std::size_t& tests) const {
     if (all_delaunay(rem, nr, add, na)) return true;
     for (std::size_t i = 0; i < na; ++i)
       for (std::size_t j = i + 1; j < na; ++j)
@@ -441,6 +452,7 @@ class Refiner {
     for (std::size_t i = 0; i < na; ++i) {
       const Edge& e = add[i];
       const bool hit = grid_.any(P(e.u), P(e.v), [&](std::uint64_t k) {
+        ++tests;
         const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
         for (std::size_t r = 0; r < nr; ++r)
           if (rem[r].same(a, b)) return false;
@@ -512,7 +524,7 @@ class Refiner {
   }
   static constexpr std::size_t kParallelReversal = std::size_t{1} << 15;
   void check_budget() {
-    if (work_ > budget_) st_.budget_hit = true;
+    if (work_ > budget_ || tests_ > test_budget_) st_.budget_hit = true;
   }
   // Swaps k = k0..k1-1 of reversing positions i..j: i + k with j - k (cyclic). a walks forward, b
   // backward, both wrapping (no division per element).
@@ -679,6 +691,7 @@ class Refiner {
   struct LkSearch {
     std::array<int, 2 * kMaxDepth> lk{};  // the chain t1 t2 ... t2k
     std::size_t nodes = 0;                // search nodes counted
+    std::size_t tests = 0;                // polygon edges tested by its simplicity tests
     std::size_t budget = 0;               // nodes allowed
     std::size_t rejected = 0;             // closing moves that were not simple
     std::size_t k = 0;                    // the move found: its k removed edges (0: none)
@@ -721,6 +734,7 @@ class Refiner {
   // Books a search's counts and applies its move, if it found one.
   bool finish_lin_kernighan(const LkSearch& s) {
     nodes_ += s.nodes;
+    tests_ += s.tests;
     st_.rejected += s.rejected;
     if (s.hit) st_.budget_hit = true;
     if (s.k == 0) return false;
@@ -789,7 +803,7 @@ class Refiner {
     std::array<Edge, kMaxExchanged> rem{}, add{};
     lk_edges(s, U(k), rem, add);
     if (!plan_exchange(rem.data(), add.data(), U(k), s.plan)) return false;
-    if (!valid_built(rem.data(), U(k), add.data(), U(k))) {
+    if (!valid_built(rem.data(), U(k), add.data(), U(k), s.tests)) {
       ++s.rejected;
       return false;
     }
@@ -996,6 +1010,8 @@ class Refiner {
   std::vector<char> region_;      // vertices of the deep phase (queued at least once)
   std::vector<int> buf_;          // segment copy of apply_exchange()
   std::size_t nodes_ = 0, node_budget_ = 0, bridge_nodes_ = 0, bridge_budget_ = 0;
+  std::size_t tests_ = 0;  // polygon edges tested by the simplicity tests (valid_built)
+  std::size_t test_budget_ = 0;
 };
 
 }  // namespace
