@@ -43,7 +43,10 @@ class ProgressVisitor final : public Constrict2Visitor {
  public:
   ProgressVisitor(Progress& p, std::size_t n) : progress_(p), n_(n) {}
   void on_event(const Constrict2Event& e) override {
-    if (e.kind == Constrict2Event::Kind::StageBegin) {
+    if (e.kind == Constrict2Event::Kind::StageBegin && e.stage == "refine") {
+      stage_ = "refining the polygon (local search)";
+      progress_.phase(stage_);
+    } else if (e.kind == Constrict2Event::Kind::StageBegin) {
       stage_ = "constricting (" + e.stage + "), triangles removed";
       progress_.phase(stage_);
       removed_ = 0;

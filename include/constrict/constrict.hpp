@@ -137,7 +137,7 @@ struct Constrict2Event {
   Kind kind = Kind::RemoveTriangle;
   std::array<int, 3> triangle{{-1, -1, -1}};  ///< (a, b, y): boundary edge a->b, apex y
   double criterion = 0;                       ///< the key: 1 - γ(ab; y) for Criterion::Gamma
-  std::string stage;                          ///< stage name
+  std::string stage;                          ///< stage name ("refine": StageBegin of the refinement)
 };
 
 /// Observer of the constriction (for figures, debugging, tests). Called synchronously, on the

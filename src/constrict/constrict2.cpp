@@ -233,6 +233,7 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
   r.ms_delaunay = ms_delaunay;
   r.ms_constrict = ms_constrict;
   if (r.complete && opt.refine == Refine2::LocalSearch) {
+    emit(Constrict2Event::Kind::StageBegin, -1, -1, -1, 0, "refine");  // (progress: the refinement's seconds)
     const auto tr = Clock::now();
     Refine2Stats rs;
     // The refinement copies the adjacency into its own lists, and says which of its result's

@@ -57,8 +57,10 @@ TEST(Constrict2Unit, ExampleA) {
   EXPECT_EQ(r.method, "gamma");
   EXPECT_EQ(canon(r.boundary), (std::vector<int>{0, 4, 1, 2, 3}));
   EXPECT_EQ(r.removed_simplices, 1u);
-  ASSERT_EQ(rec.events.size(), 1u);
+  ASSERT_EQ(rec.events.size(), 2u);  // the removal, then the refinement's start
   EXPECT_NEAR(rec.events[0].criterion, 1.175958, 1e-6);
+  EXPECT_EQ(rec.events[1].kind, Constrict2Event::Kind::StageBegin);
+  EXPECT_EQ(rec.events[1].stage, "refine");
   EXPECT_NEAR(r.area, 48 - 8, 1e-9);  // rectangle minus triangle (0,1,4) of area 8
 }
 
