@@ -481,7 +481,12 @@ Status Constrictor3::init(const PointSet& points, const Constrict3Options& optio
   if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
     auto scaled = std::make_shared<PointSet>();
     int exp = 0;
-    if (Status st = exact_power_of_two_scale(*work, *scaled, exp); !st) return st;
+    if (Status st = exact_power_of_two_scale(*work, *scaled, exp); !st) {
+      // (The check again in the caller's order, so that the message names the caller's point.)
+      PointSet unused;
+      Status in_order = exact_power_of_two_scale(points, unused, exp);
+      return in_order.is_ok() ? st : in_order;
+    }
     s.scale_exp = exp;
     work = std::move(scaled);
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "constrict/constrict3.hpp"
 #include "constrict/points.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/status.hpp"
@@ -87,6 +88,28 @@ TEST(ExactScale, MixedMagnitudesRefused) {
     EXPECT_EQ(st.message().find('\n'), std::string::npos);
     EXPECT_EQ(e, 0);
     EXPECT_TRUE(out.coords.empty());
+  }
+}
+
+// reconstruct3 checks the rescaling on its own (canonical) order of the points; the message must
+// still name the caller's point (an adversarial sweep found "point 653" for a tiny point at row 2000).
+TEST(ExactScale, ReconstructionNamesTheCallersPoint) {
+  for (std::size_t at : {std::size_t{0}, std::size_t{37}, std::size_t{80}}) {
+    PointSet p;
+    p.dim = 3;
+    for (std::size_t i = 0; i <= 80; ++i) {
+      if (i == at) {
+        p.coords.insert(p.coords.end(), {1e-300, 3e-300, 0});
+        continue;
+      }
+      const double t = 0.7 * static_cast<double>(i), z = 1 - 2 * (static_cast<double>(i) + 0.5) / 81;
+      const double r = std::sqrt(1 - z * z);
+      p.coords.insert(p.coords.end(), {1e300 * r * std::cos(t), 1e300 * r * std::sin(t), 1e300 * z});
+    }
+    Mesh3Result r;
+    const Status st = reconstruct3(p, {}, r);
+    EXPECT_EQ(st.code(), StatusCode::Unsupported);
+    EXPECT_NE(st.message().find("point " + std::to_string(at) + " would lose bits"), std::string::npos) << st.message();
   }
 }
 
