@@ -10,7 +10,8 @@
 // tetrahedron labelled outside only if it brings a new point into the body (one-face rule), or if
 // it is a small two-face step that lets a small next one do so (into a wall the labels miss,
 // §4.11), the smallest first relative to the spacing (thin parts the labels miss: a point is
-// reached by the shortest step, through its own part, not across the gap to a nearby part).
+// reached by the shortest step, through its own part, not across the gap to a nearby part); a
+// crossing toward a part labelled inside goes on from its own steps until it is inside (§4.14).
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -38,6 +39,12 @@ constexpr double kCrawlRatio = 3.0;
 // How many two-face steps ahead crawls() looks for the step that brings in a point (measured 0, 1,
 // 2: 1 fixes more sets than 0; 2 the same as 1).
 constexpr int kCrawlDepth = 1;
+// The smallest region of tetrahedra labelled inside (not in the body, connected through faces) that
+// a crossing heads for (Growth3::mark_large_inside_regions). Scattered inside labels in a wall a
+// few spacings thick form regions of 1-20 (docs/reconstruction-3d.md §4.14); measured 32, 64, 128,
+// 256, 1024: a part beside a body is reached by one crossing from 32 on, and from 256 on an unevenly
+// sampled figure-eight tube keeps the handle that 32-128 lose.
+constexpr std::uint32_t kCrossingRegion = 256;
 
 // The fill in its reaching mode (docs/reconstruction-3d.md §4.13): pockets labelled inside that hold
 // points still out of the body come in with those points. Returns the tetrahedra it added.
@@ -99,14 +106,15 @@ class Growth3 {
       // Outside (labelled so: its own heap): the one-face rule (its fourth vertex is a new point), or
       // the two-face rule into a thin part (crawls()).
       const bool outside = heap_.empty();
-      if (outside && out_heap_.empty()) break;
+      if (outside && out_heap_.empty() && crossing_heap_.empty()) break;
       int t;
       if (!outside) {
         t = by_rank_[heap_.pop()];
         if (!heap_.empty()) prefetch(by_rank_[heap_.top()]);
       } else {
-        t = out_heap_.pop(b_.tets).tet;
-        if (!out_heap_.empty()) prefetch(out_heap_.top().tet);
+        TetHeap& from = crossing_heap_.empty() ? out_heap_ : crossing_heap_;
+        t = from.pop(b_.tets).tet;
+        if (!from.empty()) prefetch(from.top().tet);
       }
       cell_[uz(t)].queued = 0;
       if (cell_[uz(t)].alive) continue;
@@ -117,6 +125,11 @@ class Growth3 {
         ++s_.grown_outside;
         s_.crawled += rule == 2 ? 1 : 0;
       }
+      // A crossing: outside steps toward a part labelled inside that is not in the body yet (the
+      // new point has a tetrahedron labelled inside), and the two-face steps that go on with it.
+      const bool crossing = outside && (rule == 1 ? touches_inside_[uz(b_.tets[uz(t)][uz(glued[0])])] != 0 : crossing_);
+      if (crossing_ && !crossing) end_crossing();
+      crossing_ = crossing;
       new_edges(t, rule, glued);
       add(t);
     }
@@ -253,6 +266,7 @@ class Growth3 {
       return;
     }
     if (given_spacing_ == nullptr) own_spacing_ = nearest_spacing3(b_);
+    mark_large_inside_regions();
     spacing_ = given_spacing_ ? given_spacing_ : &own_spacing_;
     for (int m : waiting_)
       if (!cell_[uz(m)].alive) out_heap_.push({key(m), m, 0}, b_.tets);
@@ -300,10 +314,43 @@ class Growth3 {
         cell_[uz(m)].queued = 1;
         if (cell_[uz(m)].inside)
           heap_.push(cell_[uz(m)].rank);
-        else if (spacing_ != nullptr) out_heap_.push({key(m), m, 0}, b_.tets);
+        else if (spacing_ != nullptr)
+          (crossing_ ? crossing_heap_ : out_heap_).push({key(m), m, 0}, b_.tets);
         else if (!outside_ready_) waiting_.push_back(m);
         // (else: every point was in the body when the inside heap ran dry; none can join.)
       }
+  }
+
+  // The points of the regions of tetrahedra labelled inside (connected through their faces) with
+  // at least kCrossingRegion tetrahedra not in the body.
+  void mark_large_inside_regions() {
+    std::vector<int> parent(b_.T0, -1);
+    const auto find = [&](int x) {
+      while (parent[uz(x)] != x) x = parent[uz(x)] = parent[uz(parent[uz(x)])];
+      return x;
+    };
+    for (std::size_t t = 0; t < b_.T0; ++t)
+      if (cell_[t].inside && !cell_[t].alive) parent[t] = static_cast<int>(t);
+    for (std::size_t t = 0; t < b_.T0; ++t) {
+      if (parent[t] < 0) continue;
+      for (int m : b_.nbr[t])
+        if (m >= 0 && uz(m) < b_.T0 && parent[uz(m)] >= 0) {
+          const int a = find(static_cast<int>(t)), c = find(m);
+          if (a != c) parent[uz(std::max(a, c))] = std::min(a, c);
+        }
+    }
+    std::vector<std::uint32_t> size(b_.T0, 0);
+    for (std::size_t t = 0; t < b_.T0; ++t)
+      if (parent[t] >= 0) ++size[uz(find(static_cast<int>(t)))];
+    touches_inside_.assign(b_.n, 0);
+    for (std::size_t t = 0; t < b_.T0; ++t)
+      if (parent[t] >= 0 && size[uz(find(static_cast<int>(t)))] >= kCrossingRegion)
+        for (int v : b_.tets[t]) touches_inside_[uz(v)] = 1;
+  }
+  // A crossing (outside steps since the last inside tetrahedron) has reached the inside again: the
+  // outside tetrahedra it met wait with the others.
+  void end_crossing() {
+    while (!crossing_heap_.empty()) out_heap_.push(crossing_heap_.pop(b_.tets), b_.tets);
   }
 
   // The body's edges as lists of neighbours per vertex (an edge walk per two-face test was half
@@ -342,6 +389,9 @@ class Growth3 {
   RankQueue heap_;            // inside tetrahedra, by rank (rank_inside)
   std::vector<int> by_rank_;  // the inside tetrahedron of each rank
   TetHeap out_heap_;          // outside ones (only when no inside one is left)
+  TetHeap crossing_heap_;     // outside ones met by the current crossing (popped first)
+  bool crossing_ = false;     // the last tetrahedron added was a step of a crossing
+  std::vector<char> touches_inside_;  // per point: a tetrahedron labelled inside has it
   std::vector<int> waiting_;  // outside tetrahedra met before the first outside step
   bool outside_ready_ = false;
   const std::vector<double>* given_spacing_;  // the engine's spacing, or null

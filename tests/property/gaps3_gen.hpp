@@ -2,10 +2,11 @@
 // Generator of genus-0 objects whose parts nearly touch, for the bridge tests (issue 17,
 // docs/reconstruction-3d.md §4.9): unions of capsules (a segment and a radius) — two parallel
 // fingers on a base, two legs that come together at the feet, an ear hanging beside a ball, a
-// hook whose end runs along a body — with a gap of g sample spacings between the close parts.
+// hook whose end runs along a body — with a gap of g sample spacings between the close parts; and
+// two separate parts (an arm beside a body, not joined to it).
 // Blue-noise samples of the union's boundary (dart throwing, minimum distance 0.75 h per part, so
-// a part can be sampled more sparsely than the rest; each point moved by up to 0.02 h), and the exact distance to the true surface
-// outside the union (a lower bound inside). Deterministic per seed (splitmix64).
+// a part can be sampled more sparsely than the rest; each point moved by up to 0.02 h), and the exact distance to the
+// true surface outside the union (a lower bound inside). Deterministic per seed (splitmix64).
 #pragma once
 
 #include <algorithm>
@@ -22,7 +23,7 @@
 
 namespace constrict::test {
 
-enum class GapShape { Fingers, Legs, Ear, Hook };
+enum class GapShape { Fingers, Legs, Ear, Hook, Apart };
 
 inline const char* gap_shape_name(GapShape s) {
   switch (s) {
@@ -30,6 +31,7 @@ inline const char* gap_shape_name(GapShape s) {
     case GapShape::Legs: return "legs";
     case GapShape::Ear: return "ear";
     case GapShape::Hook: return "hook";
+    case GapShape::Apart: return "apart";
   }
   return "?";
 }
@@ -116,6 +118,10 @@ inline std::vector<Capsule> shape(GapShape s, double g, double r, double sparse)
       const double x = 2 * r + r + g;
       return {{A{0, 0, 0}, A{0, 0, 10 * r}, 2 * r}, {A{0, 0, 10 * r}, A{x, 0, 12 * r}, r, sparse},
               {A{x, 0, 11.5 * r}, A{x, 0, 3 * r}, r, sparse}};
+    }
+    case GapShape::Apart: {  // two parts: a body and an arm beside it along most of its length (gap g)
+      const double x = 2 * r + r + g;
+      return {{A{0, 0, 0}, A{0, 0, 10 * r}, 2 * r}, {A{x, 0, 11.5 * r}, A{x, 0, 3 * r}, r, sparse}};
     }
   }
   return {};

@@ -93,6 +93,30 @@ TEST(Gaps3Property, NoBridgesFromTwoSpacings) {
 namespace constrict {
 namespace {
 
+// Two separate parts a few spacings apart (an arm beside a body, not joined), in the default single
+// mode: one genus-0 surface must join them, and the growth reaches the second part by tetrahedra
+// labelled outside. It used to take those steps by the smallest bridge ratio over the whole gap, so
+// that several crossings began along it and each reached the arm: the surface then had one neck per
+// crossing and, between two necks, a wall across the arm (3-9 spacings from the truth, up to 450
+// bridge faces). A crossing toward a part labelled inside now goes on from its own steps until it
+// reaches that part's inside (docs/reconstruction-3d.md §4.14): one neck across the gap, which lies
+// about g/2 from the true surface.
+TEST(Gaps3Property, SeparatePartsAreJoinedByOneNeck) {
+  std::cout << "| gap / h | seed | points | surface → truth / h | bridge faces | outside steps |\n";
+  for (double gap : {2.0, 3.0, 4.0})
+    for (std::uint64_t seed : {1, 2, 3}) {
+      const test::GapObject o = test::make_gap_object(test::GapShape::Apart, gap, 4, 1, seed);
+      SCOPED_TRACE("apart gap " + std::to_string(gap) + " seed " + std::to_string(seed));
+      Mesh3Result r;
+      reconstruct_valid_genus0(o.points, r);
+      if (HasFatalFailure()) return;
+      const double d = surface_to_truth(o, r.mesh);
+      std::printf("| %g | %llu | %zu | %.2f | %zu | %zu |\n", gap, static_cast<unsigned long long>(seed),
+                  o.points.size(), d, r.bridge_faces, r.grown_outside);
+      EXPECT_LE(d, gap / 2 + 1.5);
+    }
+}
+
 // A ball with a plate 0.8-1.25 spacings thick standing out of it (an ear, a fin): the labels see
 // no inside in the plate, so the growth reaches its points by tetrahedra labelled outside. It must
 // enter the plate along itself (docs/reconstruction-3d.md §4.11): no triangle farther than a
