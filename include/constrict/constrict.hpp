@@ -208,7 +208,7 @@ struct Refine2Stats {
   bool budget_hit = false;      ///< stopped by the work bound (the polygon is still valid)
   double length_before = 0, length_after = 0;  ///< perimeters (double arithmetic)
   /// polygon edges the simplicity tests compared with a new edge; the search stops, between two
-  /// vertices' visits, once they pass 256 · N + 2^26 (budget_hit)
+  /// vertices' visits, once they pass 256 · N + 2^22 (budget_hit)
   std::size_t simplicity_tests = 0;
 };
 

@@ -155,7 +155,7 @@ TEST(Refine2, ThreadCountIndependent) {
 // simplicity tests has cells of the median edge, and the centre's thousands of edges fill one
 // cell, so every move near it tested them all (600 M tests here, 30 000 per point; 146 s at 10^5
 // points, found by an adversarial sweep). The tests are bounded: the search stops between two
-// visits once they pass 256 · N + 2^26, with a valid polygon.
+// visits once they pass 256 · N + 2^22, with a valid polygon.
 TEST(Refine2, SimplicityTestsStayWithinTheirBound) {
   const std::size_t m = 10000;
   PointSet p;
@@ -173,7 +173,7 @@ TEST(Refine2, SimplicityTestsStayWithinTheirBound) {
   std::vector<int> poly = r.boundary;
   Refine2Stats st;
   ASSERT_TRUE(refine_polygon2(p, poly, &st).is_ok());
-  const std::size_t bound = 256 * p.size() + (std::size_t{1} << 26);
+  const std::size_t bound = 256 * p.size() + (std::size_t{1} << 22);
   std::printf("simplicity tests %zu (bound %zu), moves %zu, perimeter %.6g -> %.6g\n", st.simplicity_tests, bound,
               st.moves_2opt + st.moves_oropt + st.moves_deep, st.length_before, st.length_after);
   EXPECT_TRUE(st.budget_hit);
