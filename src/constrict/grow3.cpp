@@ -26,6 +26,7 @@
 #include "core/detail/big_vector.hpp"
 #include "core/detail/bucket_sort.hpp"
 #include "core/detail/rank_queue.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
 namespace {
@@ -324,27 +325,18 @@ class Growth3 {
   // The points of the regions of tetrahedra labelled inside (connected through their faces) with
   // at least kCrossingRegion tetrahedra not in the body.
   void mark_large_inside_regions() {
-    std::vector<int> parent(b_.T0, -1);
-    const auto find = [&](int x) {
-      while (parent[uz(x)] != x) x = parent[uz(x)] = parent[uz(parent[uz(x)])];
-      return x;
-    };
+    const auto in_region = [&](std::size_t t) { return cell_[t].inside && !cell_[t].alive; };
+    UnionFind uf(b_.T0);
     for (std::size_t t = 0; t < b_.T0; ++t)
-      if (cell_[t].inside && !cell_[t].alive) parent[t] = static_cast<int>(t);
-    for (std::size_t t = 0; t < b_.T0; ++t) {
-      if (parent[t] < 0) continue;
-      for (int m : b_.nbr[t])
-        if (m >= 0 && uz(m) < b_.T0 && parent[uz(m)] >= 0) {
-          const int a = find(static_cast<int>(t)), c = find(m);
-          if (a != c) parent[uz(std::max(a, c))] = std::min(a, c);
-        }
-    }
+      if (in_region(t))
+        for (int m : b_.nbr[t])
+          if (m >= 0 && uz(m) < b_.T0 && in_region(uz(m))) uf.join(static_cast<int>(t), m);
     std::vector<std::uint32_t> size(b_.T0, 0);
     for (std::size_t t = 0; t < b_.T0; ++t)
-      if (parent[t] >= 0) ++size[uz(find(static_cast<int>(t)))];
+      if (in_region(t)) ++size[uz(uf.find(static_cast<int>(t)))];
     touches_inside_.assign(b_.n, 0);
     for (std::size_t t = 0; t < b_.T0; ++t)
-      if (parent[t] >= 0 && size[uz(find(static_cast<int>(t)))] >= kCrossingRegion)
+      if (in_region(t) && size[uz(uf.find(static_cast<int>(t)))] >= kCrossingRegion)
         for (int v : b_.tets[t]) touches_inside_[uz(v)] = 1;
   }
   // A crossing (outside steps since the last inside tetrahedron) has reached the inside again: the
