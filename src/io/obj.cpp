@@ -2,6 +2,9 @@
 // The OBJ reader shared by read_points() and read_mesh() (contract: io/detail/obj.hpp).
 #include "io/detail/obj.hpp"
 
+#include <algorithm>
+#include <string_view>
+
 #include "io/detail/scan.hpp"
 
 namespace constrict {
@@ -38,6 +41,16 @@ Status read_obj(std::string_view data, const std::string& name, int dim,
   const char* e = nullptr;
   while (lines.next(b, e, true)) {
     while (b < e && is_space(*b)) ++b;
+    if (b < e && *b == 'v') {
+      // Any statement starting with 'v' other than v, vt, vn and vp is a damaged vertex line
+      // ("v1 2 3", "v,0,1,0"), whose point would be lost without a word.
+      const char* k = b;
+      while (k < e && !is_space(*k)) ++k;
+      const std::string_view kw(b, static_cast<std::size_t>(k - b));
+      if (kw != "v" && kw != "vt" && kw != "vn" && kw != "vp")
+        return error_at(StatusCode::ParseError, name, lines.line(),
+                        "malformed statement " + quote(b, std::min(e, b + 40)) + " (a vertex is 'v x y z')");
+    }
     if (e - b < 2 || !is_space(b[1])) continue;
     const std::size_t line = lines.line();
     if (b[0] == 'f' && faces != nullptr) {

@@ -74,6 +74,10 @@ Status OffReader::counts(std::vector<Span>& fields, bool with_faces) {
     if (fields.size() < 2 || !parse_count(fields[1].b, fields[1].e, n_faces_))
       return error_at(StatusCode::ParseError, name_, line,
                       "malformed OFF face count (expected 'vertices faces edges')");
+    faces_known_ = true;
+  } else {
+    faces_known_ = fields.size() >= 2 && parse_count(fields[1].b, fields[1].e, n_faces_);
+    if (!faces_known_) n_faces_ = 0;
   }
   const auto left = static_cast<std::uint64_t>(data_.data() + data_.size() - lines_.position());
   const std::uint64_t room = left / kMinRecordBytes + 1;  // the last line may lack its '\n'
@@ -116,6 +120,24 @@ Status OffReader::vertices(int dim, std::vector<double>& coords) {
 }
 
 Status OffReader::after_vertices() {
+  if (faces_known_) {
+    // (A file that ends inside its faces lost no point: read as it is. A vertex line read as a
+    // face line has fewer than 3 indices or fractional ones.)
+    std::vector<std::int64_t> ids;
+    for (std::uint64_t f = 0; f < n_faces_; ++f) {
+      if (at_end()) return Status::ok();
+      if (Status st = face(f, ids); !st) return st;
+      if (ids.size() < 3)
+        return error_at(StatusCode::ParseError, name_, lines_.line(),
+                        "a face has at least 3 vertices; if this line is a point, correct the vertex count");
+      for (std::int64_t v : ids)
+        if (v < 0 || static_cast<std::uint64_t>(v) >= n_vertices_)
+          return error_at(StatusCode::ParseError, name_, lines_.line(),
+                          "vertex index " + std::to_string(v) + " out of range (" + std::to_string(n_vertices_) +
+                              (n_vertices_ == 1 ? " vertex" : " vertices") + "): correct the counts or the face");
+    }
+    return end();
+  }
   const char* b = nullptr;
   const char* e = nullptr;
   std::vector<Span> fields;
@@ -130,6 +152,29 @@ Status OffReader::after_vertices() {
   return error_at(StatusCode::ParseError, name_, lines_.line(),
                   "the header announces " + std::to_string(n_vertices_) + (n_vertices_ == 1 ? " vertex" : " vertices") + ", but the line after them, " +
                       quote(b, std::min(e, b + 40)) + ", is not a face line; correct the vertex count");
+}
+
+bool OffReader::at_end() const {
+  LineReader copy = lines_;
+  const char* b = nullptr;
+  const char* e = nullptr;
+  while (copy.next(b, e, true))
+    if (split_fields(b, e, [](std::size_t, const Span&) {}) != 0) return false;
+  return true;
+}
+
+Status OffReader::end() {
+  const char* b = nullptr;
+  const char* e = nullptr;
+  while (lines_.next(b, e, true)) {
+    const std::size_t count = split_fields(b, e, [](std::size_t, const Span&) {});
+    if (count == 0) continue;
+    return error_at(StatusCode::ParseError, name_, lines_.line(),
+                    "more lines than the header announces (" + std::to_string(n_vertices_) +
+                        (n_vertices_ == 1 ? " vertex" : " vertices") + " and " + plural(n_faces_, "face") + "), from " +
+                        quote(b, std::min(e, b + 40)) + " on: correct the counts");
+  }
+  return Status::ok();
 }
 
 Status OffReader::face(std::uint64_t f, std::vector<std::int64_t>& ids) {

@@ -69,7 +69,7 @@ Status parse_off(std::string_view data, Builder& b) {
     if (!st) return st;
     b.polygon(ids);
   }
-  return Status::ok();
+  return off.end();
 }
 
 // Faces arrive while the vertices are still being read (negative indices are relative to the
@@ -146,7 +146,10 @@ Status parse_ply(std::string_view data, Builder& b) {
     }
     if (!st) return st;
   }
-  return Status::ok();
+  // More records than the header counts (a face list longer than announced) were ignored.
+  const auto last = std::find_if(header.elements.rbegin(), header.elements.rend(),
+                                 [](const detail::PlyElement& el) { return el.count > 0; });
+  return last == header.elements.rend() ? Status::ok() : body.check_end(*last);
 }
 
 // ---- STL: the shared reader identifies equal corners (io/detail/stl.hpp) --------------------

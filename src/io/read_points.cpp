@@ -381,6 +381,9 @@ class FileContents {
       }
       buffer_.reserve(size);  // mapping refused (some file systems): read it instead
     }
+    // A character device other than a terminal (/dev/zero, /dev/urandom) may never end: reading
+    // it grew the buffer without bound. An empty one (/dev/null) reads as an empty file.
+    const bool device = S_ISCHR(info.st_mode) && ::isatty(fd) == 0;
     char chunk[1 << 16];
     for (;;) {
       const ssize_t got = ::read(fd, chunk, sizeof chunk);
@@ -389,6 +392,10 @@ class FileContents {
         return cannot_read(path, errno);
       }
       if (got == 0) break;
+      if (device)
+        return {
+            StatusCode::FileNotFound,
+            path + ": a character device, not a file (its data may never end): read the points from a file or a pipe"};
       buffer_.append(chunk, static_cast<std::size_t>(got));
     }
     return Status::ok();

@@ -190,6 +190,7 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
   if (data.size() >= 3 && std::memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3;
   std::size_t expected_fields = 0;  // set by the first data line
   bool seen_content = false;
+  std::size_t header_line = 0, header_fields = 0;  // a header line that names no columns
   ParsedLine f;
   std::vector<double>& coords = out.coords;
   const std::size_t coords_before = coords.size();
@@ -210,9 +211,21 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
     if (count == kEmptyField) return empty_field_error(name, line);
     if (!seen_content) {
       seen_content = true;
-      if (f.first_malformed >= 0 && is_header_line(begin, f.content_end)) continue;
+      if (f.first_malformed >= 0 && is_header_line(begin, f.content_end)) {
+        header_line = line;
+        header_fields = count;
+        continue;
+      }
     }
     if (expected_fields == 0) {
+      // A header that names no x and y column is taken on trust only if it names as many columns
+      // as the data have: "OFF" above an OFF file's counts and vertices was dropped as a header.
+      if (header_line != 0 && !chosen && header_fields != count)
+        return error_at(StatusCode::ParseError, name, header_line,
+                        "this first line looks like a header, but it has " + plural(header_fields, "field") +
+                            " and the data lines have " + std::to_string(count) +
+                            ": remove it or make it name every column (an OFF, PLY or OBJ file needs its own "
+                            "extension or --format)");
       if (count > static_cast<std::size_t>(kMaxDim) && !chosen) return too_many_fields(name, line, count);
       if (dim == 0) {
         if (count != 2 && count != 3)

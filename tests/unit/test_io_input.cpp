@@ -308,7 +308,8 @@ TEST(IoFormats, MoreDataThanAnnouncedIsAnError) {
   ASSERT_TRUE(read_points_from_buffer(ply_faces + "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "okf.ply", PointFormat::Auto, {}, p));
   st = read_points_from_buffer("OFF\n4 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0.5 0.5\n", "short.off", PointFormat::Auto, {}, p);
   EXPECT_EQ(st.code(), StatusCode::ParseError);
-  EXPECT_NE(st.message().find("short.off:7: the header announces 4 vertices, but the line after them"), std::string::npos)
+  EXPECT_NE(st.message().find("short.off:7: more lines than the header announces (4 vertices and 0 faces)"),
+            std::string::npos)
       << st.message();
   ASSERT_TRUE(read_points_from_buffer("OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", "ok.off", PointFormat::Auto, {}, p));
   st = read_points_from_buffer("OFF\r4 0 0\r0 0 0\r1 0 0\r0 1 0\r0 0 1\r", "cr.off", PointFormat::Auto, {}, p);
@@ -322,6 +323,51 @@ TEST(IoFormats, MoreDataThanAnnouncedIsAnError) {
                                "xx.ply", PointFormat::Auto, {}, p);
   EXPECT_EQ(st.code(), StatusCode::ParseError);
   EXPECT_NE(st.message().find("two properties 'x'"), std::string::npos) << st.message();
+}
+
+// Damaged files whose damage looked like something harmless lost points without a word (an
+// adversarial sweep of the readers): each is refused now, and its undamaged sibling still reads.
+TEST(IoFormats, DamagedLinesAreRefusedNotDropped) {
+  PointSet p;
+  const auto code = [&p](const std::string& data, const std::string& name) {
+    return read_points_from_buffer(data, name, PointFormat::Auto, {}, p).code();
+  };
+  const std::string tetra = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  // OFF: a fifth vertex line taken for a face line, a face line more than announced.
+  EXPECT_EQ(code("OFF\n4 0 0\n" + tetra + "1 1 1\n", "a.off"), StatusCode::ParseError);
+  EXPECT_EQ(code("OFF\n4 1 0\n" + tetra + "1 1 1\n3 0 1 2\n", "b.off"), StatusCode::ParseError);
+  EXPECT_EQ(code("OFF\n4 1 0\n" + tetra + "3 0 1 2\n3 0 1 3\n", "c.off"), StatusCode::ParseError);
+  EXPECT_EQ(code("OFF\n4 1 0\n" + tetra + "3 0 1 7\n", "d.off"), StatusCode::ParseError);
+  EXPECT_EQ(code("OFF\n4 2 0\n" + tetra + "3 0 1 2\n3 0 1 3\n# end\n", "ok.off"), StatusCode::Ok);
+  EXPECT_EQ(p.size(), 4u);
+  EXPECT_EQ(code("OFF\n4 2 0\n" + tetra + "3 0 1 2\n", "cut.off"), StatusCode::Ok);  // (no point lost)
+  EXPECT_EQ(p.size(), 4u);
+  // Text: a first line that is no header of the data was dropped as one.
+  for (const char* first : {"OFF\n", "0x10 0x10 0x10\n", "\"5\",\"5\",\"5\"\n", "- - -\n",
+                            "0\xc2\xa0"
+                            "0 0\n"})
+    EXPECT_EQ(code(first + tetra, "t.xyz"), StatusCode::ParseError) << first;
+  for (const char* first : {"x y z\n", "east north height\n", "H\xc3\xb6he b c\n", "\"x\",\"y\",\"z\"\n"}) {
+    EXPECT_EQ(code(first + tetra, "h.xyz"), StatusCode::Ok) << first;
+    EXPECT_EQ(p.size(), 4u) << first;
+  }
+  // OBJ: a damaged vertex statement.
+  EXPECT_EQ(code("v 0 0 0\nv1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\n", "a.obj"), StatusCode::ParseError);
+  EXPECT_EQ(code("v,0,1,0\nv 0 0 0\nv 1 0 0\nv 0 0 1\n", "b.obj"), StatusCode::ParseError);
+  EXPECT_EQ(code("v 0 0 0\nvn 0 0 1\nvt 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvp 0.5\n", "ok.obj"), StatusCode::Ok);
+  EXPECT_EQ(p.size(), 4u);
+  // Meshes: faces beyond the announced count.
+  PointSet v;
+  TriMesh3 m;
+  EXPECT_EQ(read_mesh_from_buffer("OFF\n4 1 0\n" + tetra + "3 0 1 2\n3 0 1 3\n", "m.off", v, m).code(),
+            StatusCode::ParseError);
+  EXPECT_TRUE(read_mesh_from_buffer("OFF\n4 2 0\n" + tetra + "3 0 1 2\n3 0 1 3\n", "m.off", v, m));
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+      tetra;
+  EXPECT_EQ(read_mesh_from_buffer(ply + "3 0 1 2\n3 0 1 3\n", "m.ply", v, m).code(), StatusCode::ParseError);
+  EXPECT_TRUE(read_mesh_from_buffer(ply + "3 0 1 2\n", "m.ply", v, m));
 }
 
 TEST(IoFormats, ScannerFormatsRefusedWithAHint) {

@@ -37,10 +37,16 @@ class OffReader {
   /// Reads the n_vertices() vertex lines; appends the first @p dim (2 or 3) values of each.
   Status vertices(int dim, std::vector<double>& coords);
 
-  /// The point reader, after vertices(): the next record, if any, must be a face line (a count,
-  /// then at least that many fields). Else the header's vertex count is smaller than the data
-  /// and points would be lost without a word: ParseError naming the line.
+  /// The point reader, after vertices(): the header's face lines (when the counts line gives a
+  /// face count), each a count and that many vertex indices below n_vertices(), then nothing but
+  /// blank and comment lines (end()). Without a face count the next record, if any, must be a
+  /// face line. Else the header's counts are smaller than the data and points would be lost
+  /// without a word: ParseError naming the line.
   Status after_vertices();
+
+  /// After the last face: nothing but blank and comment lines, else ParseError (more data than
+  /// the counts announce).
+  Status end();
 
   /// Reads face @p f (0-based, < n_faces()): its vertex indices as written.
   Status face(std::uint64_t f, std::vector<std::int64_t>& ids);
@@ -49,6 +55,7 @@ class OffReader {
 
  private:
   Status counts(std::vector<Span>& fields, bool with_faces);
+  bool at_end() const;  // nothing but blank and comment lines left
 
   std::string_view data_;
   const std::string& name_;
@@ -56,6 +63,7 @@ class OffReader {
   bool empty_ = false;
   std::uint64_t n_vertices_ = 0;
   std::uint64_t n_faces_ = 0;
+  bool faces_known_ = false;  // the counts line gave a face count
 };
 
 }  // namespace detail

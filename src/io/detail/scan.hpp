@@ -160,14 +160,26 @@ inline Status empty_field_error(const std::string& name, std::size_t line) {
                   "empty field (a ',' or ';' at the start or end of the line, or two in a row)");
 }
 
-// The optional header line: no field of it is a number ("x y z", "X;Y;Z", "east north height").
+// The optional header line: no field of it is a number, its first field starts like a name (a
+// letter or '_', after an optional quote: "x y z", "X;Y;Z", "east north height", "Höhe"), and no
+// field holds a control character. Anything else is data, read (and refused) as such: a first
+// line of hex numbers ("0x10"), quoted numbers ("5"), '-' or numbers joined by a no-break space
+// was taken for a header and dropped, a point silently lost.
 inline bool is_header_line(const char* b, const char* e) {
-  bool any_number = false;
-  split_fields(b, e, [&any_number](std::size_t, const Span& f) {
+  bool header = true;
+  split_fields(b, e, [&header](std::size_t i, const Span& f) {
     double v = 0.0;
-    if (parse_double(f.b, f.e, v)) any_number = true;
+    if (parse_double(f.b, f.e, v)) header = false;
+    for (const char* p = f.b; p < f.e; ++p)
+      if (static_cast<unsigned char>(*p) < 0x20 || *p == 0x7f) header = false;
+    if (i != 0) return;
+    const char* c = f.b;
+    if (c < f.e && (*c == '"' || *c == '\'')) ++c;
+    const auto u = c < f.e ? static_cast<unsigned char>(*c) : 0u;
+    const bool nbsp = u == 0xC2 && c + 1 < f.e && static_cast<unsigned char>(c[1]) == 0xA0;
+    if (!((u >= 'a' && u <= 'z') || (u >= 'A' && u <= 'Z') || u == '_' || (u >= 0x80 && !nbsp))) header = false;
   });
-  return !any_number;
+  return header;
 }
 
 // One line split into fields, with the first `want` (at most 3) fields parsed as numbers in the
