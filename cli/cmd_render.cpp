@@ -4,6 +4,7 @@
 // (--points) or of a 3D mesh; and the pictures of `reconstruct --render`. Drawing is done by the
 // library (render.hpp, write_polygon2).
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,10 +48,14 @@ Status layout(const RenderArgs& a, std::size_t panels, RenderOptions& o) {
     o.height = panels == 1 ? 1024 : 512 * rows;
     return Status::ok();
   }
+  // (Digits only, each number range-checked as a whole: sscanf's %d wrapped 4294967297 to 1.)
   int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(a.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-      w > 16384 || h > 16384)
+  const char* const b = a.size.data();
+  const char* const e = b + a.size.size();
+  const auto rw = std::from_chars(b, e, w);
+  const bool by = rw.ec == std::errc() && rw.ptr != b && rw.ptr < e && (*rw.ptr == 'x' || *rw.ptr == 'X');
+  const auto rh = by ? std::from_chars(rw.ptr + 1, e, h) : std::from_chars_result{e, std::errc::invalid_argument};
+  if (!by || rh.ec != std::errc() || rh.ptr != e || rh.ptr == rw.ptr + 1 || w < 1 || h < 1 || w > 16384 || h > 16384)
     return {StatusCode::InvalidArgument, "--size: expected WxH with 1 <= W, H <= 16384, e.g. 2048x2048"};
   o.width = w;
   o.height = h;
@@ -321,6 +326,17 @@ int run_render(const RenderArgs& a) {
   if (Status s = check_distinct_files({{"INPUT", &a.in.path}, {"--points", &a.points}}, {{"-o", &a.out}}); !s) return fail(s);
   const std::string oe = lower_ext(a.out);
   if (oe != "png" && oe != "svg") return fail({StatusCode::InvalidArgument, a.out + ": the picture is .png or .svg"});
+  if (!a.animate.empty()) {
+    // -o among the frames would be overwritten by one (or overwrite it) without a word.
+    std::error_code ec;
+    const std::filesystem::path out(a.out);
+    const auto dir = std::filesystem::weakly_canonical(a.animate, ec);
+    const auto parent = std::filesystem::weakly_canonical(out.has_parent_path() ? out.parent_path() : ".", ec);
+    if (dir == parent && out.filename().string().rfind("frame_", 0) == 0)
+      return fail({StatusCode::InvalidArgument, a.out + ": -o is among the frames that --animate writes to " +
+                                                    a.animate +
+                                                    "/frame_*: name the picture otherwise or write it elsewhere"});
+  }
   if (a.views < 0 || a.columns < 0) return fail({StatusCode::InvalidArgument, "--views and --columns must be >= 0"});
   // Checked before any view is made: 2e9 views allocated 8 GB before the size check refused them.
   if (a.views > kMaxViews)

@@ -118,8 +118,11 @@ bool parse_list(const std::string& text, std::size_t count, std::vector<double>&
 
 Status write_report(const std::string& path, const nlohmann::json& j) {
   std::ofstream f(path);
-  if (!f) return {StatusCode::WriteFailed, path + ": cannot open report for writing"};
-  f << j.dump(2) << '\n';
+  if (!f) return {StatusCode::WriteFailed, path + ": cannot open report for writing (" + std::strerror(errno) + ")"};
+  // (Paths and names are the user's bytes: any that are not UTF-8 become U+FFFD in the report,
+  // instead of JSON's type error.)
+  f << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+  f.close();  // (a small report fails only when its buffer is flushed: /dev/full)
   if (!f) return {StatusCode::WriteFailed, path + ": writing the report failed"};
   return Status::ok();
 }
