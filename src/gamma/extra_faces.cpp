@@ -43,7 +43,10 @@ constexpr double kTangentCut = 1e-4;            // shadows nearly tangent to a b
 constexpr double kSliverSin2 = 1e-12;           // sin^2 of the angle at a below which the
                                                 // computed circumcentre is not trusted
 constexpr int kMaxGrowRounds = 40;              // grow_side: 4^40 r, then a linear scan
-constexpr double kScanBudget = 4e8;             // point tests of the linear scans, at most
+// Point tests at most (linear scans, the points of each ball query, the pairs the 2D search
+// visits): near m = -1 nearly every pair is a face and each costs a query, and 20 000 points at
+// m = -0.95 ran for more than 15 minutes; at -0.9 they use about half of it (20 s).
+constexpr double kScanBudget = 4e8;
 
 // ---- k-d tree (nanoflann) ----------------------------------------------------------------------
 
@@ -73,7 +76,7 @@ struct Ctx {
   std::unordered_set<std::uint64_t> delaunay;
   std::vector<std::pair<std::uint32_t, double>> hits;
   std::size_t tested = 0;
-  double scanned = 0;  // point tests of linear scans (kScanBudget)
+  double scanned = 0;  // point tests: linear scans, ball queries, pairs visited (kScanBudget)
   bool over_budget() const { return scanned > kScanBudget; }
 };
 
@@ -208,6 +211,7 @@ void grow_side(Ctx<D>& ctx, const int* ids, const Sphere& s, int side, double& m
     double q[D];
     for (int d = 0; d < D; ++d) q[d] = s.c[d] + side * tau * s.n[d];
     ball_query(ctx, q, R * (1 + kBallRel) + ctx.tol);
+    ctx.scanned += static_cast<double>(ctx.hits.size());  // (the ball's points are tested too)
     for (const auto& h : ctx.hits) {
       if (is_vertex<D>(ids, h.first)) continue;
       bool blocks = false;
@@ -273,6 +277,7 @@ bool evaluate_face(Ctx<D>& ctx, const int* ids, double& ga, double& gb) {
   double mins[2] = {1.0, 1.0};  // side a, side b
   // Every point with a negative apex value, or in D, lies in the open smallest ball (exact sign).
   ball_query(ctx, s.c, s.r * (1 + kBallRel) + ctx.tol);
+  ctx.scanned += static_cast<double>(ctx.hits.size());
   for (const auto& h : ctx.hits) {
     if (is_vertex<D>(ids, h.first)) continue;
     const double* p = pt(ctx, h.first);
@@ -296,8 +301,9 @@ bool evaluate_face(Ctx<D>& ctx, const int* ids, double& ga, double& gb) {
 
 Status scan_budget_status() {
   return {StatusCode::Unsupported,
-          "lens faces: more than 4e8 point tests in linear scans (near-degenerate faces whose "
-          "balls cannot be computed in doubles); see docs/gamma-lens-graphs.md"};
+          "lens faces: more than 4e8 point tests (a threshold near -1 makes nearly every pair a face, or "
+          "near-degenerate faces need linear scans): use a threshold closer to 0 or fewer points; see "
+          "docs/gamma-lens-graphs.md"};
 }
 
 struct FoundFace {
@@ -538,6 +544,7 @@ Status lens_faces2(Ctx<2>& ctx, std::vector<FoundFace>& found) {
     sh.reset();
     auto on_point = [&](std::uint32_t v, double key) {
       if (v == u) return true;
+      ctx.scanned += 1;  // (near m = -1 the shadows prune little: every pair is visited)
       const double* pv = pt(ctx, v);
       const double dx = pv[0] - pu[0], dy = pv[1] - pu[1];
       const double len = std::sqrt(key);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,26 @@ TEST(FuzzRegressionGraph, SliverNearCollinearMagnitudesExact) {
   EXPECT_NEAR(std::min(ga, gb), -0.845607450744, 1e-9);
 }
 
+// A threshold near -1 makes nearly every pair an edge, each with its ball queries: 20 000 uniform
+// points at -0.95 ran for more than 15 minutes (an adversarial sweep of the command line). The
+// point tests of the queries and the pairs visited now count toward the lens search's budget:
+// refused with its message after a few seconds, whatever the input's size; -0.5 still runs.
+TEST(FuzzRegressionGraph, ThresholdNearMinusOneIsRefusedNotEndless) {
+  PointSet p;
+  p.dim = 2;
+  std::uint64_t s = 12345;  // (a fixed LCG: the same points everywhere)
+  const auto next = [&s] {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(s >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < 2 * 3000; ++i) p.coords.push_back(next());
+  GammaFaces graph;
+  const Status st = build_gamma_graph(p, GraphSpec::fixed(-0.99, -0.99), graph);
+  EXPECT_EQ(st.code(), StatusCode::Unsupported) << st.message();
+  EXPECT_NE(st.message().find("threshold closer to 0"), std::string::npos) << st.message();
+  GammaFaces half;
+  ASSERT_TRUE(build_gamma_graph(p, GraphSpec::fixed(-0.5, -0.5), half).is_ok());
+}
 
 // Points of magnitude 1e300 (fuzz_surfaces3, first run): the auto topology shares its
 // tetrahedralization with the engine, but the engine works on a power-of-two rescaled copy, and
