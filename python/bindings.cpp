@@ -69,6 +69,10 @@ void run_nogil(F&& f) {
 
 // (N, dim) float array -> PointSet (copied; any numeric dtype and memory layout is accepted).
 PointSet to_points(const py::handle& obj, int dim) {
+  // (The cast keeps a complex number's real part, with only numpy's warning: refused.)
+  if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
+    raise(
+        {StatusCode::InvalidArgument, "points must be real numbers, not " + py::str(raw.dtype()).cast<std::string>()});
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!a) raise({StatusCode::InvalidArgument, "points must be an array of numbers"});
   if (a.ndim() != 2 || a.shape(1) != dim)

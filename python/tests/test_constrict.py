@@ -105,6 +105,13 @@ class Reconstruct2(unittest.TestCase):
             constrict.reconstruct2(np.zeros((5, 3)))
         with self.assertRaises(constrict.Error):
             constrict.reconstruct2(np.random.random((5, 2)), fallback="sometimes")
+        # Complex coordinates were cut to their real part with only numpy's warning.
+        for pts in (np.random.random((8, 2)) + 1j, (np.random.random((8, 2)) + 1j).tolist()):
+            with self.assertRaises(constrict.Error) as ctx:
+                constrict.reconstruct2(pts)
+            self.assertIn("real numbers", str(ctx.exception))
+        with self.assertRaises(constrict.Error):
+            constrict.reconstruct3(np.random.random((20, 3)).astype(np.complex64))
 
 
 class Topology2(unittest.TestCase):
