@@ -153,6 +153,17 @@ Status read_stl(std::string_view data, const std::string& name, std::vector<doub
       st = read_binary(base, n, !little_host, name, ids, facets);
     }
   }
+  // Binary data whose size does not match its facet count (truncated, or bytes appended): its
+  // header often starts with "solid" too, and the ASCII reader found no vertex in it ("no
+  // points"). ASCII STL holds no NUL byte.
+  if (!binary && data.size() >= 84 &&
+      std::memchr(data.data(), 0, std::min<std::size_t>(data.size(), 4096)) != nullptr) {
+    const auto n = load<std::uint32_t>(base + 80, !little_host);
+    corners = 0;
+    return {StatusCode::ParseError, name + ": a binary STL of " + std::to_string(data.size()) + " bytes, but its " +
+                                        std::to_string(n) + " facets need 84 + 50 x " + std::to_string(n) + " = " +
+                                        std::to_string(84 + 50ull * n) + ": the file is truncated or damaged"};
+  }
   if (!binary) st = read_ascii(data, name, ids, facets);
   corners = ids.count();
   return st;

@@ -356,6 +356,18 @@ TEST(IoFormats, DamagedLinesAreRefusedNotDropped) {
   EXPECT_EQ(code("v,0,1,0\nv 0 0 0\nv 1 0 0\nv 0 0 1\n", "b.obj"), StatusCode::ParseError);
   EXPECT_EQ(code("v 0 0 0\nvn 0 0 1\nvt 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvp 0.5\n", "ok.obj"), StatusCode::Ok);
   EXPECT_EQ(p.size(), 4u);
+  // Binary STL whose size does not match its facet count, with a header starting "solid" (as many
+  // exporters write): read as ASCII, it gave "no points".
+  std::string stl = "solid exported";
+  stl.resize(80, '\0');
+  const std::uint32_t facets = 1;
+  stl.append(reinterpret_cast<const char*>(&facets), 4);  // (little-endian hosts: the test machines)
+  const float tri[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+  stl.append(reinterpret_cast<const char*>(tri), sizeof tri);
+  stl.append(2, '\0');
+  EXPECT_NE(code(stl, "ok.stl"), StatusCode::ParseError);  // (read: its corners are then too few)
+  EXPECT_EQ(code(stl.substr(0, stl.size() - 1), "short.stl"), StatusCode::ParseError);
+  EXPECT_EQ(code(stl + '\0', "long.stl"), StatusCode::ParseError);
   // Meshes: faces beyond the announced count.
   PointSet v;
   TriMesh3 m;

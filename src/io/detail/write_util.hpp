@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
 
@@ -45,7 +46,14 @@ inline Status write_file(const std::string& path, const std::string& data) {
   if (!f) return {StatusCode::WriteFailed, path + ": cannot open for writing: " + std::strerror(errno)};
   const std::size_t w = std::fwrite(data.data(), 1, data.size(), f);
   const int c = std::fclose(f);
-  if (w != data.size() || c != 0) return {StatusCode::WriteFailed, path + ": write failed: " + std::strerror(errno)};
+  if (w != data.size() || c != 0) {
+    const std::string why = std::strerror(errno);
+    // A partial file (disk full, file size limit) is taken back, not left looking like a result;
+    // a device (/dev/full) or pipe is not a file to remove.
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(path, ec)) std::filesystem::remove(path, ec);
+    return {StatusCode::WriteFailed, path + ": write failed: " + why};
+  }
   return Status::ok();
 }
 
