@@ -107,6 +107,9 @@ Status check_dimension_options(const ReconstructArgs& a, int dim) {
     if (a.ascii) return wrong_dimension("--ascii", 2, a.in.path);
     if (a.fast) return wrong_dimension("--fast", 2, a.in.path);
     if (a.no_grow) return wrong_dimension("--no-grow", 2, a.in.path);
+  } else if (!a.render.empty() && lower_ext(a.render) != "png") {
+    // (Checked before the surface is written: the error came after -o's file.)
+    return {StatusCode::InvalidArgument, a.render + ": 3D pictures are PNG (--render)"};
   } else if (a.fallback == "gamma0" || a.fallback == "degree4") {
     return {StatusCode::InvalidArgument, "--fallback " + a.fallback + " is a 2D fallback, but " + a.in.path +
                                              " is 3D; 3D has auto (star cavities) or none"};
@@ -253,9 +256,9 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
                      Clock::time_point t0, Clock::time_point t1) {
   const PolygonFormat fmt = polygon_format_from_path(a.out);
   if (fmt == PolygonFormat::Auto)
-    return fail({StatusCode::InvalidArgument, a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt, .svg or .rings)"});
-  if (is_skeleton(a) && a.topology != "single")
-    return fail({StatusCode::InvalidArgument, "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon or surface)"});
+    return fail(
+        {StatusCode::InvalidArgument,
+         a.out + ": unknown output extension for a 2D polygon (use .idx, .csv, .geojson, .wkt, .svg or .rings)"});
   Constrict2Options opt;  // --refine none: the paper's algorithm (Constrict2Options::paper())
   (void)Constrict2Options::from_preset(a.refine == "none" ? "paper" : "default", opt);
   (void)fallback_from_name(a.fallback, opt.fallback);
@@ -562,6 +565,10 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 // Options that contradict each other, or outputs that would overwrite each other, named before
 // the input is read.
 Status check_option_conflicts(const ReconstructArgs& a) {
+  // (In 3D the skeleton ran and --topology was ignored.)
+  if (is_skeleton(a) && a.topology != "single")
+    return {StatusCode::InvalidArgument,
+            "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon or surface)"};
   if (a.topology == "auto" && a.stop_after != SIZE_MAX)
     return {StatusCode::InvalidArgument,
             "--stop-after stops the one constriction of --topology single; --topology auto reconstructs every part to the end (drop one of them)"};
