@@ -25,6 +25,7 @@
 #include "constrict/io.hpp"
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
+#include "io/detail/write_util.hpp"
 
 namespace constrict {
 namespace {
@@ -956,4 +957,20 @@ TEST_F(IoRoundTrip, LargeIndexPolygonIsOneIndexPerLine) {
 }
 
 }  // namespace
+// SVG titles carry the input's file name: a control character or a byte that is not UTF-8 made
+// the picture malformed XML (an adversarial sweep of the command line).
+TEST(XmlEscape, KeepsTheDocumentWellFormed) {
+  using detail::xml_escape;
+  EXPECT_EQ(xml_escape("a<b>&\"c"), "a&lt;b&gt;&amp;&quot;c");
+  EXPECT_EQ(xml_escape("H\xc3\xb6he \xe2\x82\xac \xf0\x9f\x99\x82"),
+            "H\xc3\xb6he \xe2\x82\xac \xf0\x9f\x99\x82");  // UTF-8 kept
+  const std::string r = "\xef\xbf\xbd";                    // U+FFFD
+  EXPECT_EQ(xml_escape("b\xff.xy"), "b" + r + ".xy");
+  EXPECT_EQ(xml_escape(std::string("x\x01y\x00z", 5)), "x" + r + "y" + r + "z");
+  EXPECT_EQ(xml_escape("\xc3"), r);                  // cut short
+  EXPECT_EQ(xml_escape("\xc0\xaf"), r + r);          // overlong
+  EXPECT_EQ(xml_escape("\xed\xa0\x80"), r + r + r);  // a surrogate
+  EXPECT_EQ(xml_escape("tab\tnl\n"), "tab\tnl\n");
+}
+
 }  // namespace constrict

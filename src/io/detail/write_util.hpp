@@ -67,15 +67,41 @@ inline std::string json_escape(const std::string& s) {
   return o;
 }
 
+// Text for an XML document: the markup characters escaped, and what XML 1.0 cannot hold (control
+// characters, bytes that are not UTF-8: a file name's) as U+FFFD, so that the SVG stays
+// well-formed whatever the input's path.
 inline std::string xml_escape(const std::string& s) {
+  static const char kReplacement[] = "\xEF\xBF\xBD";
   std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+  const auto byte = [&s](std::size_t i) { return static_cast<unsigned char>(s[i]); };
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = byte(i);
+    if (c < 0x80) {
+      switch (c) {
+        case '<': o += "&lt;"; break;
+        case '>': o += "&gt;"; break;
+        case '&': o += "&amp;"; break;
+        case '"': o += "&quot;"; break;
+        default:
+          o += (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f ? kReplacement
+                                                                              : std::string(1, static_cast<char>(c));
+      }
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: its length from the lead byte, then continuation bytes (overlong forms
+    // and surrogates refused as well).
+    const std::size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    bool ok = len != 0 && i + len <= s.size();
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (byte(i + k) & 0xC0) == 0x80;
+    if (ok && len == 3) ok = !(c == 0xE0 && byte(i + 1) < 0xA0) && !(c == 0xED && byte(i + 1) >= 0xA0);
+    if (ok && len == 4) ok = !(c == 0xF0 && byte(i + 1) < 0x90) && !(c == 0xF4 && byte(i + 1) >= 0x90);
+    if (ok) {
+      o.append(s, i, len);
+      i += len;
+    } else {
+      o += kReplacement;
+      ++i;
     }
   }
   return o;
