@@ -87,7 +87,16 @@ int main(int argc, char** argv) {
   }
   try {
     for (const auto& c : commands)
-      if (c.app->parsed()) return c.run();
+      if (c.app->parsed()) {
+        const int rc = c.run();
+        // What went to standard output (compare's verdict, the summary lines) is part of the
+        // result: a full disk or a closed stream there is a failed write, not success.
+        if (rc == 0 && (std::fflush(stdout) != 0 || std::ferror(stdout) != 0)) {
+          std::fprintf(stderr, "constrict: error [WriteFailed]: writing to standard output failed\n");
+          return exit_code(StatusCode::WriteFailed);
+        }
+        return rc;
+      }
   } catch (const InternalError& e) {
     std::fprintf(stderr, "constrict: internal error (please report): %s\n", e.what());
     return exit_code(StatusCode::Internal);
