@@ -208,9 +208,21 @@ std::size_t parse_stop_after(const py::object& v) {
   if (v.is_none()) return SIZE_MAX;
   // (bool is an int in Python; a float or a negative number is refused by name, not by pybind11's
   // generic cast error.)
-  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v) || v.cast<py::int_>() < py::int_(0))
+  // (numpy integers count as integers; one beyond size_t gave pybind11's "Unable to cast".)
+  const py::object i = py::module_::import("operator").attr("index");
+  py::int_ n;
+  bool ok = !py::isinstance<py::bool_>(v) && !py::isinstance(v, py::module_::import("numpy").attr("bool_"));
+  if (ok) {
+    try {
+      n = i(v);
+    } catch (const py::error_already_set&) {
+      ok = false;
+    }
+  }
+  if (!ok || n < py::int_(0))
     raise({StatusCode::InvalidArgument, "stop_after must be None or an integer >= 0, not " + py::repr(v).cast<std::string>()});
-  return v.cast<std::size_t>();
+  if (n > py::int_(SIZE_MAX)) return SIZE_MAX;  // (more removals than any run makes: no stop)
+  return n.cast<std::size_t>();
 }
 
 py::dict skeleton_stats(const VoronoiSkeletonStats& s, std::size_t seed_limit) {

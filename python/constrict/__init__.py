@@ -334,8 +334,9 @@ def _check_types(**options: Any) -> None:
         elif name in ("merge_duplicates", "grow", "fast", "validate_self_intersections"):
             ok, want = isinstance(value, (bool, np.bool_)), "True or False"
         elif name == "seed_limit":
-            ok = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)) and value >= 0
-            want = "an integer >= 0"
+            ok = (isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+                  and 0 <= value < 2**64)
+            want = "an integer from 0 to 2**64 - 1"
         elif name == "topology_gap":
             ok = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
             want = "a number"

@@ -112,6 +112,14 @@ class Reconstruct2(unittest.TestCase):
             self.assertIn("real numbers", str(ctx.exception))
         with self.assertRaises(constrict.Error):
             constrict.reconstruct3(np.random.random((20, 3)).astype(np.complex64))
+        # Counts beyond size_t or of numpy's integer types gave pybind11's cast errors.
+        pts = np.random.default_rng(3).random((40, 2))
+        a = constrict.reconstruct2(pts, stop_after=np.int64(5), fallback="none")
+        b = constrict.reconstruct2(pts, stop_after=5, fallback="none")
+        self.assertEqual(a.boundary.tolist(), b.boundary.tolist())
+        self.assertTrue(constrict.reconstruct2(pts, stop_after=2**64).complete)
+        with self.assertRaises(constrict.Error):
+            constrict.reconstruct2(pts, method="voronoi-skeleton", seed_limit=2**64)
 
 
 class Topology2(unittest.TestCase):
