@@ -615,9 +615,11 @@ Status read_points(const std::string& path, const ReadOptions& options, PointSet
                    ReadReport* report) {
   if (report != nullptr) *report = ReadReport{};
   FileContents contents;
-  Status st = contents.open(path);
+  // "-": standard input (text, or the format named by ReadOptions::format), as Unix tools read it.
+  Status st = contents.open(path == "-" ? std::string("/dev/stdin") : path);
   if (!st) return st;
-  return read_points_from_buffer(contents.view(), path, options.format, options, out, report);
+  return read_points_from_buffer(contents.view(), path == "-" ? std::string("standard input") : path, options.format,
+                                 options, out, report);
 }
 
 }  // namespace constrict
