@@ -94,10 +94,13 @@ Command add_graph_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("graph", "build a gamma-neighborhood graph (2D edges / 3D triangles)");
   add_input_options(cmd, a->in);
   cmd->add_option("-o,--output", a->out, "output file: .csv .json .svg .off .ply .obj")->required();
-  auto* og = cmd->add_option("--gamma", a->gamma, "fixed parameters G0,G1 in [-1,1], e.g. 0,0 (Gabriel)");
-  auto* oi = cmd->add_option("--interval", a->interval, "interval graph A0,A1,B0,B1, e.g. -1,1,0,1 (Delaunay)");
+  auto* og =
+      cmd->add_option("--gamma", a->gamma, "fixed parameters G0,G1 in [-1,1], e.g. 0,0 (Gabriel)")->check(non_empty());
+  auto* oi = cmd->add_option("--interval", a->interval, "interval graph A0,A1,B0,B1, e.g. -1,1,0,1 (Delaunay)")
+                 ->check(non_empty());
   auto* op = cmd->add_option("--preset", a->preset,
-                               "hull | delaunay (default) | gabriel | beta-circle=B | beta-lune=B | complete | void");
+                             "hull | delaunay (default) | gabriel | beta-circle=B | beta-lune=B | complete | void")
+                 ->check(non_empty());
   og->excludes(oi)->excludes(op);
   oi->excludes(op);
   cmd->add_option("--report", a->report, "write a JSON report (counts, timings)");

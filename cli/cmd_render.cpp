@@ -434,15 +434,16 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required();
   cmd->add_option("--points", a->points,
                   "INPUT is a 2D result over these points: a polygon (.idx .csv) or rings (.gt .rings)");
-  cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)");
-  cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)");
+  cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)")->check(non_empty());
+  cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)")->check(non_empty());
   cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");
   cmd->add_option("--columns", a->columns, "sheet columns (default: about square)");
   cmd->add_flag("--wireframe", a->wireframe, "3D: draw the triangle edges");
   cmd->add_option("--up", a->up, "3D: model axis drawn upwards (default z)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_flag("--no-graph", a->no_graph, "2D: leave out the dashed Delaunay graph");
   cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction")->check(non_negative_integer());
-  cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...");
+  cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...")
+      ->check(non_empty());
   cmd->add_option("--animate", a->animate, "2D: write frames of the whole constriction to DIR (frame_NNNN.svg/png)");
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line");
   return {cmd, [a] { return run_render(*a); }};

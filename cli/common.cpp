@@ -22,14 +22,17 @@ int fail_in(const std::string& input, const Status& s) {
 
 void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
   cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")->required();
-  cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")->check(CLI::IsMember({2, 3}));
+  cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")
+      ->check(non_empty())
+      ->check(CLI::IsMember({2, 3}));
   cmd->add_flag("--merge-duplicates", in.merge_duplicates,
                 "keep the first of identical points (default: duplicates are an error); output indices stay file rows");
   cmd->add_option("--format", in.format, "input format, overrides the extension: text | ply | off | obj | stl | geojson")
       ->check(CLI::IsMember({"auto", "text", "ply", "off", "obj", "stl", "geojson"}));
   if (columns)
     cmd->add_option("--columns", in.columns,
-                  "text input: the x,y[,z] columns, 1-based numbers (2,3,4) or header names (x,y,z)");
+                    "text input: the x,y[,z] columns, 1-based numbers (2,3,4) or header names (x,y,z)")
+        ->check(non_empty());
 }
 
 // Warnings (e.g. merged duplicates) are printed even with --quiet: dropping data is never silent.
@@ -179,6 +182,14 @@ bool option_number(const std::string& text, double& v) {
   return end == text.c_str() + text.size();
 }
 }  // namespace
+
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty value (leave the option out for its default)" : "";
+      },
+      "");
+}
 
 CLI::Validator non_negative_integer() {
   return CLI::Validator(

@@ -47,6 +47,8 @@ void add_input_options(CLI::App* cmd, InputArgs& in, bool columns = true);
 // library call checks its input itself (duplicates, too few, collinear, coplanar), so the O(N log N)
 // duplicate search does not run twice.
 /// Option checks with short messages (CLI11's ranges print the whole double range).
+/// Refuses an empty value (`--columns ''` silently meant the default).
+CLI::Validator non_empty();
 CLI::Validator non_negative_integer();
 CLI::Validator non_negative_number();
 CLI::Validator positive_number();
