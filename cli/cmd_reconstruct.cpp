@@ -107,6 +107,9 @@ Status check_dimension_options(const ReconstructArgs& a, int dim) {
     if (a.ascii) return wrong_dimension("--ascii", 2, a.in.path);
     if (a.fast) return wrong_dimension("--fast", 2, a.in.path);
     if (a.no_grow) return wrong_dimension("--no-grow", 2, a.in.path);
+  } else if (a.ascii && lower_ext(a.out) != "ply") {
+    return {StatusCode::InvalidArgument, "--ascii chooses ASCII PLY; " + a.out +
+                                             " is not .ply (OFF and OBJ are text anyway, STL is written binary)"};
   } else if (!a.render.empty() && lower_ext(a.render) != "png") {
     // (Checked before the surface is written: the error came after -o's file.)
     return {StatusCode::InvalidArgument, a.render + ": 3D pictures are PNG (--render)"};
