@@ -237,6 +237,7 @@ Status to_stl(const std::string& path, const PointSet& pts, const TriMesh3& m, s
 Status write_mesh(const std::string& path, const PointSet& points, const TriMesh3& mesh,
                   const MeshWriteOptions& options) {
   if (points.dim != 3) return {StatusCode::WriteFailed, path + ": mesh output needs 3D points"};
+  if (Status st = detail::check_finite_coordinates(path, points); !st) return st;
   const std::string ext = extension(path);
   if (ext == "off") return write_file(path, to_off(points, mesh));
   if (ext == "obj") return write_file(path, to_obj(points, mesh));
@@ -257,6 +258,9 @@ Status write_mesh(const std::string& path, const PointSet& points, const TriMesh
 Status write_body_vtk(const std::string& path, const PointSet& points,
                       const std::vector<std::array<int, 4>>& tets) {
   if (points.dim != 3) return {StatusCode::WriteFailed, path + ": body output needs 3D points"};
+  if (extension(path) != "vtk")
+    return {StatusCode::InvalidArgument, path + ": the body is written as legacy VTK: name it .vtk"};
+  if (Status st = detail::check_finite_coordinates(path, points); !st) return st;
   std::string s = "# vtk DataFile Version 3.0\nconstrict tetrahedral body\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ";
   put_int(s, static_cast<long long>(points.size()));
   s += " double\n";

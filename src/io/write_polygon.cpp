@@ -226,6 +226,7 @@ static std::string index_lines(const std::vector<int>& ids) {
 Status write_polygon2(const std::string& path, const PointSet& points, const std::vector<int>& boundary,
                       PolygonFormat format, const PolygonSvgLayers* layers) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, path + ": a polygon needs 2D points"};
+  if (Status st = detail::check_finite_coordinates(path, points); !st) return st;
   for (int i : boundary)
     if (i < 0 || static_cast<std::size_t>(i) >= points.size())
       return {StatusCode::InvalidArgument, path + ": polygon index " + std::to_string(i) + " out of range"};
@@ -281,6 +282,7 @@ Status write_polygon2(const std::string& path, const PointSet& points, const std
 Status write_rings2(const std::string& path, const PointSet& points, const std::vector<Ring2>& rings,
                     PolygonFormat format, const PolygonSvgLayers* layers) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, path + ": rings need 2D points"};
+  if (Status st = detail::check_finite_coordinates(path, points); !st) return st;
   if (rings.size() == 1 && rings[0].role == RingRole::Shell)
     return write_polygon2(path, points, rings[0].indices, format, layers);
   for (std::size_t k = 0; k < rings.size(); ++k) {

@@ -318,6 +318,31 @@ TEST(MeshWrite, FormatsRoundTripVertices) {
 // STL keeps 32-bit floats: a surface whose coordinates leave their range, vanish in them, or whose
 // triangle corners round to one point is refused (with the formats that keep doubles), not
 // written as infinities, zeros or degenerate triangles (found by a hostile-input sweep).
+// Points built by hand (the library, Python) can hold NaN or infinity: the writers put "nan" into
+// the files (an adversarial sweep of the Python module), and the body went to any extension.
+TEST(MeshWrite, NonFiniteCoordinatesAndWrongBodyExtensionAreRefused) {
+  PointSet p = make3({{0, 0, 0}, {1.5, 0, 0}, {0, 1, 0}, {0, 0, 0.1}});
+  const TriMesh3 m = mesh(kTetFaces);
+  const std::string dir = ::testing::TempDir();
+  const std::vector<std::array<int, 4>> tets = {{0, 1, 2, 3}};
+  EXPECT_TRUE(write_body_vtk(dir + "/constrict_body.vtk", p, tets).is_ok());
+  EXPECT_EQ(write_body_vtk(dir + "/constrict_body.foo", p, tets).code(), StatusCode::InvalidArgument);
+  p.coords[7] = std::nan("");
+  for (const std::string ext : {"off", "obj", "ply", "stl"}) {
+    const std::string path = dir + "/constrict_nan." + ext;
+    std::remove(path.c_str());
+    EXPECT_EQ(write_mesh(path, p, m).code(), StatusCode::InvalidArgument) << ext;
+    EXPECT_FALSE(std::ifstream(path).good()) << ext << ": nothing written";
+  }
+  EXPECT_EQ(write_body_vtk(dir + "/constrict_body.vtk", p, tets).code(), StatusCode::InvalidArgument);
+  PointSet q;
+  q.dim = 2;
+  q.coords = {0, 0, 1, 0, 0, HUGE_VAL};
+  EXPECT_EQ(write_polygon2(dir + "/constrict_inf.csv", q, {0, 1, 2}).code(), StatusCode::InvalidArgument);
+  EXPECT_EQ(write_rings2(dir + "/constrict_inf.wkt", q, {Ring2{RingRole::Shell, -1, {0, 1, 2}}}).code(),
+            StatusCode::InvalidArgument);
+}
+
 TEST(MeshWrite, StlRefusesWhatFloatsCannotHold) {
   const TriMesh3 m = mesh(kTetFaces);
   const std::string path = ::testing::TempDir() + "/constrict_mesh_float.stl";
