@@ -568,6 +568,8 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 // Options that contradict each other, or outputs that would overwrite each other, named before
 // the input is read.
 Status check_option_conflicts(const ReconstructArgs& a) {
+  if (a.seed_limit > 0 && !is_skeleton(a))
+    return {StatusCode::InvalidArgument, "--seed-limit applies to --method voronoi-skeleton only (it was ignored)"};
   // (In 3D the skeleton ran and --topology was ignored.)
   if (is_skeleton(a) && a.topology != "single")
     return {StatusCode::InvalidArgument,
