@@ -119,14 +119,23 @@ Status OffReader::vertices(int dim, std::vector<double>& coords) {
   return Status::ok();
 }
 
+std::size_t OffReader::next_fields(const char*& b, const char*& e, std::vector<Span>& fields) {
+  std::size_t count = 0;
+  do {
+    if (!lines_.next(b, e, true)) return 0;
+    fields.clear();
+    count = split_fields(b, e, [&fields](std::size_t, const Span& s) { fields.push_back(s); });
+  } while (count == 0);
+  return count;
+}
+
 Status OffReader::after_vertices() {
   if (faces_known_) {
     // (A file that ends inside its faces lost no point: read as it is. A vertex line read as a
     // face line has fewer than 3 indices or fractional ones.)
     std::vector<std::int64_t> ids;
     for (std::uint64_t f = 0; f < n_faces_; ++f) {
-      if (at_end()) return Status::ok();
-      if (Status st = face(f, ids); !st) return st;
+      if (Status st = face(f, ids); !st) return ended_ ? Status::ok() : st;
       if (ids.size() < 3)
         return error_at(StatusCode::ParseError, name_, lines_.line(),
                         "a face has at least 3 vertices; if this line is a point, correct the vertex count");
@@ -141,12 +150,8 @@ Status OffReader::after_vertices() {
   const char* b = nullptr;
   const char* e = nullptr;
   std::vector<Span> fields;
-  std::size_t count = 0;
-  do {
-    if (!lines_.next(b, e, true)) return Status::ok();
-    fields.clear();
-    count = split_fields(b, e, [&fields](std::size_t, const Span& s) { fields.push_back(s); });
-  } while (count == 0);
+  const std::size_t count = next_fields(b, e, fields);
+  if (count == 0) return Status::ok();
   std::uint64_t k = 0;
   if (count != kEmptyField && parse_count(fields[0].b, fields[0].e, k) && k <= fields.size() - 1) return Status::ok();
   return error_at(StatusCode::ParseError, name_, lines_.line(),
@@ -154,26 +159,15 @@ Status OffReader::after_vertices() {
                       quote(b, std::min(e, b + 40)) + ", is not a face line; correct the vertex count");
 }
 
-bool OffReader::at_end() const {
-  LineReader copy = lines_;
-  const char* b = nullptr;
-  const char* e = nullptr;
-  while (copy.next(b, e, true))
-    if (split_fields(b, e, [](std::size_t, const Span&) {}) != 0) return false;
-  return true;
-}
-
 Status OffReader::end() {
   const char* b = nullptr;
   const char* e = nullptr;
-  while (lines_.next(b, e, true)) {
-    const std::size_t count = split_fields(b, e, [](std::size_t, const Span&) {});
-    if (count == 0) continue;
+  std::vector<Span> fields;
+  if (next_fields(b, e, fields) != 0)
     return error_at(StatusCode::ParseError, name_, lines_.line(),
                     "more lines than the header announces (" + std::to_string(n_vertices_) +
                         (n_vertices_ == 1 ? " vertex" : " vertices") + " and " + plural(n_faces_, "face") + "), from " +
                         quote(b, std::min(e, b + 40)) + " on: correct the counts");
-  }
   return Status::ok();
 }
 
@@ -181,15 +175,12 @@ Status OffReader::face(std::uint64_t f, std::vector<std::int64_t>& ids) {
   const char* b = nullptr;
   const char* e = nullptr;
   std::vector<Span> fields;
-  std::size_t count = 0;
-  do {
-    if (!lines_.next(b, e, true))
-      return error_at(StatusCode::ParseError, name_, lines_.line(),
-                      "OFF file ends after " + std::to_string(f) + " of " +
-                          plural(n_faces_, "face line"));
-    fields.clear();
-    count = split_fields(b, e, [&fields](std::size_t, const Span& s) { fields.push_back(s); });
-  } while (count == 0);
+  const std::size_t count = next_fields(b, e, fields);
+  if (count == 0) {
+    ended_ = true;
+    return error_at(StatusCode::ParseError, name_, lines_.line(),
+                    "OFF file ends after " + std::to_string(f) + " of " + plural(n_faces_, "face line"));
+  }
   const std::size_t line = lines_.line();
   if (count == kEmptyField) return empty_field_error(name_, line);
   std::uint64_t k = 0;

@@ -9,6 +9,9 @@
 namespace constrict {
 namespace {
 
+// One line of JSON; bytes that are not UTF-8 (a path's) become U+FFFD instead of a type error.
+std::string dump(const nlohmann::json& j) { return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace); }
+
 nlohmann::json stages_json(const std::vector<Constrict3Stage>& stages) {
   nlohmann::json a = nlohmann::json::array();
   for (const auto& s : stages) a.push_back({{"name", to_string(s.name)}, {"placed", s.placed}, {"removed", s.removed}});
@@ -98,7 +101,7 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
                      {"fill", r.ms_fill},               {"fallback", r.ms_fallback},   {"sculpt", r.ms_sculpt},
                      {"carve", r.ms_carve},             {"refine", r.ms_refine},       {"variants_setup", r.ms_setup},
                      {"variants_total", r.ms_variants}, {"validate", r.ms_validate}};
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return dump(j);
 }
 
 std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
@@ -131,7 +134,7 @@ std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
                  {"perimeter_before", r.perimeter_before_refine}};
   j["timings_ms"] = {{"delaunay", r.ms_delaunay}, {"gamma", 0.0},        {"constrict", r.ms_constrict},
                      {"fallback", r.ms_fallback}, {"refine", r.ms_refine}, {"validate", r.ms_validate}};
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return dump(j);
 }
 
 std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
@@ -173,7 +176,7 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
                      {"ring_list", r.from_polygon && in.rings.size() > 1 ? rings_json(in.rings) : nlohmann::json(nullptr)}};
   }
   j["topology"] = t;
-  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return dump(j);
 }
 
 }  // namespace constrict

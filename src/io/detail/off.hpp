@@ -55,7 +55,8 @@ class OffReader {
 
  private:
   Status counts(std::vector<Span>& fields, bool with_faces);
-  bool at_end() const;  // nothing but blank and comment lines left
+  // The next record's fields (blank and comment lines skipped); 0 at the end of the data.
+  std::size_t next_fields(const char*& b, const char*& e, std::vector<Span>& fields);
 
   std::string_view data_;
   const std::string& name_;
@@ -64,6 +65,7 @@ class OffReader {
   std::uint64_t n_vertices_ = 0;
   std::uint64_t n_faces_ = 0;
   bool faces_known_ = false;  // the counts line gave a face count
+  bool ended_ = false;        // face() met the end of the data
 };
 
 }  // namespace detail

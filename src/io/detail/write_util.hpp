@@ -16,6 +16,7 @@
 
 #include "constrict/points.hpp"
 #include "constrict/status.hpp"
+#include "core/detail/check_points.hpp"
 
 namespace constrict {
 namespace detail {
@@ -31,15 +32,12 @@ inline void put_int(std::string& s, long long v) {
   s.append(buf, r.ptr);
 }
 
-/// The first point with a coordinate that is not finite, as an InvalidArgument naming @p path:
-/// a writer would put "nan" or "inf" into the file (points built by hand, through the library or
-/// Python; read input is checked). Ok when every coordinate is finite.
+/// InvalidArgument naming @p path and the first point with a coordinate that is not finite (the
+/// project's check_finite): a writer would put "nan" or "inf" into the file (points built by hand,
+/// through the library or Python; read input is checked). Ok when every coordinate is finite.
 inline Status check_finite_coordinates(const std::string& path, const PointSet& points) {
-  for (std::size_t i = 0; i < points.coords.size(); ++i)
-    if (!std::isfinite(points.coords[i]))
-      return {StatusCode::InvalidArgument, path + ": point " +
-                                               std::to_string(i / static_cast<std::size_t>(std::max(points.dim, 1))) +
-                                               " has a coordinate that is not finite; nothing written"};
+  if (Status f = check_finite(points, path.c_str()); !f)
+    return {StatusCode::InvalidArgument, f.message() + "; nothing written"};
   return Status::ok();
 }
 
