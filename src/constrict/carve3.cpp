@@ -64,6 +64,12 @@ class Regions {
     reach_ = add_ && rule_ == Rule::Genus0;
     return *this;
   }
+  // The fill: a region it had to undo, in part or whole, is peeled a second time from where it
+  // settled, by `lrad` (ln circumradius), largest first.
+  Regions& second_try_by(const std::vector<double>& lrad) {
+    if (add_ && rule_ == Rule::Genus0) by_radius_ = &lrad;
+    return *this;
+  }
 
   // Runs the pass; returns false when the start state is not a valid surface (nothing done).
   // Precondition (both callers: after a complete constriction or growth): every vertex of the
@@ -114,11 +120,24 @@ class Regions {
       const std::size_t F0 = F_;
       regionF0_ = F0;
       pinched_ = false;
+      const std::size_t undone0 = s_.undone;
       peel_region();
       const std::size_t bad_peel = nbad_;
       if (local_repair_) local_search();
       const std::size_t bad_search = nbad_;
       repair_and_settle();
+      if (by_radius_ && s_.undone > undone0 && !over_budget()) {
+        // The fill's second try of a region it had to undo (part or all of): the peel again from
+        // the state the first one settled in, largest circumball first (docs/reconstruction-3d.md
+        // §4.16).
+        retry_ = true;
+        if (region_still_open()) {
+          peel_region();
+          if (local_repair_) local_search();
+          repair_and_settle();
+        }
+        retry_ = false;
+      }
       if (rule_ == Rule::Handles && debug_)
         std::fprintf(stderr,
                      "handle region: %zu tets (%s), bad points after the peel %zu, after the search %zu, F %+lld\n",
@@ -138,8 +157,9 @@ class Regions {
     if (add_) return uz(t) < b_.T0 && b_.state[uz(t)] == kOutside && outside_label(uz(t));
     return b_.alive(t) && outside_label(uz(t)) && !anchor_[uz(t)];
   }
-  // Label order: most confident first (outside: largest label; inside: smallest).
-  float prio(int t) const { return sign_ * score_[uz(t)]; }
+  // Label order: most confident first (outside: largest label; inside: smallest); the fill's
+  // second try: largest circumball first.
+  double prio(int t) const { return retry_ ? (*by_radius_)[uz(t)] : static_cast<double>(sign_ * score_[uz(t)]); }
   // Carve: a body tetrahedron with a surface face; fill: an outside one glued to the body (it has
   // fewer than 4 surface faces).
   bool at_front(int t) const {
@@ -312,6 +332,10 @@ class Regions {
   bool reopened() const { return rule_ == Rule::Handles && add_ && nbad_ == 0 && F_ == regionF0_; }
   bool closed_now() { return valid_now() && !reopened(); }
 
+  // Whether a tetrahedron of the current region is still a candidate (for the fill's second try).
+  bool region_still_open() const {
+    return std::any_of(region_.begin(), region_.end(), [&](int t) { return cand(t) && at_front(t); });
+  }
   // The face-connected region of candidates around s0; false if it does not touch the surface.
   bool collect_region(int s0) {
     region_.clear();
@@ -333,7 +357,7 @@ class Regions {
   // Most confident first, ties -> smaller id; a tetrahedron is toggled once it is at the front
   // (no cavities) and (carve) is not the last body tetrahedron of a vertex.
   void peel_region() {
-    std::priority_queue<std::pair<float, int>> pq;
+    std::priority_queue<std::pair<double, int>> pq;
     for (int t : region_)
       if (at_front(t)) pq.push({prio(t), -t});
     pending_.clear();
@@ -746,6 +770,8 @@ class Regions {
   std::vector<std::vector<int>> moves_;
   bool pinched_ = false;  // the region used a move of star_moves
   bool reach_ = false;    // reaching(): points may stay out of the body
+  const std::vector<double>* by_radius_ = nullptr;  // second_try_by()
+  bool retry_ = false;                              // in the second try
 };
 
 std::size_t count_changed(const std::vector<std::uint8_t>& before, const std::vector<std::uint8_t>& after, bool to_alive) {
@@ -784,6 +810,7 @@ std::size_t fill_inside3(Body3& body, const Labels3& labels, double min_conf, Ca
   const std::vector<std::uint8_t> state0 = body.state;
   Regions regions(body, labels.label, -1.0f, min_conf, Toggle::Add, stats);
   if (reach) regions.reaching();
+  regions.second_try_by(labels.lrad);
   if (!regions.run()) return 0;
   // Every region ends valid (2N-4 faces, manifold vertices); a torus-shaped enclosed void would
   // also have 2N-4 faces in total: excluded here (then the whole pass is undone). Reaching, a
