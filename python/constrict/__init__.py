@@ -346,6 +346,30 @@ def _check_types(**options: Any) -> None:
             raise _invalid(f"{name} must be {want}, not {value!r}")
 
 
+def _check_dim(dim: Any) -> None:
+    """dim: None (from the data), 2 or 3, as the CLI's --dim."""
+    if dim is not None and (isinstance(dim, (bool, np.bool_)) or not isinstance(dim, (int, np.integer))
+                            or dim not in (2, 3)):
+        raise _invalid(f"dim must be None, 2 or 3, not {dim!r}")
+
+
+def _check_flags(**flags: Any) -> None:
+    for name, value in flags.items():
+        if not isinstance(value, (bool, np.bool_)):
+            raise _invalid(f"{name} must be True or False, not {value!r}")
+
+
+def _numbers(name: str, value: Any, count: int) -> Optional[list]:
+    """A gamma graph's threshold pair or interval: None or `count` real numbers."""
+    if value is None:
+        return None
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != count or not all(
+            isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+            for v in value):
+        raise _invalid(f"{name} must be {count} numbers, not {value!r}")
+    return [float(v) for v in value]
+
+
 def _with_skeleton(d: Dict[str, Any]) -> Dict[str, Any]:
     """The CLI's report fields of the Voronoi skeleton, added to the library's report."""
     if d["skeleton"] is not None:
@@ -515,6 +539,8 @@ def reconstruct(source: Union[ArrayLike, "PathLike"], *, dim: Optional[int] = No
     (read with :func:`read_points`, ``dim`` and ``merge_duplicates`` as there): the Python form
     of ``constrict reconstruct IN``. One function of one argument, handy for ``map`` over files
     (threads, processes, Dask). ``options`` are the keywords of reconstruct2/3."""
+    _check_dim(dim)
+    _check_flags(merge_duplicates=merge_duplicates)
     if isinstance(source, (str, os.PathLike)):
         points = read_points(source, dim=dim, merge_duplicates=merge_duplicates)
     else:
@@ -538,7 +564,9 @@ def gamma_graph(points: ArrayLike, preset: str = "", gamma: Optional[Sequence[fl
         dict: ``faces`` (int64; edges in 2D, triangles in 3D, sorted ids), ``gamma_a``,
         ``gamma_b``, ``delta`` (float arrays, one per face) and ``graph`` (its name).
     """
-    return _core.gamma_graph(points, preset, gamma, interval)
+    if not isinstance(preset, str):
+        raise _invalid(f"preset must be a string (a graph's name), not {preset!r}")
+    return _core.gamma_graph(points, preset, _numbers("gamma", gamma, 2), _numbers("interval", interval, 4))
 
 
 def validate_polygon(points: ArrayLike, boundary: ArrayLike) -> Tuple[bool, str]:
@@ -571,6 +599,8 @@ def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optiona
     ``merged_duplicates`` (count), ``original_index`` (int64: the file row of each point),
     ``warnings`` and, from PLY files, ``normals`` (N, 3) and ``colors`` (N, 3 or 4) in [0, 1]."""
     path = os.fspath(path)
+    _check_dim(dim)
+    _check_flags(merge_duplicates=merge_duplicates, check=check)
     if columns is None:
         return _core.read_points(path, 0 if dim is None else dim, merge_duplicates, check)
     cols = list(columns)

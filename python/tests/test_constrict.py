@@ -310,6 +310,14 @@ class Keywords(unittest.TestCase):
             lambda: constrict.reconstruct3(pts3, merge_duplicates="no"),
             lambda: constrict.reconstruct3(pts3, grow="no"),
             lambda: constrict.reconstruct2(pts2, topology="auto", topology_gap="2"),
+            # (the fourth sweep: these gave pybind11's signature dump, a slice error, or were
+            # taken as true)
+            lambda: constrict.reconstruct(pts2, dim="2"),
+            lambda: constrict.reconstruct(pts2, dim=4),
+            lambda: constrict.reconstruct(pts3, merge_duplicates=1),
+            lambda: constrict.gamma_graph(pts2, preset=None),
+            lambda: constrict.gamma_graph(pts2, gamma=(0, "a")),
+            lambda: constrict.gamma_graph(pts2, interval=(0, 1)),
         ]
         for i, f in enumerate(bad):
             with self.assertRaises(constrict.Error, msg=i) as ctx:
@@ -419,6 +427,11 @@ class Files(unittest.TestCase):
             constrict.read_points(self.path("bad.xy"))
         self.assertEqual(ctx.exception.code, "ParseError")
         self.assertIn("bad.xy:2", str(ctx.exception))
+        for kw in ({"dim": "3"}, {"dim": 1}, {"merge_duplicates": 1}, {"check": "no"}):
+            with self.assertRaises(constrict.Error, msg=kw) as ctx:
+                constrict.read_points_info(self.path("t.csv"), **kw)
+            self.assertEqual(ctx.exception.code, "InvalidArgument", kw)
+        self.assertEqual(constrict.read_points(self.path("t.csv"), dim=np.int64(3)).shape, pts.shape)
 
     def test_writers_round_trip(self):
         pts3 = sample_data.shell(40, 8)
