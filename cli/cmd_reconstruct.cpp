@@ -574,6 +574,8 @@ Status check_option_conflicts(const ReconstructArgs& a) {
   if (is_skeleton(a) && a.topology != "single")
     return {StatusCode::InvalidArgument,
             "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon or surface)"};
+  if (a.topology == "single" && a.topology_gap != kDefaultTopologyGap)
+    return {StatusCode::InvalidArgument, "--topology-gap applies to --topology auto (it was ignored)"};
   if (a.topology == "auto" && a.stop_after != SIZE_MAX)
     return {StatusCode::InvalidArgument,
             "--stop-after stops the one constriction of --topology single; --topology auto reconstructs every part to the end (drop one of them)"};

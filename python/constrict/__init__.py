@@ -370,6 +370,11 @@ def _numbers(name: str, value: Any, count: int) -> Optional[list]:
     return [float(v) for v in value]
 
 
+def _gap_needs_auto(topology: str, topology_gap: Any) -> None:
+    if topology == "single" and topology_gap != 2.0:
+        raise _invalid("topology_gap applies to topology='auto' (the single mode has no parts to separate)")
+
+
 def _with_skeleton(d: Dict[str, Any]) -> Dict[str, Any]:
     """The CLI's report fields of the Voronoi skeleton, added to the library's report."""
     if d["skeleton"] is not None:
@@ -438,7 +443,8 @@ def reconstruct2(
     _check_types(fallback=fallback, method=method, topology=topology, topology_gap=topology_gap,
                  seed_limit=seed_limit, merge_duplicates=merge_duplicates)
     ref = _refine_name(refine)
-    if topology != "single" or topology_gap != 2.0:
+    _gap_needs_auto(topology, topology_gap)
+    if topology != "single":
         if merge_duplicates:
             err = Error("topology: merge the duplicates first (merge_duplicates gives one polygon)")
             err.code = "InvalidArgument"
@@ -521,7 +527,8 @@ def reconstruct3(
                       stop_after=(stop_after, None), grow=(grow, True), fast=(fast, False))
     if fast and ref == "none":
         raise _invalid("fast=True does not apply with refine=False (the paper's algorithm is one run)")
-    if topology != "single" or topology_gap != 2.0:
+    _gap_needs_auto(topology, topology_gap)
+    if topology != "single":
         if stop_after is not None:
             raise _invalid("topology: needs the constriction run to the end (no stop_after=)")
         d = _core.surfaces3(points, topology, float(topology_gap), fallback, ref, fast, grow, method, merge_duplicates,

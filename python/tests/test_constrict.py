@@ -318,6 +318,8 @@ class Keywords(unittest.TestCase):
             lambda: constrict.gamma_graph(pts2, preset=None),
             lambda: constrict.gamma_graph(pts2, gamma=(0, "a")),
             lambda: constrict.gamma_graph(pts2, interval=(0, 1)),
+            lambda: constrict.reconstruct2(pts2, topology_gap=3),  # (returned Rings)
+            lambda: constrict.reconstruct3(pts3, topology_gap=3),
         ]
         for i, f in enumerate(bad):
             with self.assertRaises(constrict.Error, msg=i) as ctx:
