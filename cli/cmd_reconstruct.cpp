@@ -277,11 +277,11 @@ int run_reconstruct2(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     VoronoiSkeletonOptions vo;
     vo.seed_limit = a.seed_limit;
     VoronoiSkeleton2Result v;
-    if (Status s = voronoi_skeleton2(pts, vo, v); !s) return fail_in(a.in.path, s);
+    if (Status s = voronoi_skeleton2(pts, vo, v); !s) return fail_in(a.in.path, rep, s);
     skel = v.stats;
     r = as_reconstruction(std::move(v));
   } else if (Status s = reconstruct_rings2(pts, ropt, rr, progress.enabled() ? &visitor : nullptr); !s) {
-    return fail_in(a.in.path, s);
+    return fail_in(a.in.path, rep, s);
   } else if (!rr.from_polygon) {
     return finish_rings2(a, pts, rep, rr, ropt, fmt, progress, t0, t1);
   }
@@ -449,14 +449,14 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
     vo.seed_limit = a.seed_limit;
     vo.validate = false;
     VoronoiSkeleton3Result v;
-    if (Status s = voronoi_skeleton3(pts, vo, v); !s) return fail_in(a.in.path, s);
+    if (Status s = voronoi_skeleton3(pts, vo, v); !s) return fail_in(a.in.path, rep, s);
     skel = v.stats;
     r = as_reconstruction(std::move(v));
   } else if (a.topology == "auto") {
-    if (Status s = run_surfaces3(a, pts, opt, false, sr); !s) return fail_in(a.in.path, s);
+    if (Status s = run_surfaces3(a, pts, opt, false, sr); !s) return fail_in(a.in.path, rep, s);
     r = sr.mesh;
   } else if (Status s = reconstruct3(pts, opt, r, progress.enabled() ? &visitor : nullptr); !s) {
-    return fail_in(a.in.path, s);
+    return fail_in(a.in.path, rep, s);
   }
   const bool surfaces = a.topology == "auto" && !is_skeleton(a);
   // Single mode, small inputs: what auto would give, for the note and the report.

@@ -20,6 +20,11 @@ int fail_in(const std::string& input, const Status& s) {
   return fail(Status(s.code(), input + ": " + s.message()));
 }
 
+int fail_in(const std::string& input, const ReadReport& rep, const Status& s) {
+  if (s.code() != StatusCode::Collinear && s.code() != StatusCode::Coplanar) return fail_in(input, s);
+  return fail_in(input, Status(s.code(), degenerate_message_for(rep.format, s.message())));
+}
+
 void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
   cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")->required();
   cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")

@@ -31,6 +31,9 @@ inline double ms(Clock::time_point a, Clock::time_point b) {
 int fail(const Status& s);
 /// fail() for an error of the engine about the input's points: the message names the input file.
 int fail_in(const std::string& input, const Status& s);
+// ... an engine's status on the points read with `rep` (its Collinear / Coplanar hint fits the
+// input's format).
+int fail_in(const std::string& input, const ReadReport& rep, const Status& s);
 
 struct InputArgs {
   std::string path;

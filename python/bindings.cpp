@@ -41,6 +41,13 @@ constexpr const char* kPythonDuplicateRemedy = "pass merge_duplicates=True to ke
 
 std::string python_message(const Status& st) {
   std::string msg = st.message();
+  if (st.code() == StatusCode::Coplanar) {  // (the hint for an outline with a constant coordinate)
+    static const char* const kCli[][2] = {
+        {"--columns 2,3", "columns=(1, 2)"}, {"--columns 1,3", "columns=(0, 2)"}, {"--dim 2", "dim=2"}};
+    for (const auto& r : kCli)
+      if (const auto at = msg.find(r[0]); at != std::string::npos) msg.replace(at, std::string(r[0]).size(), r[1]);
+    return msg;
+  }
   if (st.code() != StatusCode::Duplicate) return msg;
   const auto at = msg.find(kCliDuplicateRemedy);
   if (at != std::string::npos) msg.replace(at, std::string(kCliDuplicateRemedy).size(), kPythonDuplicateRemedy);

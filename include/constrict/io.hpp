@@ -81,7 +81,13 @@ struct ReadReport {
   std::vector<std::array<std::size_t, 2>> merged;
   std::vector<std::string> warnings;        ///< one line each (e.g. merged duplicates)
   PointAttributes attributes;               ///< normals and colours (PLY), when the file has them
+  PointFormat format = PointFormat::Auto;   ///< the format the file was read as
 };
+
+/// @p message (a Collinear or Coplanar message of check_points() or of an engine) for input read
+/// as @p format: the hint for an outline written with a constant coordinate names --columns,
+/// which only text input takes; for the other formats it says to write a text file first.
+std::string degenerate_message_for(PointFormat format, const std::string& message);
 
 /// Reads a point set (full rules and every error message: docs/input-formats.md).
 /// Text: one point per line, fields separated by whitespace, ',', ';' or tab; '#' starts a

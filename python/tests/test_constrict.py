@@ -429,6 +429,12 @@ class Files(unittest.TestCase):
             constrict.read_points(self.path("bad.xy"))
         self.assertEqual(ctx.exception.code, "ParseError")
         self.assertIn("bad.xy:2", str(ctx.exception))
+        with open(self.path("flat.xyz"), "w") as f:  # an outline written with a constant x
+            f.write("1 0 0\n1 2 0\n1 2 1\n1 0 1\n")
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.read_points(self.path("flat.xyz"))
+        self.assertEqual(ctx.exception.code, "Coplanar")
+        self.assertIn("columns=(1, 2)", str(ctx.exception))  # Python's keyword, not the CLI's flag
         for kw in ({"dim": "3"}, {"dim": 1}, {"merge_duplicates": 1}, {"check": "no"}):
             with self.assertRaises(constrict.Error, msg=kw) as ctx:
                 constrict.read_points_info(self.path("t.csv"), **kw)

@@ -472,7 +472,10 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
   }
   if (!st) return st;
   const std::size_t n_read = points.size();
-  if (report != nullptr) report->points_read = n_read;
+  if (report != nullptr) {
+    report->points_read = n_read;
+    report->format = format;
+  }
   if (n_read == 0) return error_in(StatusCode::EmptyInput, name, "no points");
 
   std::vector<std::size_t> kept;
@@ -490,7 +493,7 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
 
   if (options.check) {
     st = check_points(points);
-    if (!st) return error_in(st.code(), name, st.message());
+    if (!st) return error_in(st.code(), name, degenerate_message_for(format, st.message()));
   }
 
   if (report != nullptr) {
@@ -510,6 +513,16 @@ Status read_points_from_buffer(std::string_view data, const std::string& name, P
   }
   out = std::move(points);
   return Status::ok();
+}
+
+std::string degenerate_message_for(PointFormat format, const std::string& message) {
+  const std::string key = " (--columns ";
+  const auto at = message.find(key);
+  if (format == PointFormat::Text || format == PointFormat::Auto || at == std::string::npos || message.back() != ')')
+    return message;
+  const std::string cols = message.substr(at + key.size(), message.size() - 1 - at - key.size());
+  return message.substr(0, at) + ": write them to a text file and read that with --columns " + cols + " (" +
+         to_string(format) + " input has no columns)";
 }
 
 const char* to_string(PointFormat format) noexcept {
