@@ -134,6 +134,39 @@ Status add_property(const std::vector<std::string_view>& w, PlyElement& el,
   return Status::ok();
 }
 
+// Whether an ASCII value fits its declared integer type (an integer in range); float and double
+// take any finite value (writers often print more digits than a float holds).
+bool fits_ply_type(double v, PlyType t) noexcept {
+  double lo = 0, hi = 0;
+  switch (t) {
+    case PlyType::Int8: lo = -128, hi = 127; break;
+    case PlyType::UInt8: lo = 0, hi = 255; break;
+    case PlyType::Int16: lo = -32768, hi = 32767; break;
+    case PlyType::UInt16: lo = 0, hi = 65535; break;
+    case PlyType::Int32: lo = -2147483648.0, hi = 2147483647.0; break;
+    case PlyType::UInt32: lo = 0, hi = 4294967295.0; break;
+    case PlyType::Float32:
+    case PlyType::Float64:
+      return true;
+  }
+  return v >= lo && v <= hi && v == std::floor(v);
+}
+
+// The type's name as the PLY header spells it (the first of its spellings above).
+const char* ply_type_name(PlyType t) noexcept {
+  switch (t) {
+    case PlyType::Int8: return "char";
+    case PlyType::UInt8: return "uchar";
+    case PlyType::Int16: return "short";
+    case PlyType::UInt16: return "ushort";
+    case PlyType::Int32: return "int";
+    case PlyType::UInt32: return "uint";
+    case PlyType::Float32: return "float";
+    case PlyType::Float64: return "double";
+  }
+  return "?";
+}
+
 }  // namespace
 
 int PlyElement::find(std::string_view n) const noexcept {
@@ -325,7 +358,13 @@ Status PlyBody::read_record_ascii(const PlyElement& el, std::uint64_t i,
       if (slot < 0) continue;  // skipped values are not parsed
       // A malformed number is an error in any kept value; a non-finite one only in coordinates.
       double& v = values[slot];
-      if (parse_double(b, e, v) && (slot >= spec.n_finite || std::isfinite(v))) continue;
+      if (parse_double(b, e, v) && (slot >= spec.n_finite || std::isfinite(v))) {
+        if (fits_ply_type(v, el.properties[k].type)) continue;
+        return error_at(StatusCode::ParseError, name_, line_,
+                        "PLY " + el.name + " " + std::to_string(i) + ": " + el.properties[k].name + " = " + quote(b, e) +
+                            " does not fit its declared type " + ply_type_name(el.properties[k].type) +
+                            " (fix the value or the header's property type)");
+      }
       Status st = parse_coordinate(Span{b, e}, name_, line_, v);
       if (st.code() != StatusCode::NonFinite) return st;
       return {st.code(), st.message() + " (" + el.name + " " + std::to_string(i) + ")"};

@@ -380,6 +380,17 @@ TEST(IoFormats, DamagedLinesAreRefusedNotDropped) {
       tetra;
   EXPECT_EQ(read_mesh_from_buffer(ply + "3 0 1 2\n3 0 1 3\n", "m.ply", v, m).code(), StatusCode::ParseError);
   EXPECT_TRUE(read_mesh_from_buffer(ply + "3 0 1 2\n", "m.ply", v, m));
+  // ASCII PLY: a kept value that its declared integer type cannot hold (a fraction, out of range)
+  // was taken as written; floats take any finite value, integers written as 1e2 or 7.0 are fine.
+  const std::string ints = "ply\nformat ascii 1.0\nelement vertex 4\nproperty int x\nproperty int y\nproperty int z\n"
+                           "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  EXPECT_EQ(code(ints + "0 0 0 1 2 3\n1 0 0 1 2 3\n0 1.5 0 1 2 3\n0 0 1 1 2 3\n", "frac.ply"), StatusCode::ParseError);
+  EXPECT_EQ(code(ints + "0 0 0 1 2 3\n1 0 0 1 2 3\n0 3000000000 0 1 2 3\n0 0 1 1 2 3\n", "range.ply"), StatusCode::ParseError);
+  EXPECT_EQ(code(ints + "0 0 0 1 2 3\n1e2 0 0 1 2 3\n0 7.0 0 1 2 3\n0 0 1 -0 2 255\n", "ok.ply"), StatusCode::Ok);
+  EXPECT_EQ(code("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                 "0.12345678901234567 0 0\n1 0 0\n0 1 0\n0 0 1\n",
+                 "f.ply"),
+            StatusCode::Ok);
 }
 
 TEST(IoFormats, ScannerFormatsRefusedWithAHint) {
