@@ -120,22 +120,19 @@ class Regions {
       const std::size_t F0 = F_;
       regionF0_ = F0;
       pinched_ = false;
-      const std::size_t undone0 = s_.undone;
       peel_region();
       const std::size_t bad_peel = nbad_;
       if (local_repair_) local_search();
       const std::size_t bad_search = nbad_;
       repair_and_settle();
-      if (by_radius_ && s_.undone > undone0 && !over_budget()) {
-        // The fill's second try of a region it had to undo (part or all of): the peel again from
-        // the state the first one settled in, largest circumball first (docs/reconstruction-3d.md
-        // §4.16).
+      if (by_radius_ && !over_budget() && region_still_open()) {
+        // The fill's second try of a region it did not add whole (its repair took back or undid
+        // some of it): the peel again from the state the first one settled in, largest
+        // circumball first (docs/reconstruction-3d.md §4.16).
         retry_ = true;
-        if (region_still_open()) {
-          peel_region();
-          if (local_repair_) local_search();
-          repair_and_settle();
-        }
+        peel_region();
+        if (local_repair_) local_search();
+        repair_and_settle();
         retry_ = false;
       }
       if (rule_ == Rule::Handles && debug_)

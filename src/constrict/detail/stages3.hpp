@@ -199,8 +199,8 @@ struct Carve3Stats {
 // genus 0 through every point). Returns the tetrahedra removed.
 std::size_t carve_outside3(Body3& body, const Labels3& labels, double min_conf, Carve3Stats& stats);
 // The mirror image after the growth: adds the regions of Delaunay tetrahedra labelled inside that
-// the body left out, under the same validity rule and with no enclosed void; a region it has to
-// undo (in part or whole) is peeled once more, largest circumball first (§4.16). `reach`: during the
+// the body left out, under the same validity rule and with no enclosed void; a region it does not
+// add whole is peeled once more, largest circumball first (§4.16). `reach`: during the
 // growth, while points are still out of the body: those may stay out, and a region may bring them
 // in (a valid state: a closed genus-0 2-manifold through the points in the body); it runs only when
 // a left-out tetrahedron labelled inside has such a point (docs/reconstruction-3d.md §4.13).
