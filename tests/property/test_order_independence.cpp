@@ -132,6 +132,25 @@ TEST(OrderIndependence, SameSurfaceInAnyFileOrder3D) {
     }
 }
 
+// The fill's second try (docs/reconstruction-3d.md §4.16) peels by circumradius, ties by the
+// tetrahedra's canonical order: the regression set that needs it, shuffled.
+TEST(OrderIndependence, FillSecondTryInAnyFileOrder) {
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/ears_noisy_plate_pocket_beside_gap.xyz", ro, p)
+                  .is_ok());
+  Mesh3Result base;
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, base).is_ok());
+  const auto tri = coordinate_triangles(p, base.mesh);
+  for (unsigned seed = 1; seed <= 2; ++seed) {
+    const PointSet q = shuffled(p, seed);
+    Mesh3Result r;
+    ASSERT_TRUE(reconstruct3(q, Constrict3Options{}, r).is_ok());
+    EXPECT_EQ(coordinate_triangles(q, r.mesh), tri) << "shuffle seed " << seed;
+  }
+}
+
 TEST(OrderIndependence, SharedModelsInAnyFileOrder) {
   for (const char* name : {"knight_sparse", "spot"}) {
     PointSet p;
