@@ -381,6 +381,10 @@ int run_render(const RenderArgs& a) {
     }
     if (s.code() != StatusCode::EmptyInput) return fail(s);
   }
+  // A polygon's indices or a rings file read as points failed with a field count error.
+  if ((ie == "idx" || ie == "gt" || ie == "rings") && (a.in.format.empty() || a.in.format == "auto"))
+    return fail({StatusCode::InvalidArgument,
+                 a.in.path + " is a 2D result (point indices), not points: give its points with --points"});
   PointSet pts;
   ReadReport rep;
   if (Status s = read_input(a.in, pts, rep); !s) return fail(s);

@@ -178,6 +178,19 @@ bool read_layout_blocks(const char* p, const char* end, int dim, std::size_t exp
   return true;
 }
 
+// A data line with another field count than the first one; a carriage return inside it (a file
+// that mixes line ends: CR alone ends no line here) is named.
+Status field_count_error(const std::string& name, std::size_t line, std::size_t expected, std::size_t count,
+                         const char* b, const char* e) {
+  std::string msg = "expected " + std::to_string(expected) + " fields, found " + std::to_string(count);
+  for (const char* c = b; c < e; ++c)
+    if (*c == '\r' && c + 1 < e && c[1] != '\n') {
+      msg += "; the line holds a carriage return (CR) inside: the file mixes line ends, convert them to LF";
+      break;
+    }
+  return error_at(StatusCode::ParseError, name, line, msg);
+}
+
 // The fast path: the first `dim` fields of each line (dim 0: 2 or 3, from the first data line).
 // `chosen`: the columns were selected (by the header), so more fields than 3 are fine.
 // `in_blocks`: the lines after the first data line may be read in parallel blocks (a file that
@@ -229,8 +242,12 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
       if (count > static_cast<std::size_t>(kMaxDim) && !chosen) return too_many_fields(name, line, count);
       if (dim == 0) {
         if (count != 2 && count != 3)
-          return error_at(StatusCode::ParseError, name, line,
-                          "expected 2 or 3 fields (x y [z]), found " + std::to_string(count));
+          return error_at(
+              StatusCode::ParseError, name, line,
+              "expected 2 or 3 fields (x y [z]), found " + std::to_string(count) +
+                  (count == 1 && f.first_malformed < 0 && f.value[0] >= 0 && f.value[0] == std::floor(f.value[0])
+                       ? "; if this line is a point count (as .pts files start), remove it"
+                       : ""));
         dim = static_cast<int>(count);
       } else if (count < static_cast<std::size_t>(dim)) {
         return error_at(StatusCode::ParseError, name, line,
@@ -239,9 +256,7 @@ Status read_first_fields(std::string_view data, const std::string& name, int dim
       }
       expected_fields = count;
     } else if (count != expected_fields) {
-      return error_at(StatusCode::ParseError, name, line,
-                      "expected " + std::to_string(expected_fields) + " fields, found " +
-                          std::to_string(count));
+      return field_count_error(name, line, expected_fields, count, begin, next);
     }
     Status st = check_values(f, dim, name, line);
     if (!st) return st;
@@ -279,9 +294,7 @@ Status read_columns(std::string_view data, const std::string& name, std::size_t 
                             plural(count, "field"));
       expected_fields = count;
     } else if (count != expected_fields) {
-      return error_at(StatusCode::ParseError, name, line,
-                      "expected " + std::to_string(expected_fields) + " fields, found " +
-                          std::to_string(count));
+      return field_count_error(name, line, expected_fields, count, b, e);
     }
     for (std::size_t k = 0; k < dim; ++k) {
       double v = 0.0;
