@@ -72,8 +72,8 @@ struct MeshCheck {
 /// Checks that @p mesh is the boundary of a solid: a closed, edge- and vertex-manifold,
 /// consistently and outward oriented, connected triangle mesh of genus 0 through every input point.
 /// Combinatorial checks are exact; degeneracy and self-intersection tests use exact orient3; the
-/// outward test uses the signed volume in double arithmetic (origin at the first vertex's
-/// bounding-box centre), which only misjudges volumes at rounding level.
+/// outward test is the exact sign of the signed volume (signed_volume_sign); details->volume is
+/// mesh_volume()'s double value.
 /// @param[in] points dim == 3
 /// @param[in] mesh triangles over input ids
 /// @param[out] details optional diagnostics
@@ -88,8 +88,10 @@ Status validate_mesh3(const PointSet& points, const TriMesh3& mesh, MeshCheck* d
 bool triangles_intersect_improperly(const PointSet& points, const std::array<int, 3>& t1,
                                     const std::array<int, 3>& t2);
 
-/// Signed volume enclosed by an oriented closed mesh (divergence theorem, double arithmetic,
-/// origin at the bounding-box centre of the points). O(F).
+/// Signed volume enclosed by an oriented closed mesh (divergence theorem, double arithmetic): each
+/// connected surface about the centre of its own bounding box (one surface through every point:
+/// of all the points), each triangle's term (a - o) . ((b - a) x (c - a)) from the corner between
+/// its two shortest edges, so that surfaces far apart and long thin faces keep their digits. O(F).
 double mesh_volume(const PointSet& points, const TriMesh3& mesh);
 /// Total area of the triangles (double arithmetic). O(F).
 double mesh_area(const PointSet& points, const TriMesh3& mesh);

@@ -270,13 +270,17 @@ Status Constrictor2::Impl::finish_once(Polygon2Result& r) {
   for (const auto& e : non_dt) r.fallback_edges.push_back({{std::min(G(e[0]), G(e[1])), std::max(G(e[0]), G(e[1]))}});
   {
     // Each edge's terms on both cores, then summed in polygon order (the same doubles as one
-    // sequential loop).
+    // sequential loop). The area's terms (a - o) x (b - a) about the first vertex o: as a x b about
+    // the origin, a polygon far from it cancels (a unit circle at 10^12: the area came out wrong in
+    // its first digit).
     std::vector<std::array<double, 2>> term(m);
+    const double* o = P(poly[0]);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 16384), [&](const tbb::blocked_range<std::size_t>& rg) {
       for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
         const double* pa = P(poly[i]);
         const double* pb = P(poly[i + 1 == m ? 0 : i + 1]);
-        term[i] = {{0.5 * (pa[0] * pb[1] - pa[1] * pb[0]), std::hypot(pb[0] - pa[0], pb[1] - pa[1])}};
+        const double ax = pa[0] - o[0], ay = pa[1] - o[1], ux = pb[0] - pa[0], uy = pb[1] - pa[1];
+        term[i] = {{0.5 * (ax * uy - ay * ux), std::hypot(ux, uy)}};
       }
     });
     for (const auto& t : term) {

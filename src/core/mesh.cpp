@@ -5,9 +5,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict {
 namespace {
@@ -22,6 +24,71 @@ std::array<double, 3> bbox_centre(const PointSet& pts) {
       hi[k] = std::max(hi[k], pts[i][k]);
     }
   return {{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}};
+}
+
+double dist2(const double* p, const double* q) {
+  return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+}
+// Rotates the corners (a, b, c) (orientation kept) so that a lies between the two shortest edges:
+// bc is the longest (ties: the first in the order bc, ca, ab).
+void rotate_to_shortest(const double*& a, const double*& b, const double*& c) {
+  const double bc = dist2(b, c), ca = dist2(c, a), ab = dist2(a, b);
+  if (ca > bc && ca >= ab) {
+    const double* t = a;  // (b, c, a): ca becomes the edge opposite the first corner
+    a = b, b = c, c = t;
+  } else if (ab > bc && ab > ca) {
+    const double* t = c;  // (c, a, b)
+    c = b, b = a, a = t;
+  }
+}
+
+// The index of the connected surface (triangles joined at vertices) of each vertex of the mesh,
+// numbered by their smallest vertex (-1: in no triangle).
+std::vector<int> surface_of_vertex(const PointSet& pts, const TriMesh3& mesh) {
+  detail::UnionFind uf(pts.size());
+  for (const auto& t : mesh.triangles) {
+    uf.join(t[0], t[1]);
+    uf.join(t[0], t[2]);
+  }
+  std::vector<int> used(pts.size(), 0);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> index(pts.size(), -1), comp(pts.size(), -1);
+  int count = 0;
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    if (!used[v]) continue;
+    const auto r = static_cast<std::size_t>(uf.find(static_cast<int>(v)));
+    if (index[r] < 0) index[r] = count++;
+    comp[v] = index[r];
+  }
+  return comp;
+}
+
+// The origin of the volume's terms per connected surface: the centre of the box of all points when
+// the mesh is one surface through every point (as before), else of each surface's own vertices.
+std::vector<std::array<double, 3>> surface_centres(const PointSet& pts, const std::vector<int>& comp) {
+  int count = 0;
+  bool every = true;
+  for (int c : comp) {
+    count = std::max(count, c + 1);
+    every = every && c >= 0;
+  }
+  if (count <= 1 && every) return {bbox_centre(pts)};
+  std::vector<std::array<double, 3>> lo(static_cast<std::size_t>(count), {{HUGE_VAL, HUGE_VAL, HUGE_VAL}}),
+      hi(static_cast<std::size_t>(count), {{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}});
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    if (comp[v] < 0) continue;
+    const auto c = static_cast<std::size_t>(comp[v]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      lo[c][k] = std::min(lo[c][k], pts[v][k]);
+      hi[c][k] = std::max(hi[c][k], pts[v][k]);
+    }
+  }
+  std::vector<std::array<double, 3>> o(static_cast<std::size_t>(count));
+  for (std::size_t c = 0; c < o.size(); ++c)
+    for (std::size_t k = 0; k < 3; ++k) o[c][k] = 0.5 * (lo[c][k] + hi[c][k]);
+  // (count 1 but not every point: still one entry, at its own box.)
+  return o;
 }
 
 }  // namespace
@@ -48,16 +115,27 @@ double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
     use = &scaled;
   }
   const PointSet& q = *use;
-  const auto o = bbox_centre(q);
+  // Each connected surface about the centre of its own box: the terms of a surface far from the
+  // common centre cancel (two spheres of radius 1 at 1e9 from each other: the volume came out
+  // wrong in its first digit). One surface through every point keeps the common box's centre.
+  const std::vector<int> comp = surface_of_vertex(q, mesh);
+  const std::vector<std::array<double, 3>> origin = surface_centres(q, comp);
+  const bool one = origin.size() == 1;
   double vol = 0;
   for (const auto& t : mesh.triangles) {
     const double* a = q[static_cast<std::size_t>(t[0])];
     const double* b = q[static_cast<std::size_t>(t[1])];
     const double* c = q[static_cast<std::size_t>(t[2])];
+    const auto& o = origin[one ? 0 : static_cast<std::size_t>(comp[static_cast<std::size_t>(t[0])])];
+    // (a - o) . ((b - a) x (c - a)), which is det(a - o, b - o, c - o), with a the corner between
+    // the two shortest edges: their cross product is small for a small or thin triangle, where
+    // long vectors cancel in their products (a body with faces 10^9 long, 10^9 from o: its volume
+    // came out 1 700 times too large, or negative).
+    rotate_to_shortest(a, b, c);
     const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
-    const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
-    const double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
-    vol += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+    vol += ax * (uy * vz - uz * vy) + ay * (uz * vx - ux * vz) + az * (ux * vy - uy * vx);
   }
   return std::ldexp(vol / 6.0, 3 * e);
 }

@@ -42,16 +42,21 @@ Status infer_shared(const PointSet& input, const PointSet& points, const detail:
   return Status::ok();
 }
 
-// Shoelace area (holes run clockwise: they subtract) and perimeter, double arithmetic.
+// Shoelace area (holes run clockwise: they subtract) and perimeter, double arithmetic; each
+// ring's area terms about its first vertex (about the origin, rings far from it cancel).
 void measure(const PointSet& pts, Rings2Result& r) {
   r.area = r.perimeter = 0;
-  for (const Ring2& ring : r.rings)
+  for (const Ring2& ring : r.rings) {
+    if (ring.indices.empty()) continue;
+    const double* o = pts[static_cast<std::size_t>(ring.indices[0])];
     for (std::size_t i = 0; i < ring.indices.size(); ++i) {
       const double* a = pts[static_cast<std::size_t>(ring.indices[i])];
       const double* b = pts[static_cast<std::size_t>(ring.indices[(i + 1) % ring.indices.size()])];
-      r.area += 0.5 * (a[0] * b[1] - a[1] * b[0]);
-      r.perimeter += std::hypot(b[0] - a[0], b[1] - a[1]);
+      const double ux = b[0] - a[0], uy = b[1] - a[1];
+      r.area += 0.5 * ((a[0] - o[0]) * uy - (a[1] - o[1]) * ux);
+      r.perimeter += std::hypot(ux, uy);
     }
+  }
 }
 
 }  // namespace

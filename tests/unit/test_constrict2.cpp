@@ -21,6 +21,7 @@
 #include "constrict/detail/share2.hpp"
 #include "constrict/gamma_graph.hpp"
 #include "constrict/predicates.hpp"
+#include "constrict/topology.hpp"
 #include "constrict/validate.hpp"
 #include "core/detail/quad_heap.hpp"
 #include "test_fixtures.hpp"
@@ -799,6 +800,26 @@ TEST(Constrict2Unit, QuadHeapPopsInTheOrderOfAStdHeap) {
 // says nothing about it.
 TEST(Constrict2Unit, TwoTierHeapPopsInTheOrderOfAStdHeap) {
   EXPECT_GT((pops_like_a_std_heap<detail::TwoTierHeap<HeapItem, HeapItemLess>>()), 10u);
+}
+
+// The area of a polygon far from the origin (an adversarial sweep): a unit circle at 10^12 came
+// out wrong in its first digit (the shoelace terms a x b cancel). Now about its first vertex.
+TEST(Constrict2Unit, AreaOfAPolygonFarFromTheOrigin) {
+  constexpr int n = 64;
+  const double kPi = 3.14159265358979323846;
+  std::vector<std::array<double, 2>> c;
+  for (int k = 0; k < n; ++k) c.push_back({1e12 + std::cos(2 * kPi * k / n), -3e12 + std::sin(2 * kPi * k / n)});
+  const PointSet p = make2(c);
+  const double regular = 0.5 * n * std::sin(2 * kPi / n);  // (the rounding of the corners at 1e12: 1e-4)
+  Polygon2Result r;
+  ASSERT_TRUE(reconstruct2(p, Constrict2Options{}, r).is_ok());
+  ASSERT_TRUE(r.complete);
+  EXPECT_NEAR(r.area, regular, 1e-3);
+  Rings2Options o;
+  o.topology = Topology2::Auto;
+  Rings2Result rr;
+  ASSERT_TRUE(reconstruct_rings2(p, o, rr).is_ok());
+  EXPECT_NEAR(rr.area, regular, 1e-3);
 }
 
 }  // namespace

@@ -44,6 +44,26 @@ TEST(MeshValidate, AcceptsTetrahedron) {
   EXPECT_NEAR(mesh_area(p, mesh(kTetFaces)), 1.5 + std::sqrt(3.0) / 2, 1e-12);
 }
 
+// Volumes far from the common origin (an adversarial sweep): two unit tetrahedra 10^9 apart came
+// out wrong in the first digit, and a long thin body (a tetrahedron 10^9 long, 1 wide) with a
+// volume 1 700 times too large, or negative.
+TEST(MeshVolume, SurfacesFarFromEachOtherAndLongThinFacesKeepTheirDigits) {
+  std::vector<std::array<double, 3>> two = kTet;
+  for (const auto& q : kTet) two.push_back({q[0] + 1e9, q[1] - 3e8, q[2] + 7e8});
+  std::vector<std::array<int, 3>> faces = kTetFaces;
+  for (const auto& f : kTetFaces) faces.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
+  EXPECT_NEAR(mesh_volume(make3(two), mesh(faces)), 2.0 / 6.0, 1e-12);
+  // A tetrahedron with a base of about unit size and its apex 2.4e9 away, the base 10^9 from the
+  // centre of its box (as the bridge of one surface over two spheres 10^9 apart). Exact volume
+  // from rational arithmetic (Python fractions); the old sum was 47 times too large.
+  const std::vector<std::array<double, 3>> thin = {{1000000000.0856491, 200000000.2368105, -299999999.1987255},
+                                                   {1000000000.582162, 200000000.09412864, -299999999.5668731},
+                                                   {1000000000.4790514, 200000000.15973893, -299999999.2654228},
+                                                   {-999999999.886328, 0.39122819049566204, 1000000000.5167402}};
+  const double exact = 13880144.075372295;
+  EXPECT_NEAR(mesh_volume(make3(thin), mesh(kTetFaces)), exact, 1e-5 * exact);
+}
+
 TEST(MeshValidate, RejectsOpen) {
   const PointSet p = make3(kTet);
   MeshCheck mc;
