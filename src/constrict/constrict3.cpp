@@ -26,8 +26,8 @@
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/ordered_pack.hpp"
+#include "core/detail/surface_components.hpp"
 #include "core/detail/tet_order.hpp"
-#include "core/detail/union_find.hpp"
 
 namespace constrict {
 
@@ -90,17 +90,10 @@ Status Constrict3Options::from_preset(const std::string& name, Constrict3Options
   return Status::ok();
 }
 
-// Edge-connected components of a surface over n points (vertex-disjoint surfaces: union-find on
-// the vertices of each triangle).
+// Connected components of a surface over n points (vertex-disjoint surfaces).
 static int surface_components(const TriMesh3& m, std::size_t n) {
-  detail::UnionFind uf(n);
-  for (const auto& t : m.triangles)
-    for (int k = 1; k < 3; ++k) uf.join(t[0], t[uz(k)]);
-  std::vector<char> used(n, 0);
-  for (const auto& t : m.triangles)
-    for (int v : t) used[uz(v)] = 1;
   int c = 0;
-  for (std::size_t v = 0; v < n; ++v) c += used[v] && uf.find(static_cast<int>(v)) == static_cast<int>(v);
+  for (int s : detail::surface_of_vertex(n, m)) c = std::max(c, s + 1);
   return c;
 }
 

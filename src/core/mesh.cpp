@@ -9,6 +9,7 @@
 
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
+#include "core/detail/surface_components.hpp"
 #include "core/detail/union_find.hpp"
 
 namespace constrict {
@@ -42,28 +43,6 @@ void rotate_to_shortest(const double*& a, const double*& b, const double*& c) {
   }
 }
 
-// The index of the connected surface (triangles joined at vertices) of each vertex of the mesh,
-// numbered by their smallest vertex (-1: in no triangle).
-std::vector<int> surface_of_vertex(const PointSet& pts, const TriMesh3& mesh) {
-  detail::UnionFind uf(pts.size());
-  for (const auto& t : mesh.triangles) {
-    uf.join(t[0], t[1]);
-    uf.join(t[0], t[2]);
-  }
-  std::vector<int> used(pts.size(), 0);
-  for (const auto& t : mesh.triangles)
-    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
-  std::vector<int> index(pts.size(), -1), comp(pts.size(), -1);
-  int count = 0;
-  for (std::size_t v = 0; v < pts.size(); ++v) {
-    if (!used[v]) continue;
-    const auto r = static_cast<std::size_t>(uf.find(static_cast<int>(v)));
-    if (index[r] < 0) index[r] = count++;
-    comp[v] = index[r];
-  }
-  return comp;
-}
-
 // The origin of the volume's terms per connected surface: the centre of the box of all points when
 // the mesh is one surface through every point (as before), else of each surface's own vertices.
 std::vector<std::array<double, 3>> surface_centres(const PointSet& pts, const std::vector<int>& comp) {
@@ -93,6 +72,25 @@ std::vector<std::array<double, 3>> surface_centres(const PointSet& pts, const st
 
 }  // namespace
 
+std::vector<int> detail::surface_of_vertex(std::size_t n, const TriMesh3& mesh) {
+  UnionFind uf(n);
+  for (const auto& t : mesh.triangles) {
+    uf.join(t[0], t[1]);
+    uf.join(t[0], t[2]);
+  }
+  std::vector<int> comp(n, -1), index(n, -1);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) comp[static_cast<std::size_t>(v)] = 0;  // (in a triangle)
+  int count = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (comp[v] < 0) continue;
+    const auto r = static_cast<std::size_t>(uf.find(static_cast<int>(v)));
+    if (index[r] < 0) index[r] = count++;
+    comp[v] = index[r];
+  }
+  return comp;
+}
+
 // Far from 1 (beyond 2^±kRescaleExponent) the products overflow (inf - inf = NaN) or underflow:
 // the volume and the area are then evaluated on the coordinates times 2^-e, e the largest
 // exponent (magnitudes <= 1, no overflow), and scaled back: +-inf when the result exceeds the
@@ -118,7 +116,7 @@ double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
   // Each connected surface about the centre of its own box: the terms of a surface far from the
   // common centre cancel (two spheres of radius 1 at 1e9 from each other: the volume came out
   // wrong in its first digit). One surface through every point keeps the common box's centre.
-  const std::vector<int> comp = surface_of_vertex(q, mesh);
+  const std::vector<int> comp = detail::surface_of_vertex(q.size(), mesh);
   const std::vector<std::array<double, 3>> origin = surface_centres(q, comp);
   const bool one = origin.size() == 1;
   double vol = 0;

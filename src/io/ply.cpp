@@ -19,17 +19,18 @@ constexpr double kMaxListItem = 9007199254740992.0;  // 2^53
 // Most values kept per record: x y z, nx ny nz, red green blue alpha.
 constexpr std::size_t kMaxSlots = 10;
 
+// The PLY type names, each type's usual one first.
+const struct {
+  const char* name;
+  PlyType type;
+} kTypes[] = {{"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+              {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+              {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+              {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+              {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+              {"float64", PlyType::Float64}};
+
 bool ply_type_from_name(std::string_view s, PlyType& t) {
-  static const struct {
-    const char* name;
-    PlyType type;
-  } kTypes[] = {
-      {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-      {"float64", PlyType::Float64}};
   for (const auto& k : kTypes) {
     if (s == k.name) {
       t = k.type;
@@ -152,18 +153,10 @@ bool fits_ply_type(double v, PlyType t) noexcept {
   return v >= lo && v <= hi && v == std::floor(v);
 }
 
-// The type's name as the PLY header spells it (the first of its spellings above).
+// The type's name as the PLY header spells it (its first spelling in kTypes).
 const char* ply_type_name(PlyType t) noexcept {
-  switch (t) {
-    case PlyType::Int8: return "char";
-    case PlyType::UInt8: return "uchar";
-    case PlyType::Int16: return "short";
-    case PlyType::UInt16: return "ushort";
-    case PlyType::Int32: return "int";
-    case PlyType::UInt32: return "uint";
-    case PlyType::Float32: return "float";
-    case PlyType::Float64: return "double";
-  }
+  for (const auto& k : kTypes)
+    if (k.type == t) return k.name;
   return "?";
 }
 
