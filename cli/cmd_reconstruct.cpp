@@ -208,6 +208,11 @@ Rings2Options rings_options(const ReconstructArgs& a, const Constrict2Options& p
 
 // Single mode: one line on stderr when the data show several rings (so that auto is found).
 void note_inferred(const ReconstructArgs& a, const Rings2Result& rr) {
+  if (!a.quiet && rr.topology == Topology2::Auto && rr.inferred.decision == RingsDecision::Capped)
+    std::fprintf(stderr,
+                 "note: --topology auto stopped at its work bound (%zu parts, %zu thin parts joined one at a time; "
+                 "docs/topology.md \"Many islands\"): made the single polygon through all points instead\n",
+                 rr.inferred.parts, rr.inferred.thin_parts_joined);
   if (a.quiet || rr.topology != Topology2::Single || !rr.inferred.several()) return;
   const std::size_t sh = rr.inferred.shells(), ho = rr.inferred.holes();
   std::fprintf(stderr, "note: the points show %zu rings (%zu shell%s, %zu hole%s); try --topology auto\n",

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -78,6 +79,18 @@ constexpr std::size_t kNoteMaxPoints = 20000;
 /// 178 shared 2D and topology sets need at most 3.85 (s2d_Snail_e0.5; most 1-2).
 constexpr std::size_t kNoteWorkPerPoint = 8;
 
+/// The inference's default work bound (Rings2Options::infer_work_limit): islands of a few points
+/// among larger ones join a growing part one per round, each round O(N) and the part's polygon
+/// made again; 640 such islands (9 935 points) took 470 N. The 180 archipelagos of
+/// bench/islands2_sweep.py need at most 23 N, the slowest set still answered with rings 116 N.
+constexpr std::size_t kInferWorkPerPoint = 32;
+constexpr std::size_t kInferWorkBase = std::size_t{1} << 21;
+
+/// A part made by this many rounds of joins in a row is judged by a polygon of one refinement
+/// start first (docs/topology.md, "Many islands"): a part that snowballs through islands, one
+/// join per round, is made again every round.
+constexpr std::uint32_t kSnowballRounds = 2;
+
 /// Options of reconstruct_rings2() and infer_rings2().
 struct Rings2Options {
   Topology2 topology = Topology2::Single;  ///< Single: today's polygon exactly
@@ -95,10 +108,12 @@ struct Rings2Options {
   /// of every small part took 10-15 times the single polygon's time; the notes of the 177 shared
   /// 2D and topology sets are the same either way (docs/topology.md, "The note of single mode").
   bool infer_multi_start = true;
-  /// 0, or a bound on the inference's work: N per round of joins plus the points of the part
-  /// polygons it makes. Past it the inference stops with RingsDecision::Capped. The CLI sets
-  /// kNoteWorkPerPoint · N for the single mode's note: 2 000 separate small rings took a note of
-  /// 64 s beside a polygon of 70 ms (a part polygon made again for every thin part joined to it).
+  /// A bound on the inference's work: N per round of joins plus the points of the part polygons
+  /// it makes. Past it the inference stops with RingsDecision::Capped (Auto then makes the single
+  /// polygon). 0: kInferWorkPerPoint · N + kInferWorkBase, which no measured set of rings needs
+  /// (docs/topology.md, "Many islands"); SIZE_MAX: no bound. The CLI sets kNoteWorkPerPoint · N
+  /// for the single mode's note: 2 000 separate small rings took a note of 64 s beside a polygon of
+  /// 70 ms (a part polygon made again for every thin part joined to it).
   std::size_t infer_work_limit = 0;
   /// Tell an open arc without its polygon (RingsInference::open_parts): a part next to no bounded
   /// region that is fat against its walls or bounded by other parts too. false: make every part's
@@ -164,6 +179,10 @@ struct RingsInference {
   /// rings across a gap, not one curve), so the thin part is a ring of its own (docs/topology.md,
   /// "Archipelagos"). Counted over all rounds.
   std::size_t joins_undone = 0;
+  /// Parts made by kSnowballRounds or more rounds of joins in a row and found thin from a polygon
+  /// of one refinement start, without the several starts (docs/topology.md, "Many islands").
+  /// Counted over all rounds.
+  std::size_t thin_from_one_start = 0;
   /// Pairs of parts whose rings met (crossed or touched), joined into one part and made again
   /// (at most kMaxCrossingJoins; past it the decision is Crossing). Counted over all rounds.
   std::size_t crossings_joined = 0;
