@@ -492,6 +492,9 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (surfaces && r.complete)
     body_check = std::async(std::launch::async, [&] { return validate_body3(pts, r.mesh, r.tets); });
   bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
+  // The check's volume is exact where the double sum cancelled to the wrong sign (a body much
+  // thinner than it is long); an outward body's volume is positive.
+  if (chk.outward && !(r.volume > 0)) r.volume = chk.volume;
   std::string body_reason;
   if (body_check.valid()) {
     const Status bs = body_check.get();

@@ -76,6 +76,29 @@ int in_circle_coplanar3(const double* a, const double* b, const double* c,
   return static_cast<int>(K().side_of_bounded_sphere_3_object()(p3(a), p3(b), p3(c), p3(p)));
 }
 
+namespace {
+// 6 x the signed volume, exactly: Mpzf sums and products of doubles are exact (unbounded exponent
+// range). Each triangle's determinant about o, the first point of the first triangle.
+CGAL::Mpzf exact_volume6(const double* xyz, const int* tris, std::size_t n_tris) {
+  const double* o = xyz + 3 * static_cast<std::size_t>(tris[0]);
+  const auto pt = [&](std::size_t t, int k) {
+    return xyz + 3 * static_cast<std::size_t>(tris[3 * t + static_cast<std::size_t>(k)]);
+  };
+  CGAL::Mpzf total(0);
+  for (std::size_t t = 0; t < n_tris; ++t) {
+    CGAL::Mpzf u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = CGAL::Mpzf(pt(t, 0)[k]) - CGAL::Mpzf(o[k]);
+      v[k] = CGAL::Mpzf(pt(t, 1)[k]) - CGAL::Mpzf(o[k]);
+      w[k] = CGAL::Mpzf(pt(t, 2)[k]) - CGAL::Mpzf(o[k]);
+    }
+    total = total + (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                     u[2] * (v[0] * w[1] - v[1] * w[0]));
+  }
+  return total;
+}
+}  // namespace
+
 int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
   if (n_tris == 0) return 0;
   const double* o = xyz + 3 * static_cast<std::size_t>(tris[0]);
@@ -102,21 +125,15 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
   const double bound = (static_cast<double>(n_tris) + 16.0) * std::ldexp(1.0, -52) * perm;
   if (std::isfinite(sum) && std::isfinite(bound) && perm > 1e-280 && std::abs(sum) > bound)
     return sum > 0 ? 1 : -1;
-  // Exact: Mpzf sums and products of doubles are exact (unbounded exponent range).
-  CGAL::Mpzf total(0);
-  for (std::size_t t = 0; t < n_tris; ++t) {
-    CGAL::Mpzf u[3], v[3], w[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = CGAL::Mpzf(pt(t, 0)[k]) - CGAL::Mpzf(o[k]);
-      v[k] = CGAL::Mpzf(pt(t, 1)[k]) - CGAL::Mpzf(o[k]);
-      w[k] = CGAL::Mpzf(pt(t, 2)[k]) - CGAL::Mpzf(o[k]);
-    }
-    total = total + (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-                     u[2] * (v[0] * w[1] - v[1] * w[0]));
-  }
-  return static_cast<int>(CGAL::sign(total));
+  return static_cast<int>(CGAL::sign(exact_volume6(xyz, tris, n_tris)));
 }
 
+double signed_volume_exact(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
+  if (n_tris == 0) return 0;
+  // The exact sum rounded once (to_double), then divided by 6 (one more rounding); what overflows
+  // the double range is ±inf and what underflows it is 0 or a subnormal of the right sign.
+  return CGAL::to_double(exact_volume6(xyz, tris, n_tris)) / 6.0;
+}
 
 namespace {
 // sign(k·|pq|^2 - t^2·Σ|a_i b_i|^2) in D dimensions: the semi-static filter

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
@@ -411,6 +412,36 @@ TEST(MeshVolumeSign, ExactAtAnyScale) {
   const std::vector<double> flat = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const std::vector<int> two = {0, 1, 2, 0, 2, 1};
   EXPECT_EQ(signed_volume_sign(flat.data(), two.data(), 2), 0);
+}
+
+// signed_volume_exact(): the unit tetrahedron at any scale and far from the origin (exact 1/6 there,
+// rounded), and a needle of 500 near-collinear points (a hostile-geometry sweep, 2026-12-06) whose
+// body's double volume sum cancels to -5.5e-23 while the exact volume is +6.2e-35: the result's
+// volume is the exact one (reconstruct3's check, and the CLI's).
+TEST(MeshVolumeSign, ExactVolumeWhereTheDoubleSumCancels) {
+  const int out[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::vector<int> tris;
+  for (const auto& f : out) tris.insert(tris.end(), {f[0], f[1], f[2]});
+  for (const int k : {0, 300, -300}) {
+    std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (double& c : xyz) c = std::ldexp(c, k);
+    EXPECT_EQ(signed_volume_exact(xyz.data(), tris.data(), 4), std::ldexp(1.0, 3 * k) / 6.0) << "2^" << k;
+    for (std::size_t i = 0; i < xyz.size(); i += 3) xyz[i] += std::ldexp(1.0, k + 40);  // (far along x)
+    EXPECT_EQ(signed_volume_exact(xyz.data(), tris.data(), 4), std::ldexp(1.0, 3 * k) / 6.0) << "2^" << k << " moved";
+  }
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  ASSERT_TRUE(
+      read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/needle3d_near_collinear_volume_sign.xyz", ro, p)
+          .is_ok());
+  Mesh3Result r;
+  ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
+  ASSERT_TRUE(r.valid());
+  const double exact = signed_volume_exact(p.coords.data(), r.mesh.triangles[0].data(), r.mesh.triangles.size());
+  EXPECT_GT(exact, 0);
+  EXPECT_EQ(r.volume, exact);
+  EXPECT_LE(mesh_volume(p, r.mesh), 0) << "the double sum no longer cancels here: the case says nothing";
 }
 
 }  // namespace
