@@ -39,6 +39,9 @@ enum class Refine2 {
 bool fallback_from_name(const std::string& name, Fallback& out) noexcept;
 const char* to_string(Fallback fallback) noexcept;
 
+/// Constrict2Options::refine_multi_start applies up to this many points (more: one start).
+constexpr std::size_t kRefineMultiStartMaxPoints = 5000;
+
 /// Options of reconstruct2(). Defaults reproduce the paper's algorithm plus the fallbacks.
 struct Constrict2Options {
   /// The paper's algorithm (seed paper §4.1) with the lock fallbacks: no refinement post-pass.
@@ -73,9 +76,9 @@ struct Constrict2Options {
   /// Work bound of the LocalSearch refinement: at most refine_work_per_point · N array elements
   /// moved (the polygon stays simple when the bound stops it; Polygon2Result::refine_budget_hit).
   std::size_t refine_work_per_point = 64;
-  /// The LocalSearch refinement of an input of at most 5 000 points runs from 8 evenly spaced
-  /// starts and keeps the shortest result (docs/reconstruction-2d.md §4c); false: one start (up
-  /// to 8 times less refinement work on such inputs; the polygon may differ).
+  /// The LocalSearch refinement of an input of at most kRefineMultiStartMaxPoints points runs from
+  /// 8 evenly spaced starts and keeps the shortest result (docs/reconstruction-2d.md §4c); false:
+  /// one start (up to 8 times less refinement work on such inputs; the polygon may differ).
   bool refine_multi_start = true;
   /// The γ0 fallback's graph tests done side by side ahead of its queue (0: each test as its
   /// candidate comes out; at most 1024 are used). A tuning knob only: the polygon is the same for

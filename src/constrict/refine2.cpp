@@ -1138,7 +1138,6 @@ bool may_improve(const std::vector<double>& xy, const Delaunay2& dt, const std::
 
 // Multi-start (small inputs): kStarts runs from evenly spaced starts, the shortest result kept.
 constexpr std::size_t kStarts = 8;
-constexpr std::size_t kMultiStartMaxPoints = 5000;
 
 // Where the search starts: the position of the point farthest from the centre of the bounding
 // box (pt(i): the coordinates of polygon position i). Both are computed exactly the same way
@@ -1234,41 +1233,53 @@ bool refine_polygon2(const PointSet& points, const Delaunay2& dt, std::vector<in
   const Adjacency2 adj = adjacency ? adjacency() : Adjacency2{};
   const std::size_t n = polygon.size();
   const std::size_t lo = start_position([&](std::size_t i) { return &xy[2 * i]; }, polygon, order);
-  const std::size_t starts = multi_start && n <= kMultiStartMaxPoints ? kStarts : 1;
-  std::vector<int> best;
-  double best_len = 0;
-  for (std::size_t k = 0; k < starts; ++k) {
-    const std::size_t first = (lo + k * n / starts) % n;
+  const std::size_t starts = multi_start && n <= kRefineMultiStartMaxPoints ? kStarts : 1;
+  // One start's run: its polygon, length (0 for a single start: nothing to compare, and a pass of
+  // random reads saved), stats and non-Delaunay edges.
+  struct Run {
     std::vector<int> poly;
+    double len = 0;
+    Refine2Stats st;
+    std::vector<std::array<int, 2>> non_dt;
+  };
+  const auto run_start = [&](std::size_t k, Run& out) {
+    const std::size_t first = (lo + k * n / starts) % n;
     std::vector<double> pxy;
     if (starts == 1) {  // (large inputs: rotated in place, no second copy)
       std::rotate(polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
       std::rotate(xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
-      poly.swap(polygon);
+      out.poly.swap(polygon);
       pxy.swap(xy);
     } else {
-      poly.assign(polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
-      poly.insert(poly.end(), polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first));
+      out.poly.assign(polygon.begin() + static_cast<std::ptrdiff_t>(first), polygon.end());
+      out.poly.insert(out.poly.end(), polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(first));
       pxy.assign(xy.begin() + static_cast<std::ptrdiff_t>(2 * first), xy.end());
       pxy.insert(pxy.end(), xy.begin(), xy.begin() + static_cast<std::ptrdiff_t>(2 * first));
     }
-    Refine2Stats st;
-    Refiner r(points, std::move(pxy), dt, poly, work_budget, st, order, adj, cancel);
+    Refiner r(points, std::move(pxy), dt, out.poly, work_budget, out.st, order, adj, cancel);
     if (starts == 1 && adj.release) adj.release();  // (the lists are the Refiner's now)
     r.run();
-    // (One start: nothing to compare, and a pass of random reads saved.)
-    const double l = starts == 1 ? 0.0 : geometric_length(points, poly, order);
-    if (k == 0 || l < best_len) {
-      best.swap(poly);
-      best_len = l;
-      stats = st;
-      if (non_delaunay) r.non_delaunay_edges(*non_delaunay);
-    }
-    // No move from the first start: the polygon is a local optimum of every move, whatever the
-    // start (the order only chooses among applicable moves).
-    if (k == 0 && st.moves_2opt + st.moves_oropt + st.moves_deep == 0) break;
-    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    out.len = starts == 1 ? 0.0 : geometric_length(points, out.poly, order);
+    if (non_delaunay) r.non_delaunay_edges(out.non_dt);
+  };
+  // The first start alone: no move from it means the polygon is a local optimum of every move,
+  // whatever the start (the order only chooses among applicable moves). Otherwise the other starts
+  // side by side, and the shortest result kept, the earliest start on ties: the same as one after
+  // another, whatever the thread count.
+  std::vector<Run> runs(1);
+  run_start(0, runs[0]);
+  const Refine2Stats& s0 = runs[0].st;
+  const bool settled = s0.moves_2opt + s0.moves_oropt + s0.moves_deep == 0;
+  if (starts > 1 && !settled && !(cancel && cancel->load(std::memory_order_relaxed))) {
+    runs.resize(starts);
+    tbb::parallel_for(std::size_t{1}, starts, [&](std::size_t k) { run_start(k, runs[k]); });
   }
+  std::size_t b = 0;
+  for (std::size_t k = 1; k < runs.size(); ++k)
+    if (runs[k].len < runs[b].len) b = k;
+  std::vector<int> best = std::move(runs[b].poly);
+  stats = runs[b].st;
+  if (non_delaunay) *non_delaunay = std::move(runs[b].non_dt);
   polygon.swap(best);
   if (starts > 1 && adj.release) adj.release();
   return true;
