@@ -81,15 +81,11 @@ constexpr std::size_t kNoteWorkPerPoint = 8;
 
 /// The inference's default work bound (Rings2Options::infer_work_limit): islands of a few points
 /// among larger ones join a growing part one per round, each round O(N) and the part's polygon
-/// made again; 640 such islands (9 935 points) took 470 N. The 180 archipelagos of
-/// bench/islands2_sweep.py need at most 23 N, the slowest set still answered with rings 116 N.
-constexpr std::size_t kInferWorkPerPoint = 32;
-constexpr std::size_t kInferWorkBase = std::size_t{1} << 21;
-
-/// A part made by this many rounds of joins in a row is judged by a polygon of one refinement
-/// start first (docs/topology.md, "Many islands"): a part that snowballs through islands, one
-/// join per round, is made again every round.
-constexpr std::uint32_t kSnowballRounds = 2;
+/// made again; 1 500 random-angle islands (37 712 points) took 1 161 N and 56 s for one curve.
+/// Archipelagos of hostile-input sweeps that end in rings needed at most 116 N (docs/topology.md,
+/// "Many islands"); bench/islands2_sweep.py's at most 23 N.
+constexpr std::size_t kInferWorkPerPoint = 256;
+constexpr std::size_t kInferWorkBase = std::size_t{1} << 22;
 
 /// Options of reconstruct_rings2() and infer_rings2().
 struct Rings2Options {
@@ -143,7 +139,7 @@ enum class RingsDecision {
               ///< their nearest part since 2026-12-03, like open arcs)
   Crossing,   ///< the rings of the parts would meet (validate_rings2() failed): not accepted
   Rings,      ///< several parts, each a ring, disjoint: the multi-ring answer
-  Capped,     ///< stopped at Rings2Options::infer_work_limit (the single mode's note only)
+  Capped,     ///< stopped at Rings2Options::infer_work_limit (Auto then makes the single polygon)
 };
 const char* to_string(RingsDecision decision) noexcept;
 
@@ -179,10 +175,6 @@ struct RingsInference {
   /// rings across a gap, not one curve), so the thin part is a ring of its own (docs/topology.md,
   /// "Archipelagos"). Counted over all rounds.
   std::size_t joins_undone = 0;
-  /// Parts made by kSnowballRounds or more rounds of joins in a row and found thin from a polygon
-  /// of one refinement start, without the several starts (docs/topology.md, "Many islands").
-  /// Counted over all rounds.
-  std::size_t thin_from_one_start = 0;
   /// Pairs of parts whose rings met (crossed or touched), joined into one part and made again
   /// (at most kMaxCrossingJoins; past it the decision is Crossing). Counted over all rounds.
   std::size_t crossings_joined = 0;

@@ -167,7 +167,6 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
         {"parts_polygon", in.parts_polygon},
         {"thin_parts_joined", in.thin_parts_joined},
         {"joins_undone", in.joins_undone},
-        {"thin_from_one_start", in.thin_from_one_start},
         {"crossings_joined", in.crossings_joined},
         {"rings_from_walk", in.rings_from_walk},
         {"open_parts", in.open_parts},

@@ -936,23 +936,16 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   std::vector<std::vector<int>> rings(parts.size());
   std::vector<int> ring_of(points.size());
   std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
-  // How many rounds of joins in a row made parts[k] (0: the last round did not join it; a round
-  // that takes joins back keeps it for the parts it leaves).
-  std::vector<std::uint32_t> grown(parts.size(), 0);
   // The polygon of a thin part that a round taking joins back left as it was: the part is judged
-  // again (its links changed), from this polygon (made from one start, or from several).
-  struct KeptPolygon {
-    std::vector<int> ring;
-    bool one_start = false;
-  };
-  std::vector<KeptPolygon> kept(parts.size());
+  // again (its links changed) from this polygon, the one part_polygon() would make again.
+  std::vector<std::vector<int>> kept(parts.size());
   // A part that the last round made by joining thin parts to an accepted ring: what it was made
   // of (each constituent's points, its ring when it was accepted), to take the join back.
-  // A thin constituent keeps the polygon it was judged by, if it had one (made from one start:
-  // one_start), so that a join is not taken back for a part whose polygon fails already.
+  // A thin constituent keeps the polygon it was judged by, if it had one (the one part_polygon()
+  // would make again for the test of taking the join back).
   struct Constituent {
     std::vector<int> points, ring;
-    bool accepted, one_start;
+    bool accepted;
   };
   std::vector<std::vector<Constituent>> made_of(parts.size());
   bool undone = false;  // the last round took joins back: the regions are made again
@@ -1060,28 +1053,13 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
                                    isolated[k] ? isolated_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
              has_chord(points, rings[k], kMaxRingEdge);
     };
-    // The polygons of the others are independent: on both cores (each the same whatever the
-    // threads). A part made by kSnowballRounds rounds of joins in a row is made from one start
-    // first: if that polygon is thin, the part is thin (it joins again), otherwise it is made again
-    // from several starts and judged by that polygon. A part that snowballs through islands one
-    // join per round is thus made from one start each round (docs/topology.md, "Many islands");
-    // only a polygon thin from one start but fat from several is judged differently.
-    Constrict2Options one_start = part_options;
-    one_start.refine_multi_start = false;
-    std::vector<char> thin_at_once(parts.size(), 0), made(parts.size(), 0);
+    // The polygons of the others are independent: on both cores (each the same whatever the threads).
+    std::vector<char> made(parts.size(), 0);
     for (const std::size_t k : need) made[k] = 1;
     tbb::parallel_for(std::size_t{0}, need.size(), [&](std::size_t i) {
       const std::size_t k = need[i];
-      const bool one = grown[k] >= kSnowballRounds && part_options.refine_multi_start;
-      if (!kept[k].ring.empty()) {  // (made in the round a join was taken back; the same again)
-        rings[k] = std::move(kept[k].ring);
-        if (!kept[k].one_start) return;
-        if (one && is_thin(k)) {
-          thin_at_once[k] = 1;
-          return;
-        }
-      } else if (one && part_polygon(points, parts[k], one_start, rings[k]) && is_thin(k)) {
-        thin_at_once[k] = 1;
+      if (!kept[k].empty()) {  // (made in the round a join was taken back; the same again)
+        rings[k] = std::move(kept[k]);
         return;
       }
       ok[k] = part_polygon(points, parts[k], part_options, rings[k]) ? 1 : 0;
@@ -1092,8 +1070,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         out.decision = RingsDecision::SmallPart;
         return Status::ok();
       }
-      out.thin_from_one_start += thin_at_once[k];
-      thin[k] = thin_at_once[k] || is_thin(k);
+      thin[k] = is_thin(k);
       any_thin = any_thin || thin[k];
       debug_part(points, rings[k], k, parts.size(), thin[k]);
     }
@@ -1109,21 +1086,15 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
         // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of a
         // noisy band (a clean crust cycle of a few points) with the band's arcs joined to it is
-        // not two rings. (A one-start polygon that fails it fails; one that passes is made again
-        // from several starts, as the part's ring would be.)
+        // not two rings.
         const auto fat_alone = [&](const std::vector<int>& r) {
           return compare_ring_fatness2(points.coords.data(), r.data(), r.size(), isolated_ring_fatness(r.size())) > 0;
         };
         for (Constituent& c : made_of[undo[i]]) {
-          if (!c.accepted && (c.ring.empty() || c.one_start)) {
-            if (c.one_start && !fat_alone(c.ring)) {
-              can[i] = 0;
-              break;
-            }
-            if (collinear(points, c.points) || !part_polygon(points, c.points, part_options, c.ring)) {
-              can[i] = 0;
-              break;
-            }
+          if (!c.accepted && c.ring.empty() &&
+              (collinear(points, c.points) || !part_polygon(points, c.points, part_options, c.ring))) {
+            can[i] = 0;
+            break;
           }
           if (!fat_alone(c.ring)) {
             can[i] = 0;
@@ -1141,19 +1112,17 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         }
       if (any_undone) {
         std::vector<std::pair<std::vector<int>, std::vector<int>>> all;  // (points, ring)
-        std::vector<std::pair<KeptPolygon, std::uint32_t>> all_kept;     // (a thin part's polygon, grown)
+        std::vector<std::vector<int>> all_kept;                          // (a thin part's polygon)
         for (std::size_t k = 0; k < parts.size(); ++k) {
           if (!split[k]) {  // (a thin part's polygon is no ring: it is evaluated again, and joins)
-            KeptPolygon kp;
-            if (thin[k] && made[k]) kp = KeptPolygon{std::move(rings[k]), thin_at_once[k] != 0};
+            all_kept.emplace_back(thin[k] && made[k] ? std::move(rings[k]) : std::vector<int>{});
             all.emplace_back(std::move(parts[k]), thin[k] ? std::vector<int>{} : std::move(rings[k]));
-            all_kept.emplace_back(std::move(kp), grown[k]);
             continue;
           }
           for (Constituent& c : made_of[k]) {
             ++out.joins_undone;
             all.emplace_back(std::move(c.points), std::move(c.ring));
-            all_kept.emplace_back(KeptPolygon{}, 0);
+            all_kept.emplace_back();
           }
         }
         // The parts again in their canonical order (group_parts: by the lexicographically
@@ -1163,14 +1132,12 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         std::vector<std::vector<int>> regrouped = group_parts(points, part_of);
         std::vector<std::vector<int>> regrouped_rings(regrouped.size());
         std::vector<char> regrouped_known(regrouped.size(), 0);
-        grown.assign(regrouped.size(), 0);
         kept.assign(regrouped.size(), {});
         for (std::size_t j = 0; j < regrouped.size(); ++j) {
           const std::size_t from = static_cast<std::size_t>(part_of[static_cast<std::size_t>(regrouped[j].front())]);
           regrouped_rings[j] = std::move(all[from].second);
           regrouped_known[j] = regrouped_rings[j].empty() ? 0 : 1;
-          kept[j] = std::move(all_kept[from].first);
-          grown[j] = all_kept[from].second;
+          kept[j] = std::move(all_kept[from]);
         }
         parts = std::move(regrouped);  // (part_of keeps its labels: one per part, as after a join)
         rings = std::move(regrouped_rings);
@@ -1217,7 +1184,6 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     std::vector<std::vector<int>> next_rings(next.size());
     std::vector<char> next_known(next.size(), 0);
     std::vector<std::vector<Constituent>> next_made_of(next.size());
-    std::vector<std::uint32_t> next_grown;
     {
       // Which old parts each new one is made of (a join of thin parts to an accepted ring only).
       std::vector<int> new_of_root(parts.size(), -1);
@@ -1228,14 +1194,12 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
         (thin[k] ? has_thin : has_ring)[j] = 1;
       }
-      next_grown.assign(next.size(), 0);
       for (std::size_t k = 0; k < parts.size(); ++k) {
-        const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
-        if (members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))] > 1)
-          next_grown[j] = std::max(next_grown[j], grown[k] + 1);
+        const std::size_t j =
+            static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
         if (has_ring[j] && has_thin[j] && members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))] > 1)
-          next_made_of[j].push_back(Constituent{parts[k], thin[k] && !made[k] ? std::vector<int>{} : rings[k], !thin[k],
-                                                thin_at_once[k] != 0});
+          next_made_of[j].push_back(
+              Constituent{parts[k], thin[k] && !made[k] ? std::vector<int>{} : rings[k], !thin[k]});
       }
     }
     for (std::size_t j = 0; j < next.size(); ++j) {
@@ -1245,7 +1209,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         next_known[j] = 1;
       }
     }
-    grown = std::move(next_grown);
+    kept.assign(next.size(), {});
     parts = std::move(next);
     rings = std::move(next_rings);
     known = std::move(next_known);
