@@ -206,7 +206,8 @@ Rings2Options rings_options(const ReconstructArgs& a, const Constrict2Options& p
   return o;
 }
 
-// Single mode: one line on stderr when the data show several rings (so that auto is found).
+// One line on stderr: in single mode when the data show several rings (so that auto is found), in
+// auto mode when the inference stopped at its work bound (the single polygon was made).
 void note_inferred(const ReconstructArgs& a, const Rings2Result& rr) {
   if (!a.quiet && rr.topology == Topology2::Auto && rr.inferred.decision == RingsDecision::Capped)
     std::fprintf(stderr,
@@ -492,9 +493,9 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
   if (surfaces && r.complete)
     body_check = std::async(std::launch::async, [&] { return validate_body3(pts, r.mesh, r.tets); });
   bool valid = validate_mesh3(pts, r.mesh, &chk, copt).is_ok();
-  // The check's volume is exact where the double sum cancelled to the wrong sign (a body much
-  // thinner than it is long); an outward body's volume is positive.
-  if (chk.outward && !(r.volume > 0)) r.volume = chk.volume;
+  // The check's volume is exact where the double sum is badly conditioned (a body much thinner
+  // than it is long).
+  if (chk.volume_exact) r.volume = chk.volume;
   std::string body_reason;
   if (body_check.valid()) {
     const Status bs = body_check.get();

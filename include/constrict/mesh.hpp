@@ -65,7 +65,8 @@ struct MeshCheck {
   int bad_vertex = -1;            ///< first vertex with a bad link
   std::array<int, 2> bad_edge{{-1, -1}};       ///< first bad edge
   std::array<int, 2> intersecting_faces{{-1, -1}};  ///< first intersecting pair (face indices)
-  double volume = 0;              ///< signed volume (double arithmetic)
+  double volume = 0;              ///< signed volume (double arithmetic; exact where it is badly conditioned)
+  bool volume_exact = false;      ///< volume is the exact value (signed_volume_checked)
   std::string reason;             ///< one line; empty when valid
 };
 
@@ -73,7 +74,8 @@ struct MeshCheck {
 /// consistently and outward oriented, connected triangle mesh of genus 0 through every input point.
 /// Combinatorial checks are exact; degeneracy and self-intersection tests use exact orient3; the
 /// outward test is the exact sign of the signed volume (signed_volume_sign); details->volume is
-/// mesh_volume()'s double value.
+/// mesh_volume()'s double value, or the exact value where that is badly conditioned
+/// (signed_volume_checked; details->volume_exact).
 /// @param[in] points dim == 3
 /// @param[in] mesh triangles over input ids
 /// @param[out] details optional diagnostics

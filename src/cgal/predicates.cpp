@@ -99,14 +99,16 @@ CGAL::Mpzf exact_volume6(const double* xyz, const int* tris, std::size_t n_tris)
 }
 }  // namespace
 
-int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
-  if (n_tris == 0) return 0;
+namespace {
+// The translated determinants in double: their sum S and a bound on |S - exact|. Each translated
+// coordinate has relative error <= eps, each determinant <= 5 eps of its permanent on top, the sum
+// n eps of the permanents: |S - exact| <= (n + 16) * 2^-52 * P (generous), valid without overflow
+// and underflow (false: the bound does not hold).
+bool volume_filter(const double* xyz, const int* tris, std::size_t n_tris, double& sum, double& bound) {
   const double* o = xyz + 3 * static_cast<std::size_t>(tris[0]);
   const auto pt = [&](std::size_t t, int k) { return xyz + 3 * static_cast<std::size_t>(tris[3 * t + static_cast<std::size_t>(k)]); };
-  // Filter: the translated determinants in double. Each translated coordinate has relative error
-  // <= eps, each determinant <= 5 eps of its permanent on top, the sum n eps of the permanents:
-  // |S - exact| <= (n + 16) * 2^-52 * P (generous), valid without overflow and underflow.
-  double sum = 0, perm = 0;
+  double perm = 0;
+  sum = 0;
   for (std::size_t t = 0; t < n_tris; ++t) {
     double u[3], v[3], w[3];
     for (int k = 0; k < 3; ++k) {
@@ -122,16 +124,30 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
     sum += d;
     perm += p;
   }
-  const double bound = (static_cast<double>(n_tris) + 16.0) * std::ldexp(1.0, -52) * perm;
-  if (std::isfinite(sum) && std::isfinite(bound) && perm > 1e-280 && std::abs(sum) > bound)
-    return sum > 0 ? 1 : -1;
+  bound = (static_cast<double>(n_tris) + 16.0) * std::ldexp(1.0, -52) * perm;
+  return std::isfinite(sum) && std::isfinite(bound) && perm > 1e-280;
+}
+}  // namespace
+
+int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
+  if (n_tris == 0) return 0;
+  double sum = 0, bound = 0;
+  if (volume_filter(xyz, tris, n_tris, sum, bound) && std::abs(sum) > bound) return sum > 0 ? 1 : -1;
   return static_cast<int>(CGAL::sign(exact_volume6(xyz, tris, n_tris)));
 }
 
-double signed_volume_exact(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
-  if (n_tris == 0) return 0;
-  // The exact sum rounded once (to_double), then divided by 6 (one more rounding); what overflows
-  // the double range is ±inf and what underflows it is 0 or a subnormal of the right sign.
+double signed_volume_checked(const double* xyz, const int* tris, std::size_t n_tris, double approx, bool* exact) {
+  if (exact) *exact = false;
+  if (n_tris == 0) return approx;
+  double sum = 0, bound = 0;
+  // Known to about 2^-10 relatively (the bound is far from tight: the error is usually ~sqrt(n)
+  // eps of the permanents), and approx on the same side of 0: approx.
+  if (volume_filter(xyz, tris, n_tris, sum, bound) && std::abs(sum) > std::ldexp(bound, 10) &&
+      (sum > 0 ? approx > 0 : approx < 0))
+    return approx;
+  if (exact) *exact = true;
+  // The exact sum converted (within about an ulp: Mpzf's to_double), then divided by 6; what
+  // overflows the double range is ±inf, what underflows it 0 or a subnormal of the right sign.
   return CGAL::to_double(exact_volume6(xyz, tris, n_tris)) / 6.0;
 }
 

@@ -604,9 +604,8 @@ void Constrictor3::validate_result(Impl& s, Mesh3Result& r) {
   MeshCheck mc;
   const Status vs = validate_mesh3(*s.input, r.mesh, &mc, mo);  // on the input's own coordinates
   CONSTRICT_CHECK(vs.is_ok(), "reconstruct3 produced an invalid surface: " + vs.message());
-  // The check's volume is exact where the double sum has the wrong sign (check_outward): a valid
-  // body's volume is positive.
-  if (mc.outward && !(r.volume > 0)) r.volume = mc.volume;
+  // The check's volume is exact where the double sum is badly conditioned (check_outward).
+  if (mc.volume_exact) r.volume = mc.volume;
   r.validated = true;
   r.ms_validate = ms_since(t0);
 }

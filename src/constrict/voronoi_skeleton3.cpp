@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "constrict/delaunay.hpp"
+#include "constrict/predicates.hpp"
 #include "constrict/voronoi_skeleton.hpp"
 #include "constrict/detail/skeleton_growth.hpp"
 #include "core/detail/canonical_order.hpp"
@@ -69,6 +70,9 @@ Status skeleton3(const PointSet& points, const VoronoiSkeletonOptions& options, 
   result.unplaced_points = std::move(body.unplaced);
   result.complete = result.unplaced_points.empty();
   result.volume = mesh_volume(points, result.mesh);
+  if (result.complete && !result.mesh.triangles.empty())  // (exact where the double sum cancels)
+    result.volume = signed_volume_checked(points.coords.data(), result.mesh.triangles[0].data(),
+                                          result.mesh.triangles.size(), result.volume);
   result.surface_area = mesh_area(points, result.mesh);
   st.ms_grow = ms_since(t1);
 

@@ -1398,8 +1398,8 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   std::sort(m.tets.begin(), m.tets.end());
   m.mesh = body_surface(m.tets);
   m.volume = mesh_volume(pts, m.mesh);
-  if (!(m.volume > 0) && !m.mesh.triangles.empty())  // (cancelled to the wrong sign: the exact value)
-    m.volume = signed_volume_exact(pts.coords.data(), m.mesh.triangles[0].data(), m.mesh.triangles.size());
+  if (!m.mesh.triangles.empty())  // (exact where the double sum cancels)
+    m.volume = signed_volume_checked(pts.coords.data(), m.mesh.triangles[0].data(), m.mesh.triangles.size(), m.volume);
   m.surface_area = mesh_area(pts, m.mesh);
   m.validated = true;  // every part was validated by reconstruct3(); the whole below
   r.ms_assemble = ms_since(t0);

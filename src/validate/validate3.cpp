@@ -481,10 +481,10 @@ Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   const int sign = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
                                       mesh.triangles.size());
   side.wait();
-  // A body much thinner than it is long can cancel the double sum to the wrong sign (near-collinear
-  // points: -5.5e-23 for an exact 6.2e-35); the exact value then.
-  if ((sign > 0 && !(d.volume > 0)) || (sign < 0 && !(d.volume < 0)) || (sign == 0 && d.volume != 0))
-    d.volume = signed_volume_exact(pts.coords.data(), mesh.triangles[0].data(), mesh.triangles.size());
+  // A body much thinner than it is long can cancel the double sum (near-collinear points:
+  // -5.5e-23 for an exact 6.2e-35); the exact value then.
+  d.volume = signed_volume_checked(pts.coords.data(), mesh.triangles[0].data(), mesh.triangles.size(), d.volume,
+                                   &d.volume_exact);
   d.outward = sign > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
   return Status::ok();

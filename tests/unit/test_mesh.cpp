@@ -414,10 +414,11 @@ TEST(MeshVolumeSign, ExactAtAnyScale) {
   EXPECT_EQ(signed_volume_sign(flat.data(), two.data(), 2), 0);
 }
 
-// signed_volume_exact(): the unit tetrahedron at any scale and far from the origin (exact 1/6 there,
-// rounded), and a needle of 500 near-collinear points (a hostile-geometry sweep, 2026-12-06) whose
-// body's double volume sum cancels to -5.5e-23 while the exact volume is +6.2e-35: the result's
-// volume is the exact one (reconstruct3's check, and the CLI's).
+// signed_volume_checked(): a well-conditioned sum keeps the double value; the unit tetrahedron at
+// any scale and far from the origin with a wrong approximation gives the exact 1/6 (rounded); and a
+// needle of 500 near-collinear points (a hostile-geometry sweep, 2026-12-06), whose body's double
+// volume sum cancels to -5.5e-23 while the exact volume is +6.2e-35: the result's volume is the
+// exact one (reconstruct3's check, and the CLI's).
 TEST(MeshVolumeSign, ExactVolumeWhereTheDoubleSumCancels) {
   const int out[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   std::vector<int> tris;
@@ -425,9 +426,14 @@ TEST(MeshVolumeSign, ExactVolumeWhereTheDoubleSumCancels) {
   for (const int k : {0, 300, -300}) {
     std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (double& c : xyz) c = std::ldexp(c, k);
-    EXPECT_EQ(signed_volume_exact(xyz.data(), tris.data(), 4), std::ldexp(1.0, 3 * k) / 6.0) << "2^" << k;
+    const double sixth = std::ldexp(1.0, 3 * k) / 6.0;
+    bool exact = true;
+    EXPECT_EQ(signed_volume_checked(xyz.data(), tris.data(), 4, 0.9 * sixth, &exact), 0.9 * sixth) << "2^" << k;
+    EXPECT_FALSE(exact);
+    EXPECT_EQ(signed_volume_checked(xyz.data(), tris.data(), 4, -sixth, &exact), sixth) << "2^" << k;
+    EXPECT_TRUE(exact);
     for (std::size_t i = 0; i < xyz.size(); i += 3) xyz[i] += std::ldexp(1.0, k + 40);  // (far along x)
-    EXPECT_EQ(signed_volume_exact(xyz.data(), tris.data(), 4), std::ldexp(1.0, 3 * k) / 6.0) << "2^" << k << " moved";
+    EXPECT_EQ(signed_volume_checked(xyz.data(), tris.data(), 4, 0.0), sixth) << "2^" << k << " moved";
   }
   PointSet p;
   ReadOptions ro;
@@ -438,10 +444,14 @@ TEST(MeshVolumeSign, ExactVolumeWhereTheDoubleSumCancels) {
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());
-  const double exact = signed_volume_exact(p.coords.data(), r.mesh.triangles[0].data(), r.mesh.triangles.size());
-  EXPECT_GT(exact, 0);
-  EXPECT_EQ(r.volume, exact);
-  EXPECT_LE(mesh_volume(p, r.mesh), 0) << "the double sum no longer cancels here: the case says nothing";
+  const double approx = mesh_volume(p, r.mesh);
+  EXPECT_LE(approx, 0) << "the double sum no longer cancels here: the case says nothing";
+  bool exact = false;
+  const double v =
+      signed_volume_checked(p.coords.data(), r.mesh.triangles[0].data(), r.mesh.triangles.size(), approx, &exact);
+  EXPECT_TRUE(exact);
+  EXPECT_GT(v, 0);
+  EXPECT_EQ(r.volume, v);
 }
 
 }  // namespace
