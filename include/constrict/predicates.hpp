@@ -52,7 +52,17 @@ int in_circle_coplanar3(const double* a, const double* b, const double* c, const
 /// conservative error bound first, exact multi-precision arithmetic (CGAL::Mpzf) when the bound
 /// does not decide (cancellation, overflow or underflow). +1 for a closed surface oriented outward.
 /// @param[in] xyz coordinates, 3 per point; @param[in] tris 3 point indices per triangle
-int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept;
+struct VolumeEstimate;
+int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris,
+                       const VolumeEstimate* estimate = nullptr) noexcept;
+/// The double sum of signed_volume_sign() (6 x the volume about the first point of the first
+/// triangle) and a bound on its error; valid false where the bound does not hold (overflow,
+/// underflow). One pass over the triangles, to share between the sign and the checked volume.
+struct VolumeEstimate {
+  double sum6 = 0, bound6 = 0;
+  bool valid = false;
+};
+VolumeEstimate signed_volume_estimate(const double* xyz, const int* tris, std::size_t n_tris) noexcept;
 /// The signed volume of the same triangles, checked: `approx` (mesh_volume()'s double value) when
 /// the double sum of signed_volume_sign()'s filter is known to about 2^-10 relatively and has
 /// approx's sign; otherwise the exact sum (CGAL::Mpzf) converted to double (within about an ulp)
@@ -60,7 +70,7 @@ int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) n
 /// triangle): bodies much thinner than they are long (500 near-collinear points: -5.5e-23 in double
 /// for an exact +6.2e-35). May throw std::bad_alloc.
 double signed_volume_checked(const double* xyz, const int* tris, std::size_t n_tris, double approx,
-                             bool* exact = nullptr);
+                             bool* exact = nullptr, const VolumeEstimate* estimate = nullptr);
 
 /// How fat a closed polygon is against its edges: the sign of 2|A| - c·Σ|e_i|^2, A its signed
 /// area and e_i its m edges (ring[0] ring[1], ..., ring[m-1] ring[0]). Dimensionless and exact

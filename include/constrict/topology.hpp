@@ -393,9 +393,9 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& opt
 /// every point (each point on one surface), any number of components and genus
 /// (MeshCheckOptions::any_topology); every body tetrahedron positive (orient3) and the free faces of
 /// the body exactly the mesh triangles, oriented out of the body. @return Ok or InvalidArgument
-/// with the reason
+/// with the reason; @param[out] details optional: the mesh check's details (validate_mesh3())
 Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body,
-                          bool self_intersections = false);
+                          bool self_intersections = false, MeshCheck* details = nullptr);
 
 /// The body part of validate_surfaces3() alone: every tetrahedron positive (orient3), a face shared
 /// by two tetrahedra seen from opposite sides (no overlap there), and the faces of exactly one

@@ -129,22 +129,28 @@ bool volume_filter(const double* xyz, const int* tris, std::size_t n_tris, doubl
 }
 }  // namespace
 
-int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
+VolumeEstimate signed_volume_estimate(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
+  VolumeEstimate e;
+  if (n_tris > 0) e.valid = volume_filter(xyz, tris, n_tris, e.sum6, e.bound6);
+  return e;
+}
+
+int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris,
+                       const VolumeEstimate* estimate) noexcept {
   if (n_tris == 0) return 0;
-  double sum = 0, bound = 0;
-  if (volume_filter(xyz, tris, n_tris, sum, bound) && std::abs(sum) > bound) return sum > 0 ? 1 : -1;
+  const VolumeEstimate e = estimate ? *estimate : signed_volume_estimate(xyz, tris, n_tris);
+  if (e.valid && std::abs(e.sum6) > e.bound6) return e.sum6 > 0 ? 1 : -1;
   return static_cast<int>(CGAL::sign(exact_volume6(xyz, tris, n_tris)));
 }
 
-double signed_volume_checked(const double* xyz, const int* tris, std::size_t n_tris, double approx, bool* exact) {
+double signed_volume_checked(const double* xyz, const int* tris, std::size_t n_tris, double approx, bool* exact,
+                             const VolumeEstimate* estimate) {
   if (exact) *exact = false;
   if (n_tris == 0) return approx;
-  double sum = 0, bound = 0;
+  const VolumeEstimate e = estimate ? *estimate : signed_volume_estimate(xyz, tris, n_tris);
   // Known to about 2^-10 relatively (the bound is far from tight: the error is usually ~sqrt(n)
   // eps of the permanents), and approx on the same side of 0: approx.
-  if (volume_filter(xyz, tris, n_tris, sum, bound) && std::abs(sum) > std::ldexp(bound, 10) &&
-      (sum > 0 ? approx > 0 : approx < 0))
-    return approx;
+  if (e.valid && std::abs(e.sum6) > std::ldexp(e.bound6, 10) && (e.sum6 > 0 ? approx > 0 : approx < 0)) return approx;
   if (exact) *exact = true;
   // The exact sum converted (within about an ulp: Mpzf's to_double), then divided by 6; what
   // overflows the double range is ±inf, what underflows it 0 or a subnormal of the right sign.

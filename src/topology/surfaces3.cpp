@@ -1397,9 +1397,7 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
   m.tets = std::move(body);
   std::sort(m.tets.begin(), m.tets.end());
   m.mesh = body_surface(m.tets);
-  m.volume = mesh_volume(pts, m.mesh);
-  if (!m.mesh.triangles.empty())  // (exact where the double sum cancels)
-    m.volume = signed_volume_checked(pts.coords.data(), m.mesh.triangles[0].data(), m.mesh.triangles.size(), m.volume);
+  m.volume = mesh_volume(pts, m.mesh);  // (exact where the double sum cancels: finish_surfaces)
   m.surface_area = mesh_area(pts, m.mesh);
   m.validated = true;  // every part was validated by reconstruct3(); the whole below
   r.ms_assemble = ms_since(t0);
@@ -1429,8 +1427,10 @@ Status finish_surfaces(const PointSet& points, const Surfaces3Options& o, Surfac
   r.mesh.surfaces = static_cast<int>(r.surfaces.size());
   if (o.validate && r.mesh.complete) {
     const auto t0 = Clock::now();
-    const Status vs = validate_surfaces3(points, r.mesh.mesh, r.mesh.tets, o.surface.validate_self_intersections);
+    MeshCheck mc;
+    const Status vs = validate_surfaces3(points, r.mesh.mesh, r.mesh.tets, o.surface.validate_self_intersections, &mc);
     if (!vs) return {StatusCode::Internal, "reconstruct_surfaces3 produced invalid surfaces: " + vs.message()};
+    if (mc.volume_exact) r.mesh.volume = mc.volume;  // (the double sum cancelled: check_outward)
     r.validated = true;
     r.ms_validate = ms_since(t0);
   }
@@ -1515,11 +1515,12 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
 }
 
 Status validate_surfaces3(const PointSet& points, const TriMesh3& mesh, const std::vector<std::array<int, 4>>& body,
-                          bool self_intersections) {
+                          bool self_intersections, MeshCheck* details) {
   MeshCheckOptions mo;
   mo.any_topology = true;
   mo.self_intersections = self_intersections;
-  MeshCheck mc;
+  MeshCheck own;
+  MeshCheck& mc = details ? *details : own;
   // The two checks side by side (each parallel inside); the surface's verdict first, as before.
   Status surface_status = Status::ok(), body_status = Status::ok();
   tbb::parallel_invoke([&] { surface_status = validate_mesh3(points, mesh, &mc, mo); },

@@ -478,13 +478,13 @@ Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   // Two independent sequential sums: the volume on the other core.
   tbb::task_group side;
   side.run([&] { d.volume = mesh_volume(pts, mesh); });
-  const int sign = signed_volume_sign(pts.coords.data(), mesh.triangles.empty() ? nullptr : mesh.triangles[0].data(),
-                                      mesh.triangles.size());
+  const int* tris = mesh.triangles.empty() ? nullptr : mesh.triangles[0].data();
+  const VolumeEstimate est = signed_volume_estimate(pts.coords.data(), tris, mesh.triangles.size());
+  const int sign = signed_volume_sign(pts.coords.data(), tris, mesh.triangles.size(), &est);
   side.wait();
   // A body much thinner than it is long can cancel the double sum (near-collinear points:
   // -5.5e-23 for an exact 6.2e-35); the exact value then.
-  d.volume = signed_volume_checked(pts.coords.data(), mesh.triangles[0].data(), mesh.triangles.size(), d.volume,
-                                   &d.volume_exact);
+  d.volume = signed_volume_checked(pts.coords.data(), tris, mesh.triangles.size(), d.volume, &d.volume_exact, &est);
   d.outward = sign > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
   return Status::ok();
