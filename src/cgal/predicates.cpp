@@ -97,9 +97,7 @@ CGAL::Mpzf exact_volume6(const double* xyz, const int* tris, std::size_t n_tris)
   }
   return total;
 }
-}  // namespace
 
-namespace {
 // The translated determinants in double: their sum S and a bound on |S - exact|. Each translated
 // coordinate has relative error <= eps, each determinant <= 5 eps of its permanent on top, the sum
 // n eps of the permanents: |S - exact| <= (n + 16) * 2^-52 * P (generous), valid without overflow

@@ -158,23 +158,22 @@ std::string to_json(const Rings2Result& r, const Rings2Options& opt) {
   nlohmann::json t = {{"mode", to_string(r.topology)}, {"gap_threshold", opt.topology_gap}, {"inferred", nullptr}};
   if (r.inferred_run) {
     const RingsInference& in = r.inferred;
-    t["inferred"] = {
-        {"decision", to_string(in.decision)},
-        {"rings", in.rings.size()},
-        {"shells", in.shells()},
-        {"holes", in.holes()},
-        {"parts", in.parts},
-        {"parts_polygon", in.parts_polygon},
-        {"thin_parts_joined", in.thin_parts_joined},
-        {"joins_undone", in.joins_undone},
-        {"crossings_joined", in.crossings_joined},
-        {"rings_from_walk", in.rings_from_walk},
-        {"open_parts", in.open_parts},
-        {"bad_degree_points", in.bad_degree_points},
-        {"split_gap_spacings", in.split_gap_spacings},
-        {"min_gap_spacings", finite_or_null(in.min_gap_spacings)},
-        {"reason", in.check.reason},
-        {"ring_list", r.from_polygon && in.rings.size() > 1 ? rings_json(in.rings) : nlohmann::json(nullptr)}};
+    t["inferred"] = {{"decision", to_string(in.decision)},
+                     {"rings", in.rings.size()},
+                     {"shells", in.shells()},
+                     {"holes", in.holes()},
+                     {"parts", in.parts},
+                     {"parts_polygon", in.parts_polygon},
+                     {"thin_parts_joined", in.thin_parts_joined},
+                     {"joins_undone", in.joins_undone},
+                     {"crossings_joined", in.crossings_joined},
+                     {"rings_from_walk", in.rings_from_walk},
+                     {"open_parts", in.open_parts},
+                     {"bad_degree_points", in.bad_degree_points},
+                     {"split_gap_spacings", in.split_gap_spacings},
+                     {"min_gap_spacings", finite_or_null(in.min_gap_spacings)},
+                     {"reason", in.check.reason},
+                     {"ring_list", r.from_polygon && in.rings.size() > 1 ? rings_json(in.rings) : nlohmann::json(nullptr)}};
   }
   j["topology"] = t;
   return dump(j);

@@ -1044,15 +1044,6 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
       out.decision = RingsDecision::Capped;
       return Status::ok();
     }
-    // A polygon that is a sliver along its points, or an arc closed by a chord across its
-    // opening, is not a ring the points show: a piece of a longer curve, split off at a gap that a
-    // large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept from the
-    // last round passed already: a thin one joined another part.)
-    const auto is_thin = [&](std::size_t k) {
-      return compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(),
-                                   isolated[k] ? isolated_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
-             has_chord(points, rings[k], kMaxRingEdge);
-    };
     // The polygons of the others are independent: on both cores (each the same whatever the threads).
     std::vector<char> made(parts.size(), 0);
     for (const std::size_t k : need) made[k] = 1;
@@ -1070,7 +1061,13 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         out.decision = RingsDecision::SmallPart;
         return Status::ok();
       }
-      thin[k] = is_thin(k);
+      // A polygon that is a sliver along its points, or an arc closed by a chord across its
+      // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
+      // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
+      // from the last round passed already: a thin one joined another part.)
+      thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(),
+                                      isolated[k] ? isolated_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
+                has_chord(points, rings[k], kMaxRingEdge);
       any_thin = any_thin || thin[k];
       debug_part(points, rings[k], k, parts.size(), thin[k]);
     }
@@ -1084,19 +1081,17 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
         if (thin[k] && !made_of[k].empty()) undo.push_back(k);
       std::vector<char> can(undo.size(), 1);
       tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
-        // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of a
-        // noisy band (a clean crust cycle of a few points) with the band's arcs joined to it is
-        // not two rings.
-        const auto fat_alone = [&](const std::vector<int>& r) {
-          return compare_ring_fatness2(points.coords.data(), r.data(), r.size(), isolated_ring_fatness(r.size())) > 0;
-        };
         for (Constituent& c : made_of[undo[i]]) {
           if (!c.accepted && c.ring.empty() &&
               (collinear(points, c.points) || !part_polygon(points, c.points, part_options, c.ring))) {
             can[i] = 0;
             break;
           }
-          if (!fat_alone(c.ring)) {
+          // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of
+          // a noisy band (a clean crust cycle of a few points) with the band's arcs joined to it
+          // is not two rings.
+          if (compare_ring_fatness2(points.coords.data(), c.ring.data(), c.ring.size(),
+                                    isolated_ring_fatness(c.ring.size())) <= 0) {
             can[i] = 0;
             break;
           }

@@ -18,6 +18,7 @@
 #include "constrict/constrict.hpp"
 #include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
+#include "unit/test_fixtures.hpp"
 #include "core/detail/canonical_order.hpp"
 #include "thin_walls3_gen.hpp"
 
@@ -136,10 +137,7 @@ TEST(OrderIndependence, SameSurfaceInAnyFileOrder3D) {
 // tetrahedra's canonical order: the regression set that needs it, shuffled.
 TEST(OrderIndependence, FillSecondTryInAnyFileOrder) {
   PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/ears_noisy_plate_pocket_beside_gap.xyz", ro, p)
-                  .is_ok());
+  ASSERT_TRUE(test::read_regression3("ears_noisy_plate_pocket_beside_gap.xyz", p).is_ok());
   Mesh3Result base;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, base).is_ok());
   const auto tri = coordinate_triangles(p, base.mesh);

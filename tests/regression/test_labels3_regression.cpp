@@ -18,16 +18,14 @@
 
 #include "constrict/constrict3.hpp"
 #include "constrict/io.hpp"
+#include "unit/test_fixtures.hpp"
 
 namespace constrict {
 namespace {
 
 TEST(Labels3Regression, FlatHullTetrahedraOfGridAlignedCapsulesSeedNoLabel) {
   PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/grid_capsules_flat_hull_tetrahedra.xyz",
-                          ro, p).is_ok());
+  ASSERT_TRUE(test::read_regression3("grid_capsules_flat_hull_tetrahedra.xyz", p).is_ok());
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());
@@ -62,9 +60,7 @@ TEST(Labels3Regression, AllFlatHullStillSeeds) {
 // which now runs beside such a growth, gives the plate (volume 63.1, area 239).
 TEST(Labels3Regression, ThinPlateGrowthAgainstItsLabelsIsReplacedByTheConstriction) {
   PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/thin_plate_growth_zigzag.xyz", ro, p).is_ok());
+  ASSERT_TRUE(test::read_regression3("thin_plate_growth_zigzag.xyz", p).is_ok());
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());

@@ -116,11 +116,7 @@ double ears_distance(const double* q) {
 // before the gap's smaller balls (0.04-0.05) close the loop, and is kept.
 TEST(NoisyFill3, PocketBesideANarrowGapIsFilledOnTheSecondTry) {
   PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(
-      read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/ears_noisy_plate_pocket_beside_gap.xyz", ro, p)
-          .is_ok());
+  ASSERT_TRUE(test::read_regression3("ears_noisy_plate_pocket_beside_gap.xyz", p).is_ok());
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());

@@ -6,11 +6,22 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "constrict/io.hpp"
 #include "constrict/points.hpp"
 
 namespace constrict::test {
+
+#ifdef CONSTRICT_TEST_DATA_DIR
+/// A 3D point file of tests/data/regression, by its name.
+inline Status read_regression3(const std::string& name, PointSet& p) {
+  ReadOptions ro;
+  ro.dim = 3;
+  return read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/" + name, ro, p);
+}
+#endif
 
 /// splitmix64: the next value of the sequence of state s (the same numbers on every platform).
 inline std::uint64_t splitmix64(std::uint64_t& s) {

@@ -436,11 +436,7 @@ TEST(MeshVolumeSign, ExactVolumeWhereTheDoubleSumCancels) {
     EXPECT_EQ(signed_volume_checked(xyz.data(), tris.data(), 4, 0.0), sixth) << "2^" << k << " moved";
   }
   PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(
-      read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/regression/needle3d_near_collinear_volume_sign.xyz", ro, p)
-          .is_ok());
+  ASSERT_TRUE(test::read_regression3("needle3d_near_collinear_volume_sign.xyz", p).is_ok());
   Mesh3Result r;
   ASSERT_TRUE(reconstruct3(p, Constrict3Options{}, r).is_ok());
   ASSERT_TRUE(r.valid());
