@@ -3,6 +3,7 @@
 // (static + dynamic interval filters, exact fallback), so that no other module includes CGAL.
 #include "constrict/predicates.hpp"
 #include "core/detail/semi_static.hpp"
+#include "core/detail/volume_filter.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mpzf.h>
@@ -98,39 +99,14 @@ CGAL::Mpzf exact_volume6(const double* xyz, const int* tris, std::size_t n_tris)
   return total;
 }
 
-// The translated determinants in double: their sum S and a bound on |S - exact|. Each translated
-// coordinate has relative error <= eps, each determinant <= 5 eps of its permanent on top, the sum
-// n eps of the permanents: |S - exact| <= (n + 16) * 2^-52 * P (generous), valid without overflow
-// and underflow (false: the bound does not hold).
-bool volume_filter(const double* xyz, const int* tris, std::size_t n_tris, double& sum, double& bound) {
-  const double* o = xyz + 3 * static_cast<std::size_t>(tris[0]);
-  const auto pt = [&](std::size_t t, int k) { return xyz + 3 * static_cast<std::size_t>(tris[3 * t + static_cast<std::size_t>(k)]); };
-  double perm = 0;
-  sum = 0;
-  for (std::size_t t = 0; t < n_tris; ++t) {
-    double u[3], v[3], w[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = pt(t, 0)[k] - o[k];
-      v[k] = pt(t, 1)[k] - o[k];
-      w[k] = pt(t, 2)[k] - o[k];
-    }
-    const double d = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-                     u[2] * (v[0] * w[1] - v[1] * w[0]);
-    const double p = std::abs(u[0]) * (std::abs(v[1] * w[2]) + std::abs(v[2] * w[1])) +
-                     std::abs(u[1]) * (std::abs(v[0] * w[2]) + std::abs(v[2] * w[0])) +
-                     std::abs(u[2]) * (std::abs(v[0] * w[1]) + std::abs(v[1] * w[0]));
-    sum += d;
-    perm += p;
-  }
-  bound = (static_cast<double>(n_tris) + 16.0) * std::ldexp(1.0, -52) * perm;
-  return std::isfinite(sum) && std::isfinite(bound) && perm > 1e-280;
-}
 }  // namespace
 
 VolumeEstimate signed_volume_estimate(const double* xyz, const int* tris, std::size_t n_tris) noexcept {
-  VolumeEstimate e;
-  if (n_tris > 0) e.valid = volume_filter(xyz, tris, n_tris, e.sum6, e.bound6);
-  return e;
+  if (n_tris == 0) return {};
+  const auto pt = [&](std::size_t t, int k) { return xyz + 3 * static_cast<std::size_t>(tris[3 * t + static_cast<std::size_t>(k)]); };
+  detail::VolumeFilterSum filter(pt(0, 0));
+  for (std::size_t t = 0; t < n_tris; ++t) filter.add(pt(t, 0), pt(t, 1), pt(t, 2));
+  return filter.estimate(n_tris);
 }
 
 int signed_volume_sign(const double* xyz, const int* tris, std::size_t n_tris,

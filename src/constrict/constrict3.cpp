@@ -90,13 +90,6 @@ Status Constrict3Options::from_preset(const std::string& name, Constrict3Options
   return Status::ok();
 }
 
-// Connected components of a surface over n points (vertex-disjoint surfaces).
-static int surface_components(const TriMesh3& m, std::size_t n) {
-  int c = 0;
-  for (int s : detail::surface_of_vertex(n, m)) c = std::max(c, s + 1);
-  return c;
-}
-
 // ---- Impl: the set-up and the stages in order --------------------------------------------------
 
 void Constrictor3::Impl::IdMapVisitor::on_event(const Constrict3Event& e) {
@@ -388,8 +381,14 @@ void Constrictor3::Impl::collect(Mesh3Result& r) const {
         for (std::size_t t = body.T0; t < body.tets.size(); ++t) r.non_delaunay_tets += body.state[t] == kAlive;
       },
       [&] { measure_bridges(surface, r); },
-      // F = 2N - 4c + 4g for c closed surfaces of total genus g through all N points.
-      [&] { r.surfaces = surface_components(surface, body.n); }, [&] { volume = mesh_volume(*body.pts, surface); },
+      // F = 2N - 4c + 4g for c closed surfaces of total genus g through all N points; the volume
+      // about each surface's own origin (one union-find for both).
+      [&] {
+        const std::vector<int> comp = detail::surface_of_vertex(body.pts->size(), surface);
+        r.surfaces = 0;
+        for (int c : comp) r.surfaces = std::max(r.surfaces, c + 1);
+        volume = detail::mesh_volume_of_surfaces(*body.pts, surface, comp);
+      },
       [&] { area = mesh_area(*body.pts, surface); });
   if (r.complete)
     r.genus = static_cast<int>((static_cast<long long>(surface.triangles.size()) - 2LL * static_cast<long long>(body.n) +

@@ -11,6 +11,7 @@
 #include "constrict/points.hpp"
 #include "core/detail/surface_components.hpp"
 #include "core/detail/union_find.hpp"
+#include "core/detail/volume_filter.hpp"
 
 namespace constrict {
 namespace {
@@ -78,17 +79,7 @@ std::vector<int> detail::surface_of_vertex(std::size_t n, const TriMesh3& mesh) 
     uf.join(t[0], t[1]);
     uf.join(t[0], t[2]);
   }
-  std::vector<int> comp(n, -1), index(n, -1);
-  for (const auto& t : mesh.triangles)
-    for (int v : t) comp[static_cast<std::size_t>(v)] = 0;  // (in a triangle)
-  int count = 0;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (comp[v] < 0) continue;
-    const auto r = static_cast<std::size_t>(uf.find(static_cast<int>(v)));
-    if (index[r] < 0) index[r] = count++;
-    comp[v] = index[r];
-  }
-  return comp;
+  return number_surfaces(n, mesh, [&](int v) { return uf.find(v); });
 }
 
 // Far from 1 (beyond 2^±kRescaleExponent) the products overflow (inf - inf = NaN) or underflow:
@@ -103,6 +94,11 @@ int magnitude_exponent(const PointSet& pts) {
 }  // namespace
 
 double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
+  return detail::mesh_volume_of_surfaces(pts, mesh, detail::surface_of_vertex(pts.size(), mesh));
+}
+
+double detail::mesh_volume_of_surfaces(const PointSet& pts, const TriMesh3& mesh, const std::vector<int>& comp,
+                                       VolumeEstimate* estimate) {
   const int e = magnitude_exponent(pts);
   PointSet scaled;
   const PointSet* use = &pts;
@@ -116,11 +112,14 @@ double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
   // Each connected surface about the centre of its own box: the terms of a surface far from the
   // common centre cancel (two spheres of radius 1 at 1e9 from each other: the volume came out
   // wrong in its first digit). One surface through every point keeps the common box's centre.
-  const std::vector<int> comp = detail::surface_of_vertex(q.size(), mesh);
   const std::vector<std::array<double, 3>> origin = surface_centres(q, comp);
   const bool one = origin.size() == 1;
   double vol = 0;
+  // (The filter's terms read the coordinates as given, in the triangle's own order.)
+  VolumeFilterSum filter(mesh.triangles.empty() ? nullptr : pts[static_cast<std::size_t>(mesh.triangles[0][0])]);
   for (const auto& t : mesh.triangles) {
+    if (estimate)
+      filter.add(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])], pts[static_cast<std::size_t>(t[2])]);
     const double* a = q[static_cast<std::size_t>(t[0])];
     const double* b = q[static_cast<std::size_t>(t[1])];
     const double* c = q[static_cast<std::size_t>(t[2])];
@@ -135,6 +134,7 @@ double mesh_volume(const PointSet& pts, const TriMesh3& mesh) {
     const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
     vol += ax * (uy * vz - uz * vy) + ay * (uz * vx - ux * vz) + az * (ux * vy - uy * vx);
   }
+  if (estimate) *estimate = filter.estimate(mesh.triangles.size());
   return std::ldexp(vol / 6.0, 3 * e);
 }
 

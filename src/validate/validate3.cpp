@@ -20,6 +20,7 @@
 #include "constrict/predicates.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/first_index.hpp"
+#include "core/detail/surface_components.hpp"
 
 namespace constrict {
 namespace {
@@ -180,7 +181,13 @@ Status check_all_points(const std::vector<std::size_t>& off, const MeshCheckOpti
 std::vector<int> face_union_find(const TriMesh3& mesh, std::size_t n);
 Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off, std::vector<int>& parent,
                       const MeshCheckOptions& options, MeshCheck& d);
-Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
+// The double volume (mesh_volume) and the exact orientation's filter sum, both over the faces.
+struct Volume {
+  double approx = 0;
+  VolumeEstimate estimate;
+};
+Volume measure_volume(const PointSet& pts, const TriMesh3& mesh, std::vector<int>& parent);
+Status check_outward(const PointSet& pts, const TriMesh3& mesh, const Volume& volume, MeshCheck& d);
 Status check_self_intersections(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d);
 
 }  // namespace
@@ -202,9 +209,11 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   if (n > 0x7fffffffu) return fail(d, "too many points");
 
   if (Status s = check_faces(pts, mesh, d); !s) return s;
-  // The sequential passes overlap: the union-find of the faces (for check_topology) runs on the
-  // other core while the vertex links are built and checked.
+  // The sequential passes overlap: what reads only the faces runs on the other core while the
+  // vertex links are built and checked: the union-find of the faces (for check_topology), and
+  // from it the double volume and the orientation filter's sum (for check_outward).
   std::vector<int> parent;
+  Volume volume;
   tbb::task_group side;
   const struct Join {
     tbb::task_group& g;
@@ -214,6 +223,7 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   side.run([&] {
     try {
       parent = face_union_find(mesh, n);
+      volume = measure_volume(pts, mesh, parent);
     } catch (const std::bad_alloc&) {
       side_failed = true;
     }
@@ -229,7 +239,7 @@ Status validate_mesh3(const PointSet& pts, const TriMesh3& mesh, MeshCheck* deta
   side.wait();
   if (side_failed) throw std::bad_alloc();
   if (Status s = check_topology(mesh, links.off, parent, options, d); !s) return s;
-  if (Status s = check_outward(pts, mesh, d); !s) return s;
+  if (Status s = check_outward(pts, mesh, volume, d); !s) return s;
   if (options.self_intersections) return check_self_intersections(pts, mesh, d);
   return Status::ok();
 }
@@ -473,18 +483,23 @@ Status check_topology(const TriMesh3& mesh, const std::vector<std::size_t>& off,
   return Status::ok();
 }
 
+// mesh_volume over the surfaces of the union-find (not a second one), with the filter's sum in
+// the same pass.
+Volume measure_volume(const PointSet& pts, const TriMesh3& mesh, std::vector<int>& parent) {
+  Volume v;
+  v.approx = detail::mesh_volume_of_surfaces(
+      pts, mesh, detail::number_surfaces(pts.size(), mesh, [&](int x) { return find_root(parent, x); }), &v.estimate);
+  return v;
+}
+
 // 7. outward: the sign decides, exactly (the double volume can overflow, underflow or cancel).
-Status check_outward(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
-  // Two independent sequential sums: the volume on the other core.
-  tbb::task_group side;
-  side.run([&] { d.volume = mesh_volume(pts, mesh); });
+Status check_outward(const PointSet& pts, const TriMesh3& mesh, const Volume& volume, MeshCheck& d) {
   const int* tris = mesh.triangles.empty() ? nullptr : mesh.triangles[0].data();
-  const VolumeEstimate est = signed_volume_estimate(pts.coords.data(), tris, mesh.triangles.size());
-  const int sign = signed_volume_sign(pts.coords.data(), tris, mesh.triangles.size(), &est);
-  side.wait();
+  const int sign = signed_volume_sign(pts.coords.data(), tris, mesh.triangles.size(), &volume.estimate);
   // A body much thinner than it is long can cancel the double sum (near-collinear points:
   // -5.5e-23 for an exact 6.2e-35); the exact value then.
-  d.volume = signed_volume_checked(pts.coords.data(), tris, mesh.triangles.size(), d.volume, &d.volume_exact, &est);
+  d.volume = signed_volume_checked(pts.coords.data(), tris, mesh.triangles.size(), volume.approx, &d.volume_exact,
+                                   &volume.estimate);
   d.outward = sign > 0;
   if (!d.outward) return fail(d, "orientation is inward (signed volume " + std::to_string(d.volume) + ")");
   return Status::ok();

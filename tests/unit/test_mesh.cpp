@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -18,6 +20,7 @@
 #include "constrict/io.hpp"
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
+#include "core/detail/surface_components.hpp"
 #include "test_fixtures.hpp"
 
 namespace constrict {
@@ -393,6 +396,59 @@ TEST(MeshWrite, StlRefusesWhatFloatsCannotHold) {
 
 // The outward test is exact: a tetrahedron's surface at scales where the double volume overflows
 // (2^1000), underflows (2^-1000, and subnormal coordinates), and far from the origin (cancellation).
+// The mesh check sums the volume and the orientation filter in one pass, over the surfaces of its
+// own union-find: the same bits as mesh_volume() and signed_volume_estimate() apart, on several
+// surfaces (one far away) and at scales where mesh_volume rescales the coordinates.
+TEST(MeshVolume, OnePassGivesTheBitsOfTheTwoPasses) {
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (const int k : {0, 700, -700}) {
+      std::vector<std::array<double, 3>> all;
+      std::vector<std::array<int, 3>> faces;
+      for (const double shift : {0.0, 3.0, 1e6}) {
+        std::vector<std::array<double, 3>> sphere;
+        for (int i = 0; i < 150; ++i) {
+          double v[3] = {g(rng), g(rng), g(rng)};
+          const double r = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+          sphere.push_back({std::ldexp(v[0] / r + shift, k), std::ldexp(v[1] / r, k), std::ldexp(v[2] / r - shift, k)});
+        }
+        Mesh3Result r;
+        ASSERT_TRUE(reconstruct3(make3(sphere), Constrict3Options{}, r).is_ok()) << "seed " << seed;
+        const int base = static_cast<int>(all.size());
+        for (const auto& f : r.mesh.triangles) faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+        all.insert(all.end(), sphere.begin(), sphere.end());
+      }
+      const PointSet p = make3(all);
+      const TriMesh3 m = mesh(faces);
+      VolumeEstimate est;
+      const double v = detail::mesh_volume_of_surfaces(p, m, detail::surface_of_vertex(p.size(), m), &est);
+      const VolumeEstimate apart = signed_volume_estimate(p.coords.data(), m.triangles[0].data(), m.triangles.size());
+      // (bit for bit: at 2^700 the filter's sums overflow to NaN, at 2^-700 the volume is 0)
+      const auto bits = [](double x) {
+        std::uint64_t u;
+        std::memcpy(&u, &x, sizeof u);
+        return u;
+      };
+      EXPECT_EQ(bits(v), bits(mesh_volume(p, m))) << "seed " << seed << " 2^" << k;
+      if (k == 0) {
+        EXPECT_GT(v, 0) << "seed " << seed;
+      }
+      EXPECT_EQ(bits(est.sum6), bits(apart.sum6)) << "seed " << seed << " 2^" << k;
+      EXPECT_EQ(bits(est.bound6), bits(apart.bound6)) << "seed " << seed << " 2^" << k;
+      EXPECT_EQ(est.valid, apart.valid) << "seed " << seed << " 2^" << k;
+      MeshCheck mc;
+      MeshCheckOptions mo;
+      mo.any_topology = true;
+      ASSERT_TRUE(validate_mesh3(p, m, &mc, mo).is_ok()) << mc.reason;
+      EXPECT_EQ(mc.components, 3);
+      if (!mc.volume_exact) {
+        EXPECT_EQ(mc.volume, v) << "seed " << seed << " 2^" << k;
+      }
+    }
+  }
+}
+
 TEST(MeshVolumeSign, ExactAtAnyScale) {
   const int out[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};  // outward for the points below
   for (const int k : {0, 1000, -1000, -1070}) {
