@@ -271,18 +271,19 @@ class LabelQueue {
     return c >= 0 ? conf : -conf;
   }
   // A label passed on from a tetrahedron labelled lab_from (+1 / -1), through a cosine coded by
-  // encode(). Ignored once t is done.
-  void push_coded(int t, float code, int lab_from) {
-    if (!(code == code)) return;
+  // encode(). Ignored once t is done; true when pushed.
+  bool push_coded(int t, float code, int lab_from) {
+    if (!(code == code)) return false;
     const float conf = std::abs(code);
     const int bk = static_cast<int>(conf * kBuckets);
     // A push into a lower bucket than a pending entry of the same tetrahedron could only pop
     // after that entry has labelled it (then it is skipped as done): not pushed, same labels.
-    if (bk < best_b_[uz(t)]) return;
+    if (bk < best_b_[uz(t)]) return false;
     best_b_[uz(t)] = static_cast<std::int16_t>(bk);
     const int lab = std::signbit(code) ? -lab_from : lab_from;
     bucket_[uz(bk)].push_back({t, lab < 0 ? -conf : conf});
     top_ = std::max(top_, bk);
+    return true;
   }
   bool pop(Item& out) {
     while (top_ >= 0 && bucket_[uz(top_)].empty()) --top_;
@@ -523,7 +524,12 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
     const auto& code = pass[uz(it.tet)];
     for (int i = 0; i < 4; ++i) {
       const int m = b.nbr[uz(it.tet)][uz(i)];
-      if (m >= 0 && uz(m) < T0) q.push_coded(m, code[uz(i)], lab);
+      // A pushed tetrahedron is fetched now: the pushes of the top bucket pop next (last in,
+      // first out), and their records were the loop's misses (0.85 -> 0.75 s on the 10⁶ star).
+      if (m >= 0 && uz(m) < T0 && q.push_coded(m, code[uz(i)], lab)) {
+        __builtin_prefetch(&b.nbr[uz(m)]);
+        __builtin_prefetch(&pass[uz(m)]);
+      }
     }
     if (flags[uz(it.tet)] & kThrough) {
       const auto from = static_cast<std::uint32_t>(it.tet);
