@@ -15,6 +15,7 @@
 #include <tbb/task_group.h>
 
 #include "constrict/detail/stages3.hpp"
+#include "core/detail/big_vector.hpp"
 #include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
@@ -137,8 +138,9 @@ constexpr char kFlat = kSeam | kCoplanar;
 constexpr char kCocircular = 16;  // coplanar up to rounding and cocircular too (cocircular())
 
 // The circumballs, and each tetrahedron's flags.
-std::vector<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
-  std::vector<Ball> ball(b.T0);
+BigArray<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
+  BigArray<Ball> ball;
+  ball.allocate(b.T0);  // (every entry written below, on both cores: not zero-filled first)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const auto& v = b.tets[t];
@@ -411,13 +413,14 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
   // same order as the propagation would evaluate it; at a hull face the cosine with the outer
   // half-space), computed in parallel beforehand: the sequential propagation then reads only the
   // tetrahedron it pops, not its neighbours' balls.
-  std::vector<std::array<float, 4>> pass(T0);
+  BigArray<std::array<float, 4>> pass;  // (every entry written below, in parallel: not zero-filled)
+  pass.allocate(T0);
   std::vector<char> flags(T0);  // kFlatHull, kCoplanar, kSeam, kThrough
   // Passes through seams (sorted by `from`), and the hull faces beyond seams (`to` unused).
   std::vector<Through> through, hull_seeds;
   std::atomic<bool> any_flat{false};  // (label_flat_sets has nothing to do without one)
   {
-    const std::vector<Ball> ball = circumballs(b, flags);
+    const BigArray<Ball> ball = circumballs(b, flags);
     const auto cosine = [](const Ball& x, const Ball& y) {
       const double dx = x[0] - y[0], dy = x[1] - y[1], dz = x[2] - y[2];
       return (x[3] * x[3] + y[3] * y[3] - (dx * dx + dy * dy + dz * dz)) / (2 * x[3] * y[3]);
