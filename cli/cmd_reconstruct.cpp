@@ -364,6 +364,14 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
   }
   j["surfaces"] = list;
   if (!j.contains("handles")) j["handles"] = nlohmann::json::array();  // (to_json lists them when any)
+  // The handle stage's kept changes by what they did (a region may close several loops at once);
+  // the tetrahedra they added and removed apart.
+  long long closed = 0, opened = 0, sealed = 0;
+  for (const Handle3Change& c : sr.mesh.handle_changes) {
+    if (c.kind == Handle3Change::Kind::CloseLoop) closed += c.delta_faces / 4;
+    else if (c.kind == Handle3Change::Kind::OpenTunnel) opened += (c.delta_faces < 0 ? -c.delta_faces : c.delta_faces) / 4;
+    else ++sealed;
+  }
   j["topology"] = {{"mode", to_string(sr.topology)},
                    {"decision", to_string(sr.decision)},
                    {"parts", sr.parts},
@@ -376,8 +384,11 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
                    {"gap_threshold", sr.gap_threshold},
                    {"min_gap_spacings",
                     std::isfinite(sr.min_gap_spacings) ? nlohmann::json(sr.min_gap_spacings) : nlohmann::json(nullptr)},
-                   {"handles_closed", sr.mesh.handle_added},
-                   {"handles_opened", sr.mesh.handle_removed},
+                   {"handles_closed", closed},
+                   {"handles_opened", opened},
+                   {"cavities_sealed", sealed},
+                   {"handle_tetrahedra_added", sr.mesh.handle_added},
+                   {"handle_tetrahedra_removed", sr.mesh.handle_removed},
                    {"ms_infer", sr.ms_infer},
                    {"ms_assemble", sr.ms_assemble}};
 }

@@ -219,6 +219,9 @@ struct Handle3Change {
   enum class Kind { CloseLoop, OpenTunnel, SealCavity };
   Kind kind = Kind::CloseLoop;
   std::size_t tetrahedra = 0;          ///< tetrahedra added or removed
+  /// Its change of the surfaces' face count F = 2N - 4c + 4g: +4 per loop closed or tunnel
+  /// opened, -4 per surface sealed off (a region may close several loops at once).
+  long long delta_faces = 0;
   int bridges_before = 0;              ///< bridge faces (kBridgeRatio) around it before ...
   int bridges_after = 0;               ///< ... and after (kept: fewer)
   double worst_ratio_before = 0, worst_ratio_after = 0;  ///< largest face ratio around it

@@ -352,6 +352,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
     h.tetrahedra = changed.size();
+    h.delta_faces = dF;
     if (part_of && mixed0 > 0 && dF < 0 && mixed_surfaces(b, *part_of) < mixed0) {
       if (debug) std::fprintf(stderr, "handle seal: %zu tets separate two parts: kept\n", changed.size());
       h.separates_parts = true;

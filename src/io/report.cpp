@@ -54,6 +54,7 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
     for (const Handle3Change& c : r.handle_changes)
       h.push_back({{"kind", to_string(c.kind)},
                    {"tetrahedra", c.tetrahedra},
+                   {"delta_faces", c.delta_faces},
                    {"bridges_before", c.bridges_before},
                    {"bridges_after", c.bridges_after},
                    {"worst_ratio_before", c.worst_ratio_before},

@@ -540,10 +540,19 @@ TEST(Surfaces3Property, ThinTubesKeepTheirHandles) {
       right += static_cast<int>(r.surfaces.size()) == s.surfaces && r.genus == s.genus;
       over += r.genus > s.genus;
       // What decided each loop the rule kept is in the report: a long loop.
+      long long delta = 0;
       for (const Handle3Change& c : r.mesh.handle_changes) {
         if (c.kind == Handle3Change::Kind::CloseLoop && c.bridges_before < 4) {
           EXPECT_GE(c.loop_spacings, 16.0) << what;
         }
+        delta += c.delta_faces;
+      }
+      // One part grows as one genus-0 surface (F = 2N - 4); the kept changes account for the rest
+      // of F = 2N - 4c + 4g (the report counts the loops closed from them).
+      if (r.decision == SurfacesDecision::OnePart) {
+        EXPECT_EQ(static_cast<long long>(r.mesh.mesh.triangles.size()) - 2LL * static_cast<long long>(s.points.size()) + 4,
+                  delta)
+            << what;
       }
     }
   }
