@@ -364,13 +364,14 @@ void add_surfaces_json(const Surfaces3Result& sr, nlohmann::json& j) {
   }
   j["surfaces"] = list;
   if (!j.contains("handles")) j["handles"] = nlohmann::json::array();  // (to_json lists them when any)
-  // The handle stage's kept changes by what they did (a region may close several loops at once);
-  // the tetrahedra they added and removed apart.
+  // The handle stage's kept changes by what they did to F = 2N - 4c + 4g (a region may close
+  // several loops at once; a change that lowers F sealed surfaces off, whether it added or removed
+  // tetrahedra); the tetrahedra they added and removed apart.
   long long closed = 0, opened = 0, sealed = 0;
   for (const Handle3Change& c : sr.mesh.handle_changes) {
-    if (c.kind == Handle3Change::Kind::CloseLoop) closed += c.delta_faces / 4;
-    else if (c.kind == Handle3Change::Kind::OpenTunnel) opened += (c.delta_faces < 0 ? -c.delta_faces : c.delta_faces) / 4;
-    else ++sealed;
+    if (c.delta_faces < 0) sealed -= c.delta_faces / 4;
+    else if (c.kind == Handle3Change::Kind::OpenTunnel) opened += c.delta_faces / 4;
+    else closed += c.delta_faces / 4;
   }
   j["topology"] = {{"mode", to_string(sr.topology)},
                    {"decision", to_string(sr.decision)},
