@@ -2,10 +2,18 @@
 // The constrict command line: parse arguments, call the library, write results. No geometry here.
 #include <CLI/CLI.hpp>
 
+#include <sys/mman.h>
 #include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <thread>
 
 #include <cstdio>
 #include <cstdlib>
@@ -60,11 +68,72 @@ void fix_mmap_threshold() {
 #endif
 }
 
+// The heap's top faulted in on the idle core. A first touch of fresh memory is a page fault, and
+// on a VM that hands free memory back to its host it costs the most: about 5 % of CGAL's 3D
+// insertion on the 10^6 star (docs/benchmarks.md, "The heap's top faulted in beside"), which runs
+// on one core while the other waits. Blocks below the mmap threshold (CGAL's cells and vertices,
+// most vectors) come from glibc's heap, which grows by moving the program break; with a top pad of
+// 8 MiB every move reaches that far ahead of the allocation that asked for it. A thread watches
+// the break and has the kernel fault in the pages below it (MADV_POPULATE_WRITE, Linux 5.14:
+// zero pages, as a first write would give; nothing reads or writes them), so that the allocating
+// thread finds them present. Outputs are unchanged; the peak grows by at most the pad. Not done
+// when CONSTRICT_NO_PREFAULT is set, when the user set glibc's top pad, under valgrind, or where
+// the kernel declines the call (the thread then ends).
+class HeapTopPrefault {
+ public:
+  HeapTopPrefault() {
+#if defined(__linux__) && defined(__GLIBC__) && defined(M_TOP_PAD)
+    if (std::getenv("CONSTRICT_NO_PREFAULT")) return;
+    if (const char* t = std::getenv("GLIBC_TUNABLES"); t && std::strstr(t, "top_pad")) return;
+    if (const char* pre = std::getenv("LD_PRELOAD"); pre && std::strstr(pre, "vgpreload")) return;
+    if (mallopt(M_TOP_PAD, kPad) != 1) return;
+    try {
+      thread_ = std::thread([this] { run(); });
+    } catch (...) {  // no thread: go on without
+    }
+#endif
+  }
+  HeapTopPrefault(const HeapTopPrefault&) = delete;
+  HeapTopPrefault& operator=(const HeapTopPrefault&) = delete;
+  ~HeapTopPrefault() {
+    stop_.store(true, std::memory_order_relaxed);
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  static constexpr int kPad = 8 << 20;
+  static constexpr int kPopulateWrite = 23;  // MADV_POPULATE_WRITE (older headers lack the name)
+
+  static std::uintptr_t program_break() {
+    const long page = sysconf(_SC_PAGESIZE);
+    return reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~static_cast<std::uintptr_t>(page > 0 ? page - 1 : 4095);
+  }
+  void run() {
+    std::uintptr_t done = program_break();
+    auto idle = std::chrono::microseconds(250);
+    while (!stop_.load(std::memory_order_relaxed)) {
+      const std::uintptr_t top = program_break();
+      if (top > done) {
+        if (madvise(reinterpret_cast<void*>(done), top - done, kPopulateWrite) != 0 && errno == EINVAL) return;
+        idle = std::chrono::microseconds(250);
+      } else {
+        idle = std::min(2 * idle, std::chrono::microseconds(4000));  // the heap is still: look less often
+      }
+      done = top;  // also after a trim, which lowers the break
+      std::this_thread::sleep_for(idle);
+    }
+  }
+
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   reexec_with_huge_pages(argv);
   fix_mmap_threshold();
+  HeapTopPrefault prefault;  // before any large allocation; ends when main returns
   using namespace constrict;
   CLI::App app{"constrict " CONSTRICT_VERSION_STRING
                " - object reconstruction with the gamma-neighborhood graph (Veltkamp)"};
