@@ -829,6 +829,67 @@ TEST(Surfaces3Property, DecimatedBracketFilletIsNoPartOfItsOwn) {
   EXPECT_EQ(r.patches_joined, 1u);
 }
 
+// Concentric spheres sampled uniformly at random (not blue noise: clumps and holes), radius 1 with
+// n points, each next one g area spacings (sqrt(4 pi / n)) further out with as many points per
+// area. Between 3 and 4 spacings the narrower gap rule splits the shells but the labels of the
+// wall between them are inside: until 2026-12-07 the pieces were joined as one object, and the
+// handle stage failed to seal the inner shell (one surface of genus 0-2). A piece around a void
+// of tetrahedra labelled outside now stays a part of its own (surfaces3.cpp,
+// pieces_around_voids); the nesting of the parts' surfaces gives the roles.
+PointSet random_shells(int shells, double gap, int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  PointSet p;
+  p.dim = 3;
+  const double s = std::sqrt(4 * M_PI / n);
+  for (int k = 0; k < shells; ++k) {
+    const double r = 1 + k * gap * s;
+    const int m = static_cast<int>(n * r * r);
+    for (int i = 0; i < m; ++i) {
+      double v[3] = {normal(rng), normal(rng), normal(rng)};
+      const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      for (double c : v) p.coords.push_back(r * c / len);
+    }
+  }
+  return p;
+}
+
+TEST(Surfaces3Property, RandomlySampledShellsKeepTheirCavities) {
+  struct Case {
+    int shells;
+    double gap;
+    unsigned seed;
+  };
+  for (const Case c : {Case{2, 3.0, 1}, Case{2, 3.5, 2}, Case{2, 4.0, 3}, Case{3, 4.0, 4}}) {
+    const int n = 3000;
+    const PointSet p = random_shells(c.shells, c.gap, n, c.seed);
+    SCOPED_TRACE(std::to_string(c.shells) + " shells, gap " + std::to_string(c.gap) + " spacings, seed " +
+                 std::to_string(c.seed));
+    std::printf("random shells: %d, gap %.1f, %zu points, seed %u\n", c.shells, c.gap, p.size(), c.seed);
+    const Surfaces3Result r = run_auto(p);
+    expect_closed_oriented(r, "random shells");
+    ASSERT_EQ(r.surfaces.size(), static_cast<std::size_t>(c.shells));
+    EXPECT_EQ(r.genus, 0);
+    // Each surface holds the points of one sphere (the first n of the innermost, then the next
+    // sphere's), and the roles alternate from the outside: outer, inner, outer.
+    std::vector<std::pair<int, const Surface3*>> by_first;
+    for (const Surface3& sf : r.surfaces) by_first.emplace_back(sf.points.front(), &sf);
+    std::sort(by_first.begin(), by_first.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    int first = 0;
+    for (int k = 0; k < c.shells; ++k) {
+      const double radius = 1 + k * c.gap * std::sqrt(4 * M_PI / n);
+      const int m = static_cast<int>(n * radius * radius);
+      const Surface3& sf = *by_first[static_cast<std::size_t>(k)].second;
+      EXPECT_EQ(sf.points.size(), static_cast<std::size_t>(m)) << "sphere " << k;
+      EXPECT_EQ(sf.points.front(), first) << "sphere " << k;
+      EXPECT_EQ(sf.points.back(), first + m - 1) << "sphere " << k;
+      const bool outer = (c.shells - 1 - k) % 2 == 0;
+      EXPECT_EQ(sf.role, outer ? SurfaceRole::Outer : SurfaceRole::Inner) << "sphere " << k;
+      first += m;
+    }
+  }
+}
+
 // ... but an inner shell sampled more sparsely than the outer one, within that gap of it, is no
 // patch: every tetrahedron between the shells is labelled inside (the object's wall), none outside.
 // And small separate objects beside a big one: only tetrahedra labelled outside between them.
