@@ -9,18 +9,18 @@
 #endif
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
-#include <thread>
-
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "commands.hpp"
@@ -96,12 +96,18 @@ class HeapTopPrefault {
   HeapTopPrefault(const HeapTopPrefault&) = delete;
   HeapTopPrefault& operator=(const HeapTopPrefault&) = delete;
   ~HeapTopPrefault() {
-    stop_.store(true, std::memory_order_relaxed);
-    if (thread_.joinable()) thread_.join();
+    if (!thread_.joinable()) return;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
   }
 
  private:
   static constexpr int kPad = 8 << 20;
+  static constexpr int kDefaultPad = 128 << 10;  // glibc's (mallopt(3))
   static constexpr int kPopulateWrite = 23;  // MADV_POPULATE_WRITE (older headers lack the name)
 
   static std::uintptr_t program_break() {
@@ -111,20 +117,26 @@ class HeapTopPrefault {
   void run() {
     std::uintptr_t done = program_break();
     auto idle = std::chrono::microseconds(250);
-    while (!stop_.load(std::memory_order_relaxed)) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
       const std::uintptr_t top = program_break();
       if (top > done) {
-        if (madvise(reinterpret_cast<void*>(done), top - done, kPopulateWrite) != 0 && errno == EINVAL) return;
+        if (madvise(reinterpret_cast<void*>(done), top - done, kPopulateWrite) != 0 && errno == EINVAL) {
+          (void)mallopt(M_TOP_PAD, kDefaultPad);  // a kernel before 5.14: glibc's default back
+          return;
+        }
         idle = std::chrono::microseconds(250);
       } else {
         idle = std::min(2 * idle, std::chrono::microseconds(4000));  // the heap is still: look less often
       }
       done = top;  // also after a trim, which lowers the break
-      std::this_thread::sleep_for(idle);
+      wake_.wait_for(lock, idle, [this] { return stop_; });
     }
   }
 
-  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;  // guarded by mutex_
   std::thread thread_;
 };
 
