@@ -381,7 +381,9 @@ std::vector<char> pieces_around_voids(const PointSet& pts, const Delaunay3& dt, 
     for (int v : points) on[uz(v)] = 0;
     if (points.size() < kVoidTets || widest < kVoidWidth) continue;
     for (int v : points) ++count[uz(piece[uz(v)])];
-    for (std::size_t p = 0; p < piece_size.size(); ++p) {
+    for (int v : points) {  // each piece on the void once: its count is then cleared
+      const std::size_t p = uz(piece[uz(v)]);
+      if (count[p] == 0) continue;
       if (2 * count[p] >= piece_size[p]) around[p] = 1;
       count[p] = 0;
     }
