@@ -1136,8 +1136,8 @@ class SurfaceRepair {
   static constexpr std::size_t kWorkPerIncidence = 64, kWorkFloor = std::size_t(1) << 20;
 
  public:
-  SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body)
-      : pts_(pts), dt_(dt), in_(in_body), at_(dt) {
+  SurfaceRepair(const PointSet& pts, const Delaunay3& dt, std::vector<char>& in_body, const std::vector<int>* part_of)
+      : pts_(pts), dt_(dt), in_(in_body), part_of_(part_of), at_(dt) {
     // Face ids through the neighbour relation (a face and its mirror in the neighbour share one).
     const std::size_t T = dt.tets.size();
     face_id_.assign(T, {{-1, -1, -1, -1}});
@@ -1161,6 +1161,10 @@ class SurfaceRepair {
   }
 
   bool capped() const { return capped_; }
+  // The work done (on_surface, vertex_ok and the local search's tries), and work done before by
+  // another repair of the same body, which counts against this one's bound.
+  std::size_t work() const { return work_; }
+  void start_after(std::size_t work) { work_ = work; }
   // Past the work bound (class comment): run() gives up, and says so.
   bool over_budget() {
     capped_ = capped_ || work_ > work_limit_;
@@ -1290,7 +1294,9 @@ class SurfaceRepair {
         int k = 0;
         for (int l = 0; l < 3; ++l) {
           const int y = v[uz(kFaceOut[i][l])];
-          if (y != x) e[uz(k++)] = y;
+          if (y == x) continue;
+          if (part_of_ && (*part_of_)[uz(y)] != (*part_of_)[uz(x)]) return false;  // a face across two parts
+          e[uz(k++)] = y;
         }
         link.push_back(e);
       }
@@ -1377,6 +1383,7 @@ class SurfaceRepair {
   const PointSet& pts_;
   const Delaunay3& dt_;
   std::vector<char>& in_;
+  const std::vector<int>* part_of_;  // when given, a surface face joins the points of one part only
   const VertexTets at_;
   std::vector<std::array<int, 4>> face_id_;  // per tetrahedron, the id of the face opposite vertex i
   std::vector<int> count_;                   // per face id, its tetrahedra in the body
@@ -1431,10 +1438,22 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
     // run(): every point on the surface with a disk link (a closed 2-manifold through all points,
     // oriented out of the body) and the parts' face count; kept with as many surfaces as parts
     // (then the same Euler characteristic: the parts' topology). validate_surfaces3() checks all.
-    SurfaceRepair repair(pts, dt, in_body);
-    const bool repaired = repair.run(faces.size(), freed);
-    r.repair_capped = repair.capped();
-    if (repaired) {
+    // First with every surface face inside one part (each point on its own part's surface); where
+    // that cannot be had, with faces across parts too (linked grid tori: a valid pair of tori
+    // with one point on the other's surface, where the fallback makes one surface).
+    // Both tries share one work bound.
+    const std::vector<char> start = in_body;
+    std::size_t spent = 0;
+    for (const std::vector<int>* own : {&parts.part_of, static_cast<const std::vector<int>*>(nullptr)}) {
+      if (!own) in_body = start;
+      freed = 0;
+      SurfaceRepair repair(pts, dt, in_body, own);
+      repair.start_after(spent);
+      const bool repaired = repair.run(faces.size(), freed);
+      spent = repair.work();
+      r.repair_capped = repair.capped();
+      if (repair.capped()) break;
+      if (!repaired) continue;
       body.clear();
       for (std::size_t t = 0; t < dt.tets.size(); ++t)
         if (in_body[t]) body.push_back(dt.tets[t]);
@@ -1447,7 +1466,10 @@ bool several_parts(const PointSet& pts, const Delaunay3& dt, const Parts& parts,
       std::size_t components = 0;
       for (std::size_t v = 0; v < pts.size(); ++v) components += uf.find(static_cast<int>(v)) == static_cast<int>(v);
       assembled = components == parts.points.size();
-      if (assembled) r.repaired_tetrahedra = freed;
+      if (assembled) {
+        r.repaired_tetrahedra = freed;
+        break;
+      }
     }
   }
   if (!assembled) {

@@ -890,6 +890,28 @@ TEST(Surfaces3Property, RandomlySampledShellsKeepTheirCavities) {
   }
 }
 
+// A noisy hollow ball, uniformly random (2 913 points: an inner sphere of 402 off-centre in an outer
+// one of 2 511, 3.25 area spacings apart, noise 0.31 spacing; a differential sweep's set, seed 20).
+// Its parts are found, their surfaces are not Delaunay faces of all points, and the repair of the
+// common body made a valid pair of surfaces in which one inner point sat on the outer surface
+// (2 512 and 401 points, three faces across the wall). The repair now first asks every surface
+// face to lie within one part.
+TEST(Surfaces3Property, NoisyHollowBallRepairKeepsEachPointOnItsShell) {
+  PointSet p;
+  ReadOptions ro;
+  ro.dim = 3;
+  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/hollow_noisy_repair_crossing.xyz", ro, p).is_ok());
+  const Surfaces3Result r = run_auto(p);
+  expect_closed_oriented(r, "noisy hollow ball");
+  ASSERT_EQ(r.surfaces.size(), 2u);
+  EXPECT_EQ(r.genus, 0);
+  std::vector<std::size_t> sizes;
+  for (const Surface3& sf : r.surfaces) sizes.push_back(sf.points.size());
+  std::sort(sizes.begin(), sizes.end());
+  EXPECT_EQ(sizes, (std::vector<std::size_t>{402, 2511}));
+  EXPECT_GT(r.repaired_tetrahedra, 0u);  // (the repair's path, not a fallback's)
+}
+
 // ... but an inner shell sampled more sparsely than the outer one, within that gap of it, is no
 // patch: every tetrahedron between the shells is labelled inside (the object's wall), none outside.
 // And small separate objects beside a big one: only tetrahedra labelled outside between them.
