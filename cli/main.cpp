@@ -110,11 +110,10 @@ class HeapTopPrefault {
   static constexpr int kDefaultPad = 128 << 10;  // glibc's (mallopt(3))
   static constexpr int kPopulateWrite = 23;  // MADV_POPULATE_WRITE (older headers lack the name)
 
-  static std::uintptr_t program_break() {
-    const long page = sysconf(_SC_PAGESIZE);
-    return reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~static_cast<std::uintptr_t>(page > 0 ? page - 1 : 4095);
-  }
   void run() {
+    const long page = sysconf(_SC_PAGESIZE);
+    const std::uintptr_t mask = ~static_cast<std::uintptr_t>(page > 0 ? page - 1 : 4095);
+    const auto program_break = [mask] { return reinterpret_cast<std::uintptr_t>(sbrk(0)) & mask; };
     std::uintptr_t done = program_break();
     auto idle = std::chrono::microseconds(250);
     std::unique_lock<std::mutex> lock(mutex_);

@@ -342,6 +342,8 @@ std::vector<char> pieces_around_voids(const PointSet& pts, const Delaunay3& dt, 
                                       const std::vector<int>& piece, const std::vector<std::size_t>& piece_size,
                                       const std::vector<float>& label) {
   std::vector<char> around(piece_size.size(), 0), seen(dt.tets.size(), 0), on(pts.size(), 0);
+  std::vector<double> spacing(pts.size());  // the local spacing: to the third Delaunay neighbour
+  for (std::size_t v = 0; v < pts.size(); ++v) spacing[v] = std::sqrt(len2(pts[v], pts[uz(nn[v])]));
   std::vector<std::size_t> count(piece_size.size(), 0);
   std::vector<int> comp, stack, points;
   const auto outside = [&](int t) { return label[uz(t)] >= 0; };
@@ -366,17 +368,12 @@ std::vector<char> pieces_around_voids(const PointSet& pts, const Delaunay3& dt, 
     double widest = 0;
     points.clear();
     for (int t : comp) {
-      const auto& v = dt.tets[uz(t)];
-      double edge = 0, spacing = 0;
-      for (int i = 0; i < 4; ++i) {
-        if (!on[uz(v[uz(i)])]) {
-          on[uz(v[uz(i)])] = 1;
-          points.push_back(v[uz(i)]);
+      for (int x : dt.tets[uz(t)])
+        if (!on[uz(x)]) {
+          on[uz(x)] = 1;
+          points.push_back(x);
         }
-        spacing = std::max(spacing, len2(pts[uz(v[uz(i)])], pts[uz(nn[uz(v[uz(i)])])]));
-        for (int j = i + 1; j < 4; ++j) edge = std::max(edge, len2(pts[uz(v[uz(i)])], pts[uz(v[uz(j)])]));
-      }
-      if (spacing > 0) widest = std::max(widest, std::sqrt(edge / spacing));
+      widest = std::max(widest, detail::bridge_ratio3(pts, spacing, dt.tets[uz(t)]));
     }
     for (int v : points) on[uz(v)] = 0;
     if (points.size() < kVoidTets || widest < kVoidWidth) continue;

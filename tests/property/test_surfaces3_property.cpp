@@ -734,12 +734,18 @@ TEST(Surfaces3Property, StackedBoxesTwoSpacingsApartGetNoFalseHandle) {
   }
 }
 
-// A regression file of tests/data/topology3 in auto mode: one closed, oriented surface.
-Surfaces3Result run_regression_file(const std::string& name, const char* what) {
+// The points of a regression file of tests/data/topology3 (empty, with a failure, if unreadable).
+PointSet regression_points(const std::string& name) {
   PointSet p;
   ReadOptions ro;
   ro.dim = 3;
   EXPECT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/" + name, ro, p).is_ok()) << name;
+  return p;
+}
+
+// A regression file of tests/data/topology3 in auto mode: one closed, oriented surface.
+Surfaces3Result run_regression_file(const std::string& name, const char* what) {
+  const PointSet p = regression_points(name);
   const Surfaces3Result r = run_auto(p);
   expect_closed_oriented(r, what);
   EXPECT_EQ(r.surfaces.size(), 1u) << what;
@@ -753,10 +759,8 @@ Surfaces3Result run_regression_file(const std::string& name, const char* what) {
 // decision fell back to one part, one surface with a bridge. A plane separates them
 // (surfaces3.cpp, planes_apart), so each keeps its own body.
 TEST(Surfaces3Property, RotatedPlatesApartKeepTheirOwnBodies) {
-  PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/plates_rotated_gap4.xyz", ro, p).is_ok());
+  const PointSet p = regression_points("plates_rotated_gap4.xyz");
+  ASSERT_GT(p.size(), 0u);
   const Surfaces3Result r = run_auto(p);
   expect_closed_oriented(r, "two rotated plates");
   EXPECT_EQ(r.parts, 2u);
@@ -897,10 +901,8 @@ TEST(Surfaces3Property, RandomlySampledShellsKeepTheirCavities) {
 // (2 512 and 401 points, three faces across the wall). The repair now first asks every surface
 // face to lie within one part.
 TEST(Surfaces3Property, NoisyHollowBallRepairKeepsEachPointOnItsShell) {
-  PointSet p;
-  ReadOptions ro;
-  ro.dim = 3;
-  ASSERT_TRUE(read_points(std::string(CONSTRICT_TEST_DATA_DIR) + "/topology3/hollow_noisy_repair_crossing.xyz", ro, p).is_ok());
+  const PointSet p = regression_points("hollow_noisy_repair_crossing.xyz");
+  ASSERT_GT(p.size(), 0u);
   const Surfaces3Result r = run_auto(p);
   expect_closed_oriented(r, "noisy hollow ball");
   ASSERT_EQ(r.surfaces.size(), 2u);

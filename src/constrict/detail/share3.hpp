@@ -3,6 +3,7 @@
 // src/topology/surfaces3.cpp, builds it for its own inference first).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "constrict/constrict3.hpp"
@@ -22,5 +23,9 @@ Status reconstruct3_sharing(const PointSet& points, const Constrict3Options& opt
 // docs/reconstruction-3d.md §4.5), as the growth reads them: the auto topology's test of parts
 // that nearly touch (docs/topology.md). dt is unchanged when this returns (its arrays are lent).
 std::vector<float> circumball_labels3(const PointSet& points, Delaunay3& dt);
+
+// A tetrahedron's bridge ratio: its longest edge over the largest spacing of its four vertices
+// (hull3.cpp). The handle stage measures a cavity's width by it, the auto topology a void's.
+double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, const std::array<int, 4>& tet);
 
 }  // namespace constrict::detail

@@ -18,6 +18,7 @@
 #include "constrict/constrict3.hpp"
 #include "constrict/delaunay.hpp"
 #include "constrict/detail/body3.hpp"
+#include "constrict/detail/share3.hpp"
 #include "constrict/gamma_graph.hpp"
 
 namespace constrict::detail {
@@ -97,8 +98,7 @@ class HullConstriction3 {
 };
 // Bridge ratio of the triangle abc: its longest edge over the largest spacing of its vertices.
 double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, int a, int b, int c);
-// The same for a tetrahedron: its longest edge over the largest spacing of its four vertices.
-double bridge_ratio3(const PointSet& pts, const std::vector<double>& spacing, const std::array<int, 4>& tet);
+// The same for a tetrahedron: bridge_ratio3(pts, spacing, tet) in share3.hpp.
 
 // ---- star cavities (cavity3.cpp; docs/reconstruction-3d.md §3) ---------------------------------
 
