@@ -250,12 +250,89 @@ bool edge_shorter(const PointSet& pts, const std::vector<int>& nn, int p, int q,
   return compare_gap3(pts[uz(p)], pts[uz(q)], a, b, 2, g) < 0;
 }
 
+// The narrower rule's pieces, robust to a random sample's sparse spots (docs/topology.md, "Inner
+// shells of random samples"). A point in a hole of a uniformly random sample has a spacing about
+// twice its neighbours', and then an edge to the next shell three spacings away passed the
+// narrower rule: one or two such edges joined two shells into one piece (9 of 24 random nested
+// sets at 3 area spacings, measured). So an edge joins pieces at once only below kStrictShare of
+// the narrower rule's factor. An edge between that and the narrower rule (a loose edge) joins two
+// strict pieces when one of them has fewer than kLoosePiece points, or when on each side at least
+// kLooseEnds points, and at least kLooseShare of the points with a Delaunay edge to the other
+// piece, have loose edges to it (two shells 3 spacings apart: 1-7 of 3 000-15 000 points).
+constexpr double kStrictShare = 1.2 / 1.5;
+constexpr std::size_t kLoosePiece = 64;
+constexpr std::size_t kLooseEnds = 3;
+constexpr double kLooseShare = 0.02;
+
+// The strict pieces of uf_fine joined by the loose edges (see kStrictShare); the loose edges
+// that join nothing are appended to long_fine, which holds every other Delaunay edge between two
+// strict pieces (find_parts).
+void join_loose(UnionFind& uf_fine, std::vector<std::array<int, 2>> loose, std::vector<std::array<int, 2>>& long_fine) {
+  std::sort(loose.begin(), loose.end());
+  loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
+  if (loose.empty()) return;
+  // (Sizes and roots of the strict pieces, before any loose join: the decisions do not depend on
+  // the order in which the joins are made.)
+  std::vector<std::size_t> size(uf_fine.up.size(), 0);  // per root
+  for (std::size_t v = 0; v < size.size(); ++v) ++size[uz(uf_fine.find(static_cast<int>(v)))];
+  using End = std::array<int, 4>;  // the two pieces' roots (ascending), the side (0, 1), a point there
+  const auto ends_of = [&](const std::array<int, 2>& e, std::vector<End>& out) {
+    const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
+    if (a < b) out.push_back({a, b, 0, e[0]}), out.push_back({a, b, 1, e[1]});
+    else if (b < a) out.push_back({b, a, 0, e[1]}), out.push_back({b, a, 1, e[0]});
+  };
+  const auto unique_sorted = [](std::vector<End>& v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  };
+  std::vector<std::array<int, 2>> join;
+  std::vector<End> ends;
+  for (const auto& e : loose) {
+    const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
+    if (a == b) continue;
+    if (size[uz(a)] < kLoosePiece || size[uz(b)] < kLoosePiece) join.push_back(e);
+    else ends_of(e, ends);
+  }
+  unique_sorted(ends);
+  // Each candidate pair's interface: the points with a Delaunay edge to the other piece.
+  std::vector<std::array<int, 2>> pairs;
+  for (const End& x : ends)
+    if (pairs.empty() || pairs.back() != std::array<int, 2>{x[0], x[1]}) pairs.push_back({x[0], x[1]});
+  std::vector<End> face;
+  if (!pairs.empty())
+    for (const auto* list : {&loose, &long_fine})
+      for (const auto& e : *list) {
+        const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
+        if (a != b && std::binary_search(pairs.begin(), pairs.end(), std::array<int, 2>{std::min(a, b), std::max(a, b)}))
+          ends_of(e, face);
+      }
+  unique_sorted(face);
+  const auto count = [](const std::vector<End>& v, std::size_t& i, const std::array<int, 2>& pr, std::size_t side[2]) {
+    for (; i < v.size() && v[i][0] == pr[0] && v[i][1] == pr[1]; ++i) ++side[uz(v[i][2])];
+  };
+  std::size_t ie = 0, jf = 0;
+  for (const auto& pr : pairs) {
+    std::size_t loose_n[2] = {0, 0}, face_n[2] = {0, 0};
+    while (jf < face.size() && (face[jf][0] < pr[0] || (face[jf][0] == pr[0] && face[jf][1] < pr[1]))) ++jf;
+    count(ends, ie, pr, loose_n);
+    count(face, jf, pr, face_n);
+    bool both = true;
+    for (int k = 0; k < 2; ++k)
+      both = both && loose_n[k] >= kLooseEnds && static_cast<double>(loose_n[k]) >= kLooseShare * static_cast<double>(face_n[k]);
+    if (both) join.push_back(pr);
+  }
+  for (const auto& e : join) uf_fine.join(e[0], e[1]);
+  for (const auto& e : loose)
+    if (uf_fine.find(e[0]) != uf_fine.find(e[1])) long_fine.push_back(e);
+}
+
 // Parts: components of the Delaunay edges shorter than gap local spacings, then settle_parts().
 // And in the same pass over the edges the parts of the narrower rule (narrow · gap; split_by_labels).
 Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int>& nn, double gap, double narrow,
                  std::size_t min_points, std::size_t& merged, Parts& fine) {
   UnionFind uf(pts.size()), uf_fine(pts.size());
-  std::vector<std::array<int, 2>> long_edges, long_fine;
+  std::vector<std::array<int, 2>> long_edges, long_fine, loose;
+  const double strict = kStrictShare * narrow;
   // (An edge whose ends are joined already decides nothing: every edge between two final parts
   // is tested, and recorded as long. The narrower rule's parts lie within the rule's.)
   // Each point's squared spacing, as compare_gap3 sums it: its filter (gap_filtered) decides most
@@ -269,8 +346,13 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
   };
   for_tet_edges(dt, [&](int p, int q) {
     if (uf_fine.find(p) == uf_fine.find(q)) return;
-    if (shorter(p, q, narrow)) {
+    if (shorter(p, q, strict)) {
       uf_fine.join(p, q);
+      uf.join(p, q);
+      return;
+    }
+    if (shorter(p, q, narrow)) {
+      loose.push_back({std::min(p, q), std::max(p, q)});
       uf.join(p, q);
       return;
     }
@@ -279,6 +361,7 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
     if (shorter(p, q, gap)) uf.join(p, q);
     else long_edges.push_back({std::min(p, q), std::max(p, q)});
   });
+  join_loose(uf_fine, std::move(loose), long_fine);
   // (Most of the narrower rule's long edges end up inside one of its parts: only those between
   // parts are kept. On 10^6 random points of a star-shaped surface the list held millions.)
   long_fine.erase(std::remove_if(long_fine.begin(), long_fine.end(),

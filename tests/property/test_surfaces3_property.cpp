@@ -858,40 +858,58 @@ PointSet random_shells(int shells, double gap, int n, unsigned seed) {
   return p;
 }
 
+// Each surface holds the points of one sphere of random_shells (the first n of the innermost,
+// then the next sphere's), and the roles alternate from the outside: outer, inner, outer.
+void expect_one_surface_per_shell(int shells, double gap, int n, unsigned seed) {
+  const PointSet p = random_shells(shells, gap, n, seed);
+  SCOPED_TRACE(std::to_string(shells) + " shells, gap " + std::to_string(gap) + " spacings, " + std::to_string(n) +
+               " points on the innermost, seed " + std::to_string(seed));
+  std::printf("random shells: %d, gap %.1f, %zu points, seed %u\n", shells, gap, p.size(), seed);
+  const Surfaces3Result r = run_auto(p);
+  expect_closed_oriented(r, "random shells");
+  ASSERT_EQ(r.surfaces.size(), static_cast<std::size_t>(shells));
+  EXPECT_EQ(r.genus, 0);
+  std::vector<std::pair<int, const Surface3*>> by_first;
+  for (const Surface3& sf : r.surfaces) by_first.emplace_back(sf.points.front(), &sf);
+  std::sort(by_first.begin(), by_first.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  int first = 0;
+  for (int k = 0; k < shells; ++k) {
+    const double radius = 1 + k * gap * std::sqrt(4 * M_PI / n);
+    const int m = static_cast<int>(n * radius * radius);
+    const Surface3& sf = *by_first[static_cast<std::size_t>(k)].second;
+    EXPECT_EQ(sf.points.size(), static_cast<std::size_t>(m)) << "sphere " << k;
+    EXPECT_EQ(sf.points.front(), first) << "sphere " << k;
+    EXPECT_EQ(sf.points.back(), first + m - 1) << "sphere " << k;
+    const bool outer = (shells - 1 - k) % 2 == 0;
+    EXPECT_EQ(sf.role, outer ? SurfaceRole::Outer : SurfaceRole::Inner) << "sphere " << k;
+    first += m;
+  }
+}
+
 TEST(Surfaces3Property, RandomlySampledShellsKeepTheirCavities) {
   struct Case {
     int shells;
     double gap;
     unsigned seed;
   };
-  for (const Case c : {Case{2, 3.0, 1}, Case{2, 3.5, 2}, Case{2, 4.0, 3}, Case{3, 4.0, 4}}) {
-    const int n = 3000;
-    const PointSet p = random_shells(c.shells, c.gap, n, c.seed);
-    SCOPED_TRACE(std::to_string(c.shells) + " shells, gap " + std::to_string(c.gap) + " spacings, seed " +
-                 std::to_string(c.seed));
-    std::printf("random shells: %d, gap %.1f, %zu points, seed %u\n", c.shells, c.gap, p.size(), c.seed);
-    const Surfaces3Result r = run_auto(p);
-    expect_closed_oriented(r, "random shells");
-    ASSERT_EQ(r.surfaces.size(), static_cast<std::size_t>(c.shells));
-    EXPECT_EQ(r.genus, 0);
-    // Each surface holds the points of one sphere (the first n of the innermost, then the next
-    // sphere's), and the roles alternate from the outside: outer, inner, outer.
-    std::vector<std::pair<int, const Surface3*>> by_first;
-    for (const Surface3& sf : r.surfaces) by_first.emplace_back(sf.points.front(), &sf);
-    std::sort(by_first.begin(), by_first.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    int first = 0;
-    for (int k = 0; k < c.shells; ++k) {
-      const double radius = 1 + k * c.gap * std::sqrt(4 * M_PI / n);
-      const int m = static_cast<int>(n * radius * radius);
-      const Surface3& sf = *by_first[static_cast<std::size_t>(k)].second;
-      EXPECT_EQ(sf.points.size(), static_cast<std::size_t>(m)) << "sphere " << k;
-      EXPECT_EQ(sf.points.front(), first) << "sphere " << k;
-      EXPECT_EQ(sf.points.back(), first + m - 1) << "sphere " << k;
-      const bool outer = (c.shells - 1 - k) % 2 == 0;
-      EXPECT_EQ(sf.role, outer ? SurfaceRole::Outer : SurfaceRole::Inner) << "sphere " << k;
-      first += m;
-    }
-  }
+  for (const Case c : {Case{2, 3.0, 1}, Case{2, 3.5, 2}, Case{2, 4.0, 3}, Case{3, 4.0, 4}})
+    expect_one_surface_per_shell(c.shells, c.gap, 3000, c.seed);
+}
+
+// A point in a hole of a uniformly random sample has a spacing about twice its neighbours': its
+// edges to the next shell, 3 area spacings away, passed the narrower gap rule, and one to a few
+// of them joined two shells into one piece. The narrower rule now joins pieces across such edges
+// only where enough points on each side have them (docs/topology.md, "Inner shells of random
+// samples"). Of the 48 sets of 3 and 4 shells with 500, 2 000 and 8 000 points on the innermost,
+// seeds 1-8, 21 failed before and 2 now (their parts are found; the common body is
+// `not-delaunay`, Limits); six of the fixed ones run here (each fails without the rule).
+TEST(Surfaces3Property, RandomShellsThreeSpacingsApartAreNotJoinedAtASparseSpot) {
+  struct Case {
+    int shells, n;
+    unsigned seed;
+  };
+  for (const Case c : {Case{3, 500, 8}, Case{3, 2000, 5}, Case{3, 8000, 1}, Case{4, 500, 3}, Case{4, 2000, 5}, Case{4, 8000, 1}})
+    expect_one_surface_per_shell(c.shells, 3.0, c.n, c.seed);
 }
 
 // A noisy hollow ball, uniformly random (2 913 points: an inner sphere of 402 off-centre in an outer
