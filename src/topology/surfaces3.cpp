@@ -346,14 +346,10 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
   };
   for_tet_edges(dt, [&](int p, int q) {
     if (uf_fine.find(p) == uf_fine.find(q)) return;
-    if (shorter(p, q, strict)) {
-      uf_fine.join(p, q);
+    if (shorter(p, q, narrow)) {  // (first: most edges not joined already are longer)
       uf.join(p, q);
-      return;
-    }
-    if (shorter(p, q, narrow)) {
-      loose.push_back({std::min(p, q), std::max(p, q)});
-      uf.join(p, q);
+      if (shorter(p, q, strict)) uf_fine.join(p, q);
+      else loose.push_back({std::min(p, q), std::max(p, q)});
       return;
     }
     long_fine.push_back({std::min(p, q), std::max(p, q)});
