@@ -264,22 +264,27 @@ constexpr std::size_t kLoosePiece = 64;
 constexpr std::size_t kLooseEnds = 3;
 constexpr double kLooseShare = 0.02;
 
-// The strict pieces of uf_fine joined by the loose edges (see kStrictShare); the loose edges
-// that join nothing are appended to long_fine, which holds every other Delaunay edge between two
-// strict pieces (find_parts).
-void join_loose(UnionFind& uf_fine, std::vector<std::array<int, 2>> loose, std::vector<std::array<int, 2>>& long_fine) {
+// The strict pieces (uf_strict) joined by the loose edges (see kStrictShare). long_fine holds the
+// Delaunay edges between two of the narrower rule's pieces as find_parts met them; where loose
+// edges leave two strict pieces apart, the edges between the final pieces within one of those are
+// added (a second pass over the tetrahedra, only when two large strict pieces have loose edges
+// between them).
+void join_loose(const Delaunay3& dt, UnionFind& uf_strict, std::vector<std::array<int, 2>> loose,
+                std::vector<std::array<int, 2>>& long_fine) {
   std::sort(loose.begin(), loose.end());
   loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
   if (loose.empty()) return;
   // (Sizes and roots of the strict pieces, before any loose join: the decisions do not depend on
   // the order in which the joins are made.)
-  std::vector<std::size_t> size(uf_fine.up.size(), 0);  // per root
-  for (std::size_t v = 0; v < size.size(); ++v) ++size[uz(uf_fine.find(static_cast<int>(v)))];
+  const std::size_t n = uf_strict.up.size();
+  std::vector<int> root(n);
+  std::vector<std::size_t> size(n, 0);  // per root
+  for (std::size_t v = 0; v < n; ++v) ++size[uz(root[v] = uf_strict.find(static_cast<int>(v)))];
   using End = std::array<int, 4>;  // the two pieces' roots (ascending), the side (0, 1), a point there
-  const auto ends_of = [&](const std::array<int, 2>& e, std::vector<End>& out) {
-    const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
-    if (a < b) out.push_back({a, b, 0, e[0]}), out.push_back({a, b, 1, e[1]});
-    else if (b < a) out.push_back({b, a, 0, e[1]}), out.push_back({b, a, 1, e[0]});
+  const auto ends_of = [&](int p, int q, std::vector<End>& out) {
+    const int a = root[uz(p)], b = root[uz(q)];
+    if (a < b) out.push_back({a, b, 0, p}), out.push_back({a, b, 1, q});
+    else if (b < a) out.push_back({b, a, 0, q}), out.push_back({b, a, 1, p});
   };
   const auto unique_sorted = [](std::vector<End>& v) {
     std::sort(v.begin(), v.end());
@@ -288,24 +293,26 @@ void join_loose(UnionFind& uf_fine, std::vector<std::array<int, 2>> loose, std::
   std::vector<std::array<int, 2>> join;
   std::vector<End> ends;
   for (const auto& e : loose) {
-    const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
+    const int a = root[uz(e[0])], b = root[uz(e[1])];
     if (a == b) continue;
     if (size[uz(a)] < kLoosePiece || size[uz(b)] < kLoosePiece) join.push_back(e);
-    else ends_of(e, ends);
+    else ends_of(e[0], e[1], ends);
   }
   unique_sorted(ends);
-  // Each candidate pair's interface: the points with a Delaunay edge to the other piece.
-  std::vector<std::array<int, 2>> pairs;
+  std::vector<std::array<int, 2>> pairs;  // the candidate pairs of large strict pieces, ascending
   for (const End& x : ends)
     if (pairs.empty() || pairs.back() != std::array<int, 2>{x[0], x[1]}) pairs.push_back({x[0], x[1]});
+  // Each candidate pair's interface (the points with a Delaunay edge to the other piece), and every
+  // edge between two strict pieces (for long_fine below).
   std::vector<End> face;
+  std::vector<std::array<int, 2>> cross;
   if (!pairs.empty())
-    for (const auto* list : {&loose, &long_fine})
-      for (const auto& e : *list) {
-        const int a = uf_fine.find(e[0]), b = uf_fine.find(e[1]);
-        if (a != b && std::binary_search(pairs.begin(), pairs.end(), std::array<int, 2>{std::min(a, b), std::max(a, b)}))
-          ends_of(e, face);
-      }
+    for_tet_edges(dt, [&](int p, int q) {
+      const int a = root[uz(p)], b = root[uz(q)];
+      if (a == b) return;
+      cross.push_back({std::min(p, q), std::max(p, q)});
+      if (std::binary_search(pairs.begin(), pairs.end(), std::array<int, 2>{std::min(a, b), std::max(a, b)})) ends_of(p, q, face);
+    });
   unique_sorted(face);
   const auto count = [](const std::vector<End>& v, std::size_t& i, const std::array<int, 2>& pr, std::size_t side[2]) {
     for (; i < v.size() && v[i][0] == pr[0] && v[i][1] == pr[1]; ++i) ++side[uz(v[i][2])];
@@ -313,24 +320,27 @@ void join_loose(UnionFind& uf_fine, std::vector<std::array<int, 2>> loose, std::
   std::size_t ie = 0, jf = 0;
   for (const auto& pr : pairs) {
     std::size_t loose_n[2] = {0, 0}, face_n[2] = {0, 0};
-    while (jf < face.size() && (face[jf][0] < pr[0] || (face[jf][0] == pr[0] && face[jf][1] < pr[1]))) ++jf;
     count(ends, ie, pr, loose_n);
-    count(face, jf, pr, face_n);
+    count(face, jf, pr, face_n);  // (every pair has face entries: its loose edges are Delaunay edges)
     bool both = true;
     for (int k = 0; k < 2; ++k)
       both = both && loose_n[k] >= kLooseEnds && static_cast<double>(loose_n[k]) >= kLooseShare * static_cast<double>(face_n[k]);
     if (both) join.push_back(pr);
   }
-  for (const auto& e : join) uf_fine.join(e[0], e[1]);
+  for (const auto& e : join) uf_strict.join(e[0], e[1]);
   for (const auto& e : loose)
-    if (uf_fine.find(e[0]) != uf_fine.find(e[1])) long_fine.push_back(e);
+    if (uf_strict.find(e[0]) != uf_strict.find(e[1])) long_fine.push_back(e);
+  for (const auto& e : cross)
+    if (uf_strict.find(e[0]) != uf_strict.find(e[1])) long_fine.push_back(e);
 }
 
 // Parts: components of the Delaunay edges shorter than gap local spacings, then settle_parts().
 // And in the same pass over the edges the parts of the narrower rule (narrow · gap; split_by_labels).
 Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int>& nn, double gap, double narrow,
                  std::size_t min_points, std::size_t& merged, Parts& fine) {
-  UnionFind uf(pts.size()), uf_fine(pts.size());
+  // uf: the gap rule; uf_narrow: the narrower rule's edges; uf_fine: its strict pieces, joined
+  // by the loose edges at the end (join_loose).
+  UnionFind uf(pts.size()), uf_narrow(pts.size()), uf_fine(pts.size());
   std::vector<std::array<int, 2>> long_edges, long_fine, loose;
   const double strict = kStrictShare * narrow;
   // (An edge whose ends are joined already decides nothing: every edge between two final parts
@@ -344,20 +354,27 @@ Parts find_parts(const PointSet& pts, const Delaunay3& dt, const std::vector<int
     const int c = detail::gap_filtered(2.0 * len2(pts[uz(p)], pts[uz(q)]), s2[uz(p)] + s2[uz(q)], g, 2, 3, ok);
     return ok ? c < 0 : edge_shorter(pts, nn, p, q, g);
   };
+  // (uf, uf_narrow and long_fine evolve as they did with the narrower rule alone: an edge within
+  // one of its pieces is recorded only if join_loose leaves strict pieces apart, and found then.)
   for_tet_edges(dt, [&](int p, int q) {
     if (uf_fine.find(p) == uf_fine.find(q)) return;
-    if (shorter(p, q, narrow)) {  // (first: most edges not joined already are longer)
-      uf.join(p, q);
+    const bool same_narrow = uf_narrow.find(p) == uf_narrow.find(q);
+    if (shorter(p, q, narrow)) {
+      if (!same_narrow) {
+        uf_narrow.join(p, q);
+        uf.join(p, q);
+      }
       if (shorter(p, q, strict)) uf_fine.join(p, q);
       else loose.push_back({std::min(p, q), std::max(p, q)});
       return;
     }
+    if (same_narrow) return;
     long_fine.push_back({std::min(p, q), std::max(p, q)});
     if (uf.find(p) == uf.find(q)) return;
     if (shorter(p, q, gap)) uf.join(p, q);
     else long_edges.push_back({std::min(p, q), std::max(p, q)});
   });
-  join_loose(uf_fine, std::move(loose), long_fine);
+  join_loose(dt, uf_fine, std::move(loose), long_fine);
   // (Most of the narrower rule's long edges end up inside one of its parts: only those between
   // parts are kept. On 10^6 random points of a star-shaped surface the list held millions.)
   long_fine.erase(std::remove_if(long_fine.begin(), long_fine.end(),
