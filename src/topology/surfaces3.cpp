@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -430,9 +429,13 @@ constexpr double kInsideShare = 0.05;
 // the voids of real inner shells measured 263+ tetrahedra, 99+ points and 5.66+ spacings, the
 // pockets of noise and of closed cuts at most 32, 48 and 4.55). Measured here: the cavities of
 // randomly sampled hollow balls, 15 000 tetrahedra with every point of the inner shell on them;
-// the exterior beside the fillets of a decimated bracket reaches the hull.
+// the exterior beside the fillets of a decimated bracket reaches the hull. A void 16 times that
+// size (kLargeVoidTets tetrahedra, kLargeVoidPoints points) needs no such width: the cavity of a
+// shell 3 spacings inside its outer one (random samples) is only 4.8-5.7 spacings across at its
+// widest, with 1 588-2 991 points on it (docs/topology.md, "Inner shells of random samples").
 constexpr std::size_t kVoidTets = 64;
 constexpr double kVoidWidth = 5.0;
+constexpr std::size_t kLargeVoidTets = 16 * kVoidTets, kLargeVoidPoints = 16 * kVoidTets;
 
 std::vector<char> pieces_around_voids(const PointSet& pts, const Delaunay3& dt, const std::vector<int>& nn,
                                       const std::vector<int>& piece, const std::vector<std::size_t>& piece_size,
@@ -472,7 +475,8 @@ std::vector<char> pieces_around_voids(const PointSet& pts, const Delaunay3& dt, 
       widest = std::max(widest, detail::bridge_ratio3(pts, spacing, dt.tets[uz(t)]));
     }
     for (int v : points) on[uz(v)] = 0;
-    if (points.size() < kVoidTets || widest < kVoidWidth) continue;
+    const bool large = comp.size() >= kLargeVoidTets && points.size() >= kLargeVoidPoints;
+    if (points.size() < kVoidTets || (widest < kVoidWidth && !large)) continue;
     for (int v : points) ++count[uz(piece[uz(v)])];
     for (int v : points) {  // each piece on the void once: its count is then cleared
       const std::size_t p = uz(piece[uz(v)]);
