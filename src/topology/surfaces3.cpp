@@ -270,8 +270,11 @@ constexpr double kLooseShare = 0.02;
 // between them).
 void join_loose(const Delaunay3& dt, UnionFind& uf_strict, std::vector<std::array<int, 2>> loose,
                 std::vector<std::array<int, 2>>& long_fine) {
-  std::sort(loose.begin(), loose.end());
-  loose.erase(std::unique(loose.begin(), loose.end()), loose.end());
+  const auto compact = [](auto& v) {  // sorted, without repeats
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  };
+  compact(loose);
   if (loose.empty()) return;
   // (Sizes and roots of the strict pieces, before any loose join: the decisions do not depend on
   // the order in which the joins are made.)
@@ -280,40 +283,30 @@ void join_loose(const Delaunay3& dt, UnionFind& uf_strict, std::vector<std::arra
   std::vector<std::size_t> size(n, 0);  // per root
   for (std::size_t v = 0; v < n; ++v) ++size[uz(root[v] = uf_strict.find(static_cast<int>(v)))];
   using End = std::array<int, 4>;  // the two pieces' roots (ascending), the side (0, 1), a point there
-  const auto ends_of = [&](int p, int q, std::vector<End>& out) {
-    const int a = root[uz(p)], b = root[uz(q)];
-    if (a < b) out.push_back({a, b, 0, p}), out.push_back({a, b, 1, q});
-    else if (b < a) out.push_back({b, a, 0, q}), out.push_back({b, a, 1, p});
-  };
-  const auto unique_sorted = [](std::vector<End>& v) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  };
   std::vector<std::array<int, 2>> join;
   std::vector<End> ends;
   for (const auto& e : loose) {
     const int a = root[uz(e[0])], b = root[uz(e[1])];
     if (a == b) continue;
-    if (size[uz(a)] < kLoosePiece || size[uz(b)] < kLoosePiece) join.push_back(e);
-    else ends_of(e[0], e[1], ends);
+    if (size[uz(a)] < kLoosePiece || size[uz(b)] < kLoosePiece) {
+      join.push_back(e);
+    } else {  // (side 0: the piece with the smaller root)
+      ends.push_back({std::min(a, b), std::max(a, b), a < b ? 0 : 1, e[0]});
+      ends.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : 0, e[1]});
+    }
   }
-  unique_sorted(ends);
+  compact(ends);
   std::vector<std::array<int, 2>> pairs;  // the candidate pairs of large strict pieces, ascending
   for (const End& x : ends)
     if (pairs.empty() || pairs.back() != std::array<int, 2>{x[0], x[1]}) pairs.push_back({x[0], x[1]});
   // Each candidate pair's interface (the points with a Delaunay edge to the other piece, as
   // (pair, point) keys), and every edge between two strict pieces (for long_fine below). The pass
-  // meets an edge once per tetrahedron: both lists are compacted whenever they outgrow 2 n entries
-  // (or twice their distinct entries)
-  // (a hollow ball of 914 381 random points: 10.2 million edge visits across its gap, 20.2 million
-  // interface entries, 0.9 million distinct).
+  // meets an edge once per tetrahedron, so both lists are compacted whenever they outgrow their
+  // bound, 2 n entries or twice their distinct ones (a hollow ball of 914 381 random points: 10.2
+  // million edge visits across its gap, 20.2 million interface entries, 0.9 million distinct).
   std::vector<std::uint64_t> face;
   std::vector<std::array<int, 2>> cross;
   std::size_t face_bound = std::max<std::size_t>(2 * n, std::size_t{1} << 16), cross_bound = face_bound;
-  const auto compact = [](auto& v) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  };
   const auto compact_over = [&](auto& v, std::size_t& bound) {
     if (v.size() <= bound) return;
     compact(v);
