@@ -9,6 +9,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +20,8 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -28,12 +31,16 @@
 namespace constrict {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using P3 = K::Point_3;
-using Tri3 = K::Triangle_3;
-using Seg3 = K::Segment_3;
-using TriTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, std::vector<Tri3>::const_iterator>>>;
-using SegTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, std::vector<Seg3>::const_iterator>>>;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;  // (the exact degeneracy test)
+// The distance search in plain doubles: it measures, it decides nothing. With Epick's exact
+// fallback, comparisons of nearly equal distances (a mesh 10^15 from the origin, the other at
+// it) ran in rational arithmetic at every node: minutes for 300 triangles.
+using KD = CGAL::Simple_cartesian<double>;
+using P3 = KD::Point_3;
+using Tri3 = KD::Triangle_3;
+using Seg3 = KD::Segment_3;
+using TriTree = CGAL::AABB_tree<CGAL::AABB_traits<KD, CGAL::AABB_triangle_primitive<KD, std::vector<Tri3>::const_iterator>>>;
+using SegTree = CGAL::AABB_tree<CGAL::AABB_traits<KD, CGAL::AABB_segment_primitive<KD, std::vector<Seg3>::const_iterator>>>;
 
 // Fixed block size: the per-element results do not depend on the thread count, and they are
 // reduced serially, so the output is bit-identical on any machine with the same double arithmetic.
@@ -45,6 +52,15 @@ constexpr double kMaxGrid = 1e6;
 // elements than the budget). (It stopped after 200 steps, 1.25^200 ~ 1e19, and a relative spacing
 // below about 1e-19 then sampled 10^12 points per triangle: a hang.)
 constexpr double kSpacingGrowth = 1.25;
+// A query farther from the other side's bounding box than kFarQuery times its diagonal is measured
+// to the box: within a relative 1/kFarQuery of the distance to the mesh. From far off every node of
+// the search tree is at nearly the same distance, so none was pruned (a vertex 10^17 off made
+// each of its samples visit every triangle).
+constexpr double kFarQuery = 1048576.0;
+// Triangles (segments) shorter than 2^-kTinyExponent of the coordinates' magnitude are left out of
+// the search trees: the projections onto them underflow (a mesh 10^-100 across beside one at 1:
+// NaN distances). Both sides' samples still reach the other side.
+constexpr int kTinyExponent = 200;
 // FNV-1a over the coordinates' bit patterns, plus a final mix of the high bits.
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
 constexpr std::uint64_t kFnvPrime = 1099511628211ull;
@@ -139,21 +155,61 @@ int common_exponent(const PointSet& a, const PointSet& b) {
   return e > kRescaleExponent || e < -kRescaleExponent ? e : 0;
 }
 
-// Spacing that honours both the wanted relative spacing and the sample budget.
+// Spacing that honours both the wanted relative spacing and the sample budget. `longest`: the
+// sampled side's longest element, at which every element has its fewest samples (the reference's
+// diagonal alone is no bound: a result 10^10 times the reference's size, or with one vertex far
+// off, was sampled at the reference's scale, 10^12 samples per triangle: a hang).
 template <class CountAt>
-double choose_spacing(double h, double diagonal, std::size_t budget, CountAt&& count_at) {
+double choose_spacing(double h, double diagonal, double longest, std::size_t budget, CountAt&& count_at) {
+  const double bound = std::max(diagonal, longest);
   // (Among subnormals h * 1.25 can round back to h: then the next double up.)
-  while (h > 0 && std::isfinite(h) && h <= diagonal && count_at(h) > budget)
+  while (h > 0 && std::isfinite(h) && h <= bound && count_at(h) > budget)
     h = std::max(h * kSpacingGrowth, std::nextafter(h, std::numeric_limits<double>::infinity()));
   return h;
 }
 
+// The area, with the edge vectors scaled to their largest coordinate first: the cross product's
+// squares underflow for triangles near 1e-100 and overflow near 1e100 (a triangle 1e-100 across
+// measured 0 and was taken for a degenerate one).
 double area3(const double* a, const double* b, const double* c) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double m = std::max({std::fabs(ux), std::fabs(uy), std::fabs(uz), std::fabs(vx), std::fabs(vy), std::fabs(vz)});
+  if (!(m > 0) || !std::isfinite(m)) return 0;
+  ux /= m, uy /= m, uz /= m, vx /= m, vy /= m, vz /= m;
   const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+  return 0.5 * m * (m * std::sqrt(nx * nx + ny * ny + nz * nz));
 }
+
+// Not on one line (exactly): a triangle with an area, at any scale.
+bool proper3(const double* a, const double* b, const double* c) {
+  return !CGAL::collinear(K::Point_3(a[0], a[1], a[2]), K::Point_3(b[0], b[1], b[2]), K::Point_3(c[0], c[1], c[2]));
+}
+
+// The distance from q to the tree's primitives, or to their bounding box when q is far from it
+// (kFarQuery).
+struct Distance {
+  template <class Tree>
+  explicit Distance(const Tree& tree) {
+    const auto box = tree.bbox();
+    lo = {box.xmin(), box.ymin(), box.zmin()};
+    hi = {box.xmax(), box.ymax(), box.zmax()};
+    far = kFarQuery * dist3(lo.data(), hi.data());
+  }
+  template <class Tree>
+  double operator()(const Tree& tree, const P3& q) const {
+    double d2 = 0;
+    const double c[3] = {q.x(), q.y(), q.z()};
+    for (int k = 0; k < 3; ++k) {
+      const double o = c[k] < lo[uk(k)] ? lo[uk(k)] - c[k] : c[k] > hi[uk(k)] ? c[k] - hi[uk(k)] : 0.0;
+      d2 += o * o;
+    }
+    const double box = std::sqrt(d2);
+    return box > far ? box : std::sqrt(tree.squared_distance(q));
+  }
+  std::array<double, 3> lo{}, hi{};
+  double far = 0;
+};
 
 // Samples every triangle of `a` on a k×k grid and measures the distance to `tree`. The mean is the
 // exact integral of the piecewise-linear interpolant of the node distances (node weight =
@@ -164,12 +220,13 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
   const std::size_t F = a.m.triangles.size();
   std::vector<double> tmax(F, 0.0), tint(F, 0.0), tarea(F, 0.0);
   std::vector<std::size_t> tcount(F, 0);
+  const Distance distance(tree);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
       const auto& f = a.m.triangles[t];
       const double *A = a.p(f[0]), *B = a.p(f[1]), *C = a.p(f[2]);
       const double area = area3(A, B, C);
-      const std::size_t k = area > 0 ? grid_k(a.longest(t), h) : 1;
+      const std::size_t k = proper3(A, B, C) ? grid_k(a.longest(t), h) : 1;
       double mx = 0, integral = 0;
       for (std::size_t i = 0; i <= k; ++i)
         for (std::size_t j = 0; i + j <= k; ++j) {
@@ -177,7 +234,7 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
           const double u = static_cast<double>(j) / static_cast<double>(k);
           const P3 q(A[0] + s * (B[0] - A[0]) + u * (C[0] - A[0]), A[1] + s * (B[1] - A[1]) + u * (C[1] - A[1]),
                      A[2] + s * (B[2] - A[2]) + u * (C[2] - A[2]));
-          const double d = exact[t] ? 0.0 : std::sqrt(tree.squared_distance(q));
+          const double d = exact[t] ? 0.0 : distance(tree, q);
           mx = std::max(mx, d);
           // incident sub-triangles: corner 1, edge node 3, interior 6
           const bool on_i = i == 0, on_j = j == 0, on_d = i + j == k;
@@ -192,6 +249,12 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
     }
   });
   return reduce(tmax, tint, tarea, tcount);
+}
+
+double longest3(const Mesh& a) {
+  double m = 0;
+  for (std::size_t t = 0; t < a.m.triangles.size(); ++t) m = std::max(m, a.longest(t));
+  return m;
 }
 
 std::size_t count3(const Mesh& a, double h) {
@@ -219,7 +282,8 @@ Status check_mesh(const PointSet& pts, const TriMesh3& m, const char* what) {
 // therefore starts at its vertex of the fewest triangles (the first such). A triangle repeated
 // (the same three positions: 300 000 copies of one face overflowed the stack the same way) is in
 // the tree once; it adds nothing to a distance.
-std::vector<Tri3> triangles_of(const Mesh& a) {
+std::vector<Tri3> triangles_of(const Mesh& a, double tiny, bool& any_proper) {
+  any_proper = false;
   std::vector<std::uint32_t> valence(a.pts.size(), 0);
   for (const auto& f : a.m.triangles)
     for (int v : f) ++valence[static_cast<std::size_t>(v)];
@@ -250,7 +314,9 @@ std::vector<Tri3> triangles_of(const Mesh& a) {
     for (int k = 1; k < 3; ++k)
       if (valence[static_cast<std::size_t>(f[uk(k)])] < valence[static_cast<std::size_t>(f[uk(first)])]) first = k;
     const double *A = a.p(f[uk(first)]), *B = a.p(f[uk((first + 1) % 3)]), *C = a.p(f[uk((first + 2) % 3)]);
-    if (area3(A, B, C) > 0) out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
+    if (!proper3(A, B, C)) continue;
+    any_proper = true;
+    if (a.longest(i) >= tiny) out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
   }
   return out;
 }
@@ -302,9 +368,15 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   // A, B: the geometry (scaled if far from 1); A0: the coordinates as given, for the matching.
   const Mesh A{e != 0 ? result_scaled : result_points, result}, B{e != 0 ? reference_scaled : reference_points, reference};
   const Mesh A0{result_points, result};
-  const std::vector<Tri3> ta = triangles_of(A), tb = triangles_of(B);
-  if (ta.empty()) return {StatusCode::InvalidArgument, "result: no triangle with a positive area"};
-  if (tb.empty()) return {StatusCode::InvalidArgument, "reference: no triangle with a positive area"};
+  const double tiny = std::ldexp(1.0, std::max(max_coordinate_exponent(A.pts), max_coordinate_exponent(B.pts)) - kTinyExponent);
+  bool proper_a = false, proper_b = false;
+  const std::vector<Tri3> ta = triangles_of(A, tiny, proper_a), tb = triangles_of(B, tiny, proper_b);
+  for (const auto& [tris, proper, what] : {std::tuple{&ta, proper_a, "result"}, std::tuple{&tb, proper_b, "reference"}}) {
+    if (!tris->empty()) continue;
+    if (!proper) return {StatusCode::InvalidArgument, std::string(what) + ": no triangle with a positive area"};
+    return {StatusCode::InvalidArgument, std::string(what) + ": every triangle is below 2^-" + std::to_string(kTinyExponent) +
+                                             " of the coordinates' magnitude: the two meshes are not at comparable scales (check their units)"};
+  }
 
   MeshDistance d;
   // Reference bounding box over the used vertices.
@@ -381,8 +453,8 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   prepare(tree_a);
   prepare(tree_b);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
-  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count3(A, h); });
-  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count3(B, h); });
+  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, longest3(A), options.max_samples, [&](double h) { return count3(A, h); });
+  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, longest3(B), options.max_samples, [&](double h) { return count3(B, h); });
   const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
   const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
   put_sides(ab, ba, d);
@@ -421,6 +493,12 @@ Status segments_of(const std::vector<Polyline2>& lines, const char* what, std::v
   return Status::ok();
 }
 
+double longest2(const std::vector<Seg2>& s) {
+  double m = 0;
+  for (const auto& g : s) m = std::max(m, g.length());
+  return m;
+}
+
 std::size_t count2(const std::vector<Seg2>& s, double h) {
   std::size_t n = 0;
   for (const auto& g : s) n += grid_k(g.length(), h) + 1;
@@ -434,6 +512,7 @@ Side sample2(const std::vector<Seg2>& s, const SegTree& tree, double h, const st
   const std::size_t M = s.size();
   std::vector<double> smax(M, 0.0), sint(M, 0.0), slen(M, 0.0);
   std::vector<std::size_t> scount(M, 0);
+  const Distance distance(tree);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, M, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Seg2& g = s[i];
@@ -443,7 +522,7 @@ Side sample2(const std::vector<Seg2>& s, const SegTree& tree, double h, const st
       for (std::size_t j = 0; j <= k; ++j) {
         const double t = static_cast<double>(j) / static_cast<double>(k);
         const P3 q(g.a[0] + t * (g.b[0] - g.a[0]), g.a[1] + t * (g.b[1] - g.a[1]), 0.0);
-        const double d = exact[i] ? 0.0 : std::sqrt(tree.squared_distance(q));
+        const double d = exact[i] ? 0.0 : distance(tree, q);
         mx = std::max(mx, d);
         sum += (j == 0 || j == k) ? 0.5 * d : d;
       }
@@ -473,11 +552,12 @@ std::vector<char> shared_segments(const std::vector<Seg2>& s, const std::vector<
   return out;
 }
 
-std::vector<Seg3> seg3_of(const std::vector<Seg2>& s) {
+// The search tree's segments: those of a length, not below `tiny` (kTinyExponent).
+std::vector<Seg3> seg3_of(const std::vector<Seg2>& s, double tiny) {
   std::vector<Seg3> out;
   out.reserve(s.size());
   for (const auto& g : s)
-    if (g.length() > 0) out.emplace_back(P3(g.a[0], g.a[1], 0.0), P3(g.b[0], g.b[1], 0.0));
+    if (g.length() > 0 && g.length() >= tiny) out.emplace_back(P3(g.a[0], g.a[1], 0.0), P3(g.b[0], g.b[1], 0.0));
   return out;
 }
 
@@ -489,7 +569,21 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
   std::vector<Seg2> sa, sb;
   if (Status st = segments_of(result, "result", sa); !st) return st;
   if (Status st = segments_of(reference, "reference", sb); !st) return st;
-  const std::vector<Seg3> ga = seg3_of(sa), gb = seg3_of(sb);
+  // Far from 1 in magnitude, as in 3D (common_exponent): measured on the coordinates times 2^-e
+  // (exact: the shared segments stay equal) and scaled back. (Before, curves near 1e200 measured
+  // a Hausdorff distance of 0 and a mean of NaN: the squared distances overflowed.)
+  int emax = std::numeric_limits<int>::min();
+  for (const auto* segs : {&sa, &sb})
+    for (const Seg2& g : *segs)
+      for (double v : {g.a[0], g.a[1], g.b[0], g.b[1]})
+        if (v != 0) emax = std::max(emax, std::ilogb(v) + 1);
+  const int e = emax == std::numeric_limits<int>::min() || (emax <= kRescaleExponent && emax >= -kRescaleExponent) ? 0 : emax;
+  if (e != 0)
+    for (auto* segs : {&sa, &sb})
+      for (Seg2& g : *segs)
+        for (double* v : {&g.a[0], &g.a[1], &g.b[0], &g.b[1]}) *v = std::ldexp(*v, -e);
+  const double tiny = std::ldexp(1.0, (e != 0 ? 0 : std::max(emax, -kRescaleExponent)) - kTinyExponent);
+  const std::vector<Seg3> ga = seg3_of(sa, tiny), gb = seg3_of(sb, tiny);
   if (ga.empty() || gb.empty()) return {StatusCode::InvalidArgument, "a curve has only zero-length segments"};
   CurveDistance2 d;
   double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()}, hi[2] = {-lo[0], -lo[1]};
@@ -503,11 +597,16 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
   prepare(ta);
   prepare(tb);
   const double h0 = options.relative_spacing * d.bbox_diagonal;
-  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count2(sa, h); });
-  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, options.max_samples, [&](double h) { return count2(sb, h); });
+  d.spacing_result = choose_spacing(h0, d.bbox_diagonal, longest2(sa), options.max_samples, [&](double h) { return count2(sa, h); });
+  d.spacing_reference = choose_spacing(h0, d.bbox_diagonal, longest2(sb), options.max_samples, [&](double h) { return count2(sb, h); });
   const Side ab = sample2(sa, tb, d.spacing_result, shared_segments(sa, sb));
   const Side ba = sample2(sb, ta, d.spacing_reference, shared_segments(sb, sa));
   put_sides(ab, ba, d);
+  if (e != 0)  // back to the input's scale (the relative values stay as measured)
+    for (double* x : {&d.hausdorff, &d.hausdorff_result_to_reference, &d.hausdorff_reference_to_result,
+                      &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
+                      &d.spacing_result, &d.spacing_reference})
+      *x = std::ldexp(*x, e);
   out = d;
   return Status::ok();
 }

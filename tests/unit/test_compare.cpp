@@ -164,6 +164,50 @@ TEST(CompareMeshes3, ScaleFreeFarFromOne) {
   }
 }
 
+// Hostile-input sweep (2026-12-07): meshes of very different sizes or positions. Each side's
+// sample spacing grows up to its own longest edge (a cube 10^10 times the reference's, or with
+// one vertex far off, was sampled at the reference's scale: 10^12 samples per triangle, a hang),
+// far samples are measured to the other side's box, and the search runs in doubles (a cube 10^15
+// from the other took minutes in exact comparisons). Sizes 2^200 apart are refused by name.
+TEST(CompareMeshes3, MeshesOfVeryDifferentSizesAndPlaces) {
+  PointSet p, q;
+  TriMesh3 m, n;
+  cube(0, p, m);
+  for (double size : {1e10, 1e-10}) {
+    cube(0, q, n);
+    for (double& x : q.coords) x *= size;
+    MeshDistance d;
+    ASSERT_TRUE(compare_meshes3(q, n, p, m, d)) << size;  // (the default spacing and budget)
+    EXPECT_LE(d.samples_result, DistanceOptions{}.max_samples) << size;
+    EXPECT_LE(d.samples_reference, DistanceOptions{}.max_samples) << size;
+    // The farthest corner of the larger cube from the smaller one.
+    EXPECT_NEAR(d.hausdorff, std::sqrt(3.0) * std::max(size, 1.0) - (size > 1 ? std::sqrt(3.0) : 0.0),
+                1e-9 * std::max(size, 1.0)) << size;
+  }
+  // One vertex 1e17 off: its triangles are measured, the rest as before.
+  cube(0, q, n);
+  q.coords[3 * 6] = 1e17;
+  MeshDistance far;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, far));
+  EXPECT_NEAR(far.hausdorff_result_to_reference, 1e17, 1e11);
+  EXPECT_LT(far.hausdorff_reference_to_result, 1.0);
+  // 10^15 apart: the distance is the shift (within the coordinates' rounding there).
+  cube(1e15, q, n);
+  MeshDistance shifted;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, shifted, fast()));
+  EXPECT_NEAR(shifted.hausdorff, 1e15, 1.0);
+  EXPECT_NEAR(shifted.mean, 1e15, 2.0);
+  // 2^300 apart in size: no common frame for the distance search.
+  for (double size : {1e100, 1e-100}) {
+    cube(0, q, n);
+    for (double& x : q.coords) x *= size;
+    MeshDistance d;
+    const Status st = compare_meshes3(q, n, p, m, d);
+    EXPECT_EQ(st.code(), StatusCode::InvalidArgument) << size;
+    EXPECT_NE(st.message().find("not at comparable scales"), std::string::npos) << st.message();
+  }
+}
+
 // A polygon face read as a fan (every triangle from one vertex) gave CGAL's distance search
 // thousands of equal reference points: its Kd-tree recursed once per triangle and overflowed the
 // stack at 50 000 (hostile-input sweep, 2026-12-05). A fan of 60 000 slivers over a disc.
@@ -270,6 +314,26 @@ TEST(CompareCurves2, IdenticalAndTranslatedSquares) {
   ASSERT_TRUE(compare_curves2({open}, {a}, d, fast()));
   EXPECT_NEAR(d.hausdorff_result_to_reference, 0.0, 1e-15);
   EXPECT_NEAR(d.hausdorff_reference_to_result, 0.5, 1e-12);
+}
+
+// Curves far from 1 in magnitude are measured as 3D meshes are (the squared distances overflowed
+// near 1e200: a Hausdorff distance of 0 and a mean of NaN; hostile-input sweep 2026-12-07).
+TEST(CompareCurves2, ScaleFreeFarFromOne) {
+  const Polyline2 a{{0, 0, 1, 0, 1, 1, 0, 1}, true};
+  Polyline2 b = a;
+  for (std::size_t i = 0; i < b.xy.size(); i += 2) b.xy[i] += 0.2;
+  CurveDistance2 ref;
+  ASSERT_TRUE(compare_curves2({b}, {a}, ref, fast()));
+  for (int e : {700, 1000, -700, -1000}) {
+    Polyline2 as = a, bs = b;
+    for (double& x : as.xy) x = std::ldexp(x, e);
+    for (double& x : bs.xy) x = std::ldexp(x, e);
+    CurveDistance2 d;
+    ASSERT_TRUE(compare_curves2({bs}, {as}, d, fast())) << e;
+    EXPECT_EQ(d.relative_hausdorff, ref.relative_hausdorff) << e;
+    EXPECT_EQ(d.relative_mean, ref.relative_mean) << e;
+    EXPECT_EQ(d.hausdorff, std::ldexp(ref.hausdorff, e)) << e;
+  }
 }
 
 TEST(CompareCurves2, FromIndices) {
