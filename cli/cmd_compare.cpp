@@ -260,10 +260,10 @@ Command add_compare_command(CLI::App& app) {
   auto a = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "measure a result against a reference: 2D polygon vs .gt, 3D mesh vs mesh (Hausdorff, recovery)");
-  cmd->add_option("RESULT", a->result, "the result: 2D .idx .csv .gt; 3D .off .ply .obj .stl")->required();
-  cmd->add_option("REFERENCE", a->reference, "the reference: 2D .gt; 3D .off .ply .obj .stl")->required();
-  cmd->add_option("--points", a->points, "2D: the input points the indices refer to (required in 2D)");
-  cmd->add_option("--report", a->report, "write a JSON report");
+  cmd->add_option("RESULT", a->result, "the result: 2D .idx .csv .gt; 3D .off .ply .obj .stl")->required()->check(non_empty_path());
+  cmd->add_option("REFERENCE", a->reference, "the reference: 2D .gt; 3D .off .ply .obj .stl")->required()->check(non_empty_path());
+  cmd->add_option("--points", a->points, "2D: the input points the indices refer to (required in 2D)")->check(non_empty_path());
+  cmd->add_option("--report", a->report, "write a JSON report")->check(non_empty_path());
   cmd->add_option("--spacing", a->spacing, "sample spacing relative to the reference's bbox diagonal (default 0.002)")
       ->check(positive_number());
   cmd->add_option("--max-samples", a->max_samples, "at most this many samples per side (default 1e6)")

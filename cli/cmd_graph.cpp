@@ -93,7 +93,7 @@ Command add_graph_command(CLI::App& app) {
   auto a = std::make_shared<GraphArgs>();
   CLI::App* cmd = app.add_subcommand("graph", "build a gamma-neighborhood graph (2D edges / 3D triangles)");
   add_input_options(cmd, a->in);
-  cmd->add_option("-o,--output", a->out, "output file: .csv .json .svg .off .ply .obj")->required();
+  cmd->add_option("-o,--output", a->out, "output file: .csv .json .svg .off .ply .obj")->required()->check(non_empty_path());
   auto* og =
       cmd->add_option("--gamma", a->gamma, "fixed parameters G0,G1 in [-1,1], e.g. 0,0 (Gabriel)")->check(non_empty());
   auto* oi = cmd->add_option("--interval", a->interval, "interval graph A0,A1,B0,B1, e.g. -1,1,0,1 (Delaunay)")
@@ -103,7 +103,7 @@ Command add_graph_command(CLI::App& app) {
                  ->check(non_empty());
   og->excludes(oi)->excludes(op);
   oi->excludes(op);
-  cmd->add_option("--report", a->report, "write a JSON report (counts, timings)");
+  cmd->add_option("--report", a->report, "write a JSON report (counts, timings)")->check(non_empty_path());
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line on stdout");
 
   return {cmd, [a] { return run_graph(*a); }};

@@ -632,10 +632,10 @@ Command add_reconstruct_command(CLI::App& app) {
       "reconstruct",
       "reconstruct a simple polygon (2D) / closed genus-0 surface (3D) through all points by gamma-constriction");
   add_input_options(cmd, a->in);
-  cmd->add_option("-o,--output", a->out, "output: 2D .idx .csv .geojson .wkt .svg; 3D .off .ply .obj .stl")->required();
-  cmd->add_option("--body", a->body, "3D: also write the tetrahedral body (VTK legacy .vtk)");
+  cmd->add_option("-o,--output", a->out, "output: 2D .idx .csv .geojson .wkt .svg; 3D .off .ply .obj .stl")->required()->check(non_empty_path());
+  cmd->add_option("--body", a->body, "3D: also write the tetrahedral body (VTK legacy .vtk)")->check(non_empty_path());
   cmd->add_flag("--ascii", a->ascii, "3D: ASCII PLY instead of binary");
-  cmd->add_option("--report", a->report, "write a JSON report (method, counts, area, timings)");
+  cmd->add_option("--report", a->report, "write a JSON report (method, counts, area, timings)")->check(non_empty_path());
   cmd->add_option("--fallback", a->fallback, "on a lock: auto (default) | gamma0 | degree4 (2D) | none")
       ->check(CLI::IsMember({"auto", "gamma0", "degree4", "none"}));
   cmd->add_option("--refine", a->refine,
@@ -643,7 +643,7 @@ Command add_reconstruct_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "none"}));
   cmd->add_flag("--fast", a->fast, "3D: one constriction run (size bias and labels) instead of two variants, when the growth does not reach every point");
   cmd->add_flag("--no-grow", a->no_grow, "3D: no growth from the inside; constrict from the convex hull (docs/reconstruction-3d.md §4.7)");
-  cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)");
+  cmd->add_option("--render", a->render, "also draw the result: .png (2D, 3D) or .svg (2D)")->check(non_empty_path());
   cmd->add_option("--stop-after", a->stop_after, "stop the constriction after K removals (result incomplete; --topology single)")
       ->check(non_negative_integer());
   cmd->add_option("--method", a->method, "gamma (default) | min-area-change | boissonnat | voronoi-skeleton (docs/comparison-methods.md)")

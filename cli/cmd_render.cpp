@@ -44,6 +44,10 @@ Status layout(const RenderArgs& a, std::size_t panels, RenderOptions& o) {
                                  : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(panels))));
   const int rows = static_cast<int>((panels + static_cast<std::size_t>(cols) - 1) / static_cast<std::size_t>(cols));
   if (a.size.empty()) {
+    if (cols > 32 || rows > 32)
+      return {StatusCode::InvalidArgument, "a sheet of " + std::to_string(panels) + " panels (" + std::to_string(cols) + " x " +
+                                               std::to_string(rows) + " of 512 pixels) exceeds 16384 pixels: ask for fewer "
+                                               "panels (--stages, --views), or set --size WxH"};
     o.width = panels == 1 ? 1024 : 512 * cols;
     o.height = panels == 1 ? 1024 : 512 * rows;
     return Status::ok();
@@ -435,9 +439,9 @@ Command add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "render", "draw a reconstruction (from points), a 2D polygon result (--points) or a 3D mesh as PNG/SVG");
   add_input_options(cmd, a->in, false);  // --columns is the sheet's here
-  cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required();
+  cmd->add_option("-o,--output", a->out, "picture: .png (2D, 3D) or .svg (2D, one panel)")->required()->check(non_empty_path());
   cmd->add_option("--points", a->points,
-                  "INPUT is a 2D result over these points: a polygon (.idx .csv) or rings (.gt .rings)");
+                  "INPUT is a 2D result over these points: a polygon (.idx .csv) or rings (.gt .rings)")->check(non_empty_path());
   cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)")->check(non_empty());
   cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)")->check(non_empty());
   cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");
@@ -448,7 +452,7 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--stop-after", a->stop_after, "draw the state after K removals of the constriction")->check(non_negative_integer());
   cmd->add_option("--stages", a->stages, "sheet of constriction stages: auto (hull, 1/4, 1/2, 3/4, final) or K1,K2,...")
       ->check(non_empty());
-  cmd->add_option("--animate", a->animate, "2D: write frames of the whole constriction to DIR (frame_NNNN.svg/png)");
+  cmd->add_option("--animate", a->animate, "2D: write frames of the whole constriction to DIR (frame_NNNN.svg/png)")->check(non_empty_path());
   cmd->add_flag("-q,--quiet", a->quiet, "no summary line");
   return {cmd, [a] { return run_render(*a); }};
 }

@@ -26,7 +26,9 @@ int fail_in(const std::string& input, const ReadReport& rep, const Status& s) {
 }
 
 void add_input_options(CLI::App* cmd, InputArgs& in, bool columns) {
-  cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")->required();
+  cmd->add_option("INPUT", in.path, "input points (.xyz .xy .csv .txt .ply .off .obj .stl .geojson)")
+      ->required()
+      ->check(non_empty_path());
   cmd->add_option("--dim", in.dim, "force the dimension (default: from the data)")
       ->check(non_empty())
       ->check(CLI::IsMember({2, 3}));
@@ -187,6 +189,10 @@ bool option_number(const std::string& text, double& v) {
   return end == text.c_str() + text.size();
 }
 }  // namespace
+
+CLI::Validator non_empty_path() {
+  return CLI::Validator([](std::string& text) -> std::string { return text.empty() ? "an empty file name" : ""; }, "");
+}
 
 CLI::Validator non_empty() {
   return CLI::Validator(

@@ -52,6 +52,8 @@ void add_input_options(CLI::App* cmd, InputArgs& in, bool columns = true);
 /// Option checks with short messages (CLI11's ranges print the whole double range).
 /// Refuses an empty value (`--columns ''` silently meant the default).
 CLI::Validator non_empty();
+// An option naming a file: refuses an empty name ("-o ''").
+CLI::Validator non_empty_path();
 CLI::Validator non_negative_integer();
 CLI::Validator non_negative_number();
 CLI::Validator positive_number();

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -143,6 +144,10 @@ class HeapTopPrefault {
 
 int main(int argc, char** argv) {
   reexec_with_huge_pages(argv);
+  // A reader that closes its end of a pipe early (`constrict ... | head -0`) makes the next write
+  // to it fail with EPIPE, reported below as a failed write (exit 4), instead of killing the
+  // process with SIGPIPE (exit 141, like a crash; the result files are written by then).
+  (void)std::signal(SIGPIPE, SIG_IGN);
   fix_mmap_threshold();
   HeapTopPrefault prefault;  // before any large allocation; ends when main returns
   using namespace constrict;
@@ -172,7 +177,8 @@ int main(int argc, char** argv) {
         // What went to standard output (compare's verdict, the summary lines) is part of the
         // result: a full disk or a closed stream there is a failed write, not success.
         if (rc == 0 && (std::fflush(stdout) != 0 || std::ferror(stdout) != 0)) {
-          std::fprintf(stderr, "constrict: error [WriteFailed]: writing to standard output failed\n");
+          std::fprintf(stderr, "constrict: error [WriteFailed]: writing to standard output failed%s\n",
+                       errno == EPIPE ? " (the reader closed the pipe)" : "");
           return exit_code(StatusCode::WriteFailed);
         }
         return rc;

@@ -573,6 +573,8 @@ Status parse_columns(const std::string& text, ColumnSelection& out) {
     if (r.ec == std::errc() && r.ptr == item.data() + item.size()) {
       if (number == 0) return bad("column numbers are 1-based (the first column is 1)");
       c.numbers.push_back(number);
+    } else if (r.ec == std::errc::result_out_of_range && r.ptr == item.data() + item.size()) {
+      return bad("column number " + item + " is too large");
     } else {
       c.names.push_back(item);
     }

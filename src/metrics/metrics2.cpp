@@ -40,6 +40,9 @@ Status read_reference2(const std::string& path, std::size_t n_points, Reference2
     std::size_t pos = line.find_first_not_of(" \t\r");
     if (pos == std::string::npos || line[pos] == '#') continue;
     const char kind = line[pos];
+    if ((kind == 'c' || kind == 'o') && line.find_first_not_of(" \t\r", pos + 1) == std::string::npos)
+      return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": a component without indices ('" +
+                                          std::string(1, kind) + "' alone)"};
     if ((kind != 'c' && kind != 'o') || pos + 1 >= line.size() || (line[pos + 1] != ' ' && line[pos + 1] != '\t'))
       return {StatusCode::ParseError, path + ":" + std::to_string(lineno) + ": a component line starts with 'c' or 'o'"};
     std::vector<int> ids;
