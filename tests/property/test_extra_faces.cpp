@@ -211,6 +211,37 @@ TEST(ExtraFaces, RejectsBadArguments) {
   EXPECT_NE(s.message().find("m = -1"), std::string::npos) << s.message();
 }
 
+// 500 random points of a sphere at m = -0.05 (gamma -0.05,0): the vertex cones prune little, and
+// every candidate's ball query holds hundreds of points. The budget of point tests used to stop
+// the search after 20-36 s; the extrapolation from its first candidates stops it within a few
+// per cent of that (hostile-input sweep, 2026-12-07). A smaller sphere still finishes.
+TEST(ExtraFaces, SphereOverTheBudgetIsRefusedFromAnEstimate) {
+  const auto sphere = [](int n, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0.0, 1.0);
+    PointSet ps;
+    ps.dim = 3;
+    for (int i = 0; i < n; ++i) {
+      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
+      ps.coords.insert(ps.coords.end(), {x / r, y / r, z / r});
+    }
+    return ps;
+  };
+  const PointSet big = sphere(500, 7);
+  GammaFaces del, out;
+  out.dim = 3;
+  ASSERT_TRUE(delaunay_faces_of(big, del).is_ok());
+  const Status s = detail::lens_faces(big, -0.05, del, out, nullptr);
+  EXPECT_EQ(s.code(), StatusCode::Unsupported);
+  EXPECT_NE(s.message().find("estimated from the first candidates"), std::string::npos) << s.message();
+  const PointSet small = sphere(60, 7);
+  GammaFaces sdel, sout;
+  sout.dim = 3;
+  ASSERT_TRUE(delaunay_faces_of(small, sdel).is_ok());
+  EXPECT_TRUE(detail::lens_faces(small, -0.05, sdel, sout, nullptr).is_ok());
+  EXPECT_GT(sout.size(), 0u);
+}
+
 // ---- large inputs ------------------------------------------------------------------------------
 
 // Smooth open curve with a little noise (a closed convex curve has Θ(N^2) lens edges, see the doc).
