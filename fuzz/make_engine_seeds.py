@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the engine fuzz targets (fuzz/corpus/{reconstruct2,reconstruct3,surfaces3,
+"""Writes the seed corpora of the engine fuzz targets (fuzz/corpus/{reconstruct2,reconstruct3,surfaces3,compare3,
 gamma_graph}/) in the byte layout of fuzz/fuzz_engine.hpp: [options][mode][count][params][points].
 Run from the repository root after changing the layout; the files are committed."""
 import math
@@ -116,3 +116,8 @@ for dim in (2, 3):
             continue
         with open(os.path.join(d, f"{dim}d_{name}"), "wb") as f:
             f.write(bytes([dim - 2]) + specs[i % len(specs)] + body)
+# Mesh comparison: a triangle count byte (1 + b % 24) and three index bytes per triangle (modulo
+# the point count), then the points (fuzz_compare3.cpp): a tetrahedron's four faces, a fan.
+tetra = bytes([3, 0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3])
+fan = bytes([5] + [v for k in range(6) for v in (0, k + 1, k + 2)])
+write("compare3", [()], 3, lambda i: tetra if i % 2 == 0 else fan)

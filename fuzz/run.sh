@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(text ply off obj stl geojson reconstruct2 reconstruct3 surfaces3 gamma_graph)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(text ply off obj stl geojson reconstruct2 reconstruct3 surfaces3 gamma_graph compare3)
 BUILD=${FUZZ_BUILD:-build-fuzz}
 JOBS=${JOBS:-2}
 

@@ -57,9 +57,10 @@ constexpr double kSpacingGrowth = 1.25;
 // the search tree is at nearly the same distance, so none was pruned (a vertex 10^17 off made
 // each of its samples visit every triangle).
 constexpr double kFarQuery = 1048576.0;
-// Triangles (segments) shorter than 2^-kTinyExponent of the coordinates' magnitude are left out of
-// the search trees: the projections onto them underflow (a mesh 10^-100 across beside one at 1:
-// NaN distances). Both sides' samples still reach the other side.
+// Triangles (segments) shorter, or (triangles) lower, than 2^-kTinyExponent of the coordinates'
+// magnitude are left out of the search trees: the projections onto them underflow (a mesh 10^-100
+// across beside one at 1, a sliver 10^-320 high: NaN distances). Both sides' samples still reach
+// the other side; a sliver's samples are measured to its neighbours.
 constexpr int kTinyExponent = 200;
 // FNV-1a over the coordinates' bit patterns, plus a final mix of the high bits.
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ull;
@@ -316,7 +317,9 @@ std::vector<Tri3> triangles_of(const Mesh& a, double tiny, bool& any_proper) {
     const double *A = a.p(f[uk(first)]), *B = a.p(f[uk((first + 1) % 3)]), *C = a.p(f[uk((first + 2) % 3)]);
     if (!proper3(A, B, C)) continue;
     any_proper = true;
-    if (a.longest(i) >= tiny) out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
+    const double longest = a.longest(i);
+    if (longest >= tiny && 2 * area3(A, B, C) >= tiny * longest)  // (neither small nor thin: a height too)
+      out.emplace_back(P3(A[0], A[1], A[2]), P3(B[0], B[1], B[2]), P3(C[0], C[1], C[2]));
   }
   return out;
 }
@@ -374,7 +377,8 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   for (const auto& [tris, proper, what] : {std::tuple{&ta, proper_a, "result"}, std::tuple{&tb, proper_b, "reference"}}) {
     if (!tris->empty()) continue;
     if (!proper) return {StatusCode::InvalidArgument, std::string(what) + ": no triangle with a positive area"};
-    return {StatusCode::InvalidArgument, std::string(what) + ": every triangle is below 2^-" + std::to_string(kTinyExponent) +
+    return {StatusCode::InvalidArgument, std::string(what) + ": every triangle is smaller or thinner than 2^-" +
+                                             std::to_string(kTinyExponent) +
                                              " of the coordinates' magnitude: the two meshes are not at comparable scales (check their units)"};
   }
 
