@@ -54,8 +54,17 @@ std::string python_message(const Status& st) {
   return msg;
 }
 
+// A library string as a Python str: messages and warnings quote file names and file bytes, which
+// need not be UTF-8 (a Latin-1 file, a name from os.listdir): those bytes are escaped (\xff)
+// instead of a UnicodeDecodeError replacing the library's error.
+py::str py_str(const std::string& s) {
+  PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<py::ssize_t>(s.size()), "backslashreplace");
+  if (o == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
 [[noreturn]] void raise(const Status& st) {
-  py::object err = py::reinterpret_borrow<py::object>(g_error)(python_message(st));
+  py::object err = py::reinterpret_borrow<py::object>(g_error)(py_str(python_message(st)));
   err.attr("code") = to_string(st.code());
   PyErr_SetObject(g_error, err.ptr());
   throw py::error_already_set();
@@ -455,6 +464,9 @@ GraphSpec parse_spec(const std::string& preset, const py::object& gamma, const p
 
 int dim_of(const py::handle& points) {
   const auto a = py::array::ensure(points);
+  if (a && a.ndim() == 2 && a.shape(1) != 2 && a.shape(1) != 3)
+    raise({StatusCode::InvalidArgument, "points must have shape (N, 2) or (N, 3), got (" + std::to_string(a.shape(0)) +
+                                            ", " + std::to_string(a.shape(1)) + ")"});
   return a && a.ndim() == 2 && a.shape(1) == 3 ? 3 : 2;
 }
 
@@ -481,7 +493,11 @@ py::dict gamma_graph_py(const py::handle& points, const std::string& preset, con
   return d;
 }
 
-py::tuple verdict(const Status& st, const std::string& reason) { return py::make_tuple(st.is_ok(), reason); }
+// (ok, reason); a check that failed before it could name a reason (a non-finite coordinate, an
+// index out of range) gives its message.
+py::tuple verdict(const Status& st, const std::string& reason) {
+  return py::make_tuple(st.is_ok(), py_str(st.is_ok() || !reason.empty() ? reason : st.message()));
+}
 
 // ---- files ---------------------------------------------------------------------------------
 
@@ -501,7 +517,9 @@ py::tuple read_points_py(const std::string& path, int dim, bool merge, bool chec
   for (std::size_t i = 0; i < rows.size(); ++i)
     rows[i] = static_cast<std::int64_t>(rep.original_index.empty() ? i : rep.original_index[i]);
   info["original_index"] = ids64(rows);
-  info["warnings"] = rep.warnings;
+  py::list warnings;
+  for (const std::string& w : rep.warnings) warnings.append(py_str(w));
+  info["warnings"] = warnings;
   const auto n = static_cast<py::ssize_t>(p.size());
   if (!rep.attributes.normals.empty())
     info["normals"] = doubles(rep.attributes.normals).reshape({n, py::ssize_t{3}});
@@ -549,25 +567,53 @@ py::dict rings2_py(const py::handle& points, const std::string& topology, double
 // Rings from Python: a sequence of (role, parent, indices) or of dicts with those keys.
 std::vector<Ring2> to_rings(const py::handle& obj) {
   std::vector<Ring2> out;
+  const auto bad = [](std::size_t k, const std::string& what) {
+    raise({StatusCode::InvalidArgument, "ring " + std::to_string(k) + ": " + what});
+  };
+  std::size_t k = 0;
   for (const py::handle& item : obj) {
     Ring2 g;
     py::object role, parent, indices;
     if (py::isinstance<py::dict>(item)) {
       const py::dict d = py::reinterpret_borrow<py::dict>(item);
+      for (const char* key : {"role", "parent", "indices"})
+        if (!d.contains(key)) bad(k, std::string("no '") + key + "' (a ring is a dict with role, parent and indices)");
       role = d["role"];
       parent = d["parent"];
       indices = d["indices"];
-    } else {
+    } else if (py::hasattr(item, "role") && py::hasattr(item, "parent") && py::hasattr(item, "indices")) {
       role = item.attr("role");
       parent = item.attr("parent");
       indices = item.attr("indices");
+    } else if (py::isinstance<py::sequence>(item) && !py::isinstance<py::str>(item) && py::len(item) == 3) {
+      const py::sequence t = py::reinterpret_borrow<py::sequence>(item);
+      role = t[0];
+      parent = t[1];
+      indices = t[2];
+    } else {
+      bad(k, "expected a Ring, a dict with role, parent and indices, or a (role, parent, indices) triple");
     }
+    if (!py::isinstance<py::str>(role)) bad(k, "role must be 'shell' or 'hole', not " + py::repr(role).cast<std::string>());
     const std::string r = role.cast<std::string>();
-    if (r != "shell" && r != "hole") raise({StatusCode::InvalidArgument, "a ring's role is 'shell' or 'hole', not '" + r + "'"});
+    if (r != "shell" && r != "hole") bad(k, "role must be 'shell' or 'hole', not '" + r + "'");
     g.role = r == "shell" ? RingRole::Shell : RingRole::Hole;
-    g.parent = parent.cast<int>();
+    // (an integer from -1 up; not a bool, not a float)
+    const bool integer = (py::isinstance<py::int_>(parent) || py::hasattr(parent, "__index__")) &&
+                         !py::isinstance<py::bool_>(parent) && !py::isinstance<py::float_>(parent);
+    long long v = -2;
+    if (integer) {
+      const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(parent.ptr()));
+      if (!i) throw py::error_already_set();
+      int overflow = 0;
+      v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+      if (overflow != 0) v = -2;
+    }
+    if (!integer || v < -1 || v > std::numeric_limits<int>::max())
+      bad(k, "parent must be -1 or a ring's index, not " + py::repr(parent).cast<std::string>());
+    g.parent = static_cast<int>(v);
     g.indices = to_ids(indices);
     out.push_back(std::move(g));
+    ++k;
   }
   return out;
 }

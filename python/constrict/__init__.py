@@ -42,7 +42,7 @@ __all__ = [
 
 ArrayLike = Any  # anything numpy.asarray takes: arrays, lists of rows, ...
 Refine = Union[bool, str]
-PathLike = Union[str, "os.PathLike[str]"]
+PathLike = Union[str, bytes, "os.PathLike[str]"]
 
 
 # ---- results ---------------------------------------------------------------------------------
@@ -53,6 +53,22 @@ def _optional(module: str, what: str, package: str):
         return __import__(module, fromlist=["_"])
     except ImportError as e:
         raise ImportError(f"{what} needs the '{module}' module: install {package}") from e
+
+
+def _result_points(points: ArrayLike, dim: int, used: List[np.ndarray], rows: Optional[int], what: str) -> np.ndarray:
+    """The points a result's indices refer to, checked: (N, dim), every used row present, and
+    exactly ``rows`` rows when the result knows its point count (a complete one)."""
+    try:
+        xy = np.asarray(points, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise _invalid(f"{what}: points must be an (N, {dim}) array of numbers ({e})") from None
+    if xy.ndim != 2 or xy.shape[1] != dim:
+        raise _invalid(f"{what}: points must have shape (N, {dim}), got {xy.shape}")
+    top = max((int(u.max()) for u in used if len(u)), default=-1)
+    if xy.shape[0] <= top or (rows is not None and xy.shape[0] != rows):
+        want = rows if rows is not None else f"at least {top + 1}"
+        raise _invalid(f"{what}: the result is over {want} points, got {xy.shape[0]}: pass the array it was made from")
+    return xy
 
 
 @dataclasses.dataclass(repr=False)
@@ -104,8 +120,11 @@ class Polygon:
         return f"<constrict.Polygon {len(self.boundary)} vertices, method={self.method}, {state}>"
 
     def coordinates(self, points: ArrayLike) -> np.ndarray:
-        """(B, 2) coordinates of the boundary, in order (the ring not closed)."""
-        return np.asarray(points, dtype=float)[self.boundary]
+        """(B, 2) coordinates of the boundary, in order (the ring not closed). ``points``: the
+        array given to reconstruct2 (checked: its shape and, for a complete result, its rows)."""
+        rows = len(self.boundary) + len(self.merged_duplicates) if self.complete else None
+        xy = _result_points(points, 2, [self.boundary, self.stuck_points], rows, "Polygon.coordinates()")
+        return xy[self.boundary]
 
     def to_shapely(self, points: ArrayLike):
         """The polygon as a ``shapely.geometry.Polygon`` over ``points`` (the array given to
@@ -171,7 +190,8 @@ class Rings:
     def to_shapely(self, points: ArrayLike):
         """The rings as a shapely Polygon or MultiPolygon (holes inside their shells). Needs shapely."""
         geometry = _optional("shapely.geometry", "Rings.to_shapely()", "python3-shapely (pip: shapely)")
-        xy = np.asarray(points, dtype=float)
+        xy = _result_points(points, 2, [r.indices for r in self.rings], sum(len(r.indices) for r in self.rings),
+                            "Rings.to_shapely()")
         polys = []
         for k, r in enumerate(self.rings):
             if r.role != "shell":
@@ -233,18 +253,27 @@ class Surface:
     def to_meshio(self, points: ArrayLike, body: bool = False):
         """The surface as a ``meshio.Mesh`` (vertices = all points, one "triangle" cell block;
         with ``body=True`` also the "tetra" block). Needs meshio (Debian: python3-meshio)."""
+        _check_flags(body=body)
         meshio = _optional("meshio", "Surface.to_meshio()", "python3-meshio (pip: meshio)")
+        xyz = self._points(points, "Surface.to_meshio()")
         cells = [("triangle", self.triangles)]
         if body:
             cells.append(("tetra", self.tetrahedra))
-        return meshio.Mesh(np.asarray(points, dtype=float), cells)
+        return meshio.Mesh(xyz, cells)
+
+    def _points(self, points: ArrayLike, what: str) -> np.ndarray:
+        """``points`` checked against this result (the array given to reconstruct3)."""
+        rows = None
+        if self.complete and self.topology == "single":
+            rows = len(np.unique(self.triangles)) + len(self.merged_duplicates)
+        return _result_points(points, 3, [self.triangles, self.tetrahedra, self.unplaced_points], rows, what)
 
     def to_open3d(self, points: ArrayLike):
         """The surface as an ``open3d.geometry.TriangleMesh``. Needs Open3D (not in Debian 12:
         ``pip install open3d`` where wheels exist)."""
         o3d = _optional("open3d", "Surface.to_open3d()", "open3d (pip: open3d; not packaged in Debian 12)")
         return o3d.geometry.TriangleMesh(
-            o3d.utility.Vector3dVector(np.asarray(points, dtype=float)),
+            o3d.utility.Vector3dVector(self._points(points, "Surface.to_open3d()")),
             o3d.utility.Vector3iVector(self.triangles.astype(np.int32)),
         )
 
@@ -339,6 +368,7 @@ def _check_types(**options: Any) -> None:
             want = "an integer from 0 to 2**64 - 1"
         elif name == "topology_gap":
             ok = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+            ok = ok and _as_float(value) is not None
             want = "a number"
         else:
             continue
@@ -359,15 +389,36 @@ def _check_flags(**flags: Any) -> None:
             raise _invalid(f"{name} must be True or False, not {value!r}")
 
 
+def _as_float(value: Any) -> Optional[float]:
+    """float(value), or None where Python cannot (an int beyond the doubles: OverflowError)."""
+    try:
+        return float(value)
+    except (OverflowError, TypeError, ValueError):
+        return None
+
+
 def _numbers(name: str, value: Any, count: int) -> Optional[list]:
     """A gamma graph's threshold pair or interval: None or `count` real numbers."""
     if value is None:
         return None
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != count or not all(
             isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
-            for v in value):
+            and _as_float(v) is not None for v in value):
         raise _invalid(f"{name} must be {count} numbers, not {value!r}")
     return [float(v) for v in value]
+
+
+def _path(path: Any) -> bytes:
+    """A file name for the library: str, bytes or os.PathLike, as open() takes them (a name
+    that is not UTF-8, e.g. from os.listdir, is passed as its bytes). "-" is the file of that
+    name (the CLI's standard input is not the Python API's)."""
+    try:
+        name = os.fsencode(os.fspath(path))
+    except TypeError:
+        raise _invalid(f"a file name must be str, bytes or os.PathLike, not {type(path).__name__}") from None
+    if b"\0" in name:
+        raise _invalid(f"file name with an embedded null byte: {path!r}")  # (a C string would end there)
+    return b"./-" if name == b"-" else name
 
 
 def _gap_needs_auto(topology: str, topology_gap: Any) -> None:
@@ -449,6 +500,8 @@ def reconstruct2(
             err = Error("topology: merge the duplicates first (merge_duplicates gives one polygon)")
             err.code = "InvalidArgument"
             raise err
+        if seed_limit:
+            raise _invalid("seed_limit applies to method='voronoi-skeleton' (one polygon), not to topology='auto'")
         d = _core.rings2(points, topology, float(topology_gap), fallback, ref, method, stop_after)
         d["rings"] = [Ring(**r) for r in d["rings"]]
         return Rings(**d)
@@ -548,12 +601,21 @@ def reconstruct(source: Union[ArrayLike, "PathLike"], *, dim: Optional[int] = No
     (threads, processes, Dask). ``options`` are the keywords of reconstruct2/3."""
     _check_dim(dim)
     _check_flags(merge_duplicates=merge_duplicates)
-    if isinstance(source, (str, os.PathLike)):
+    if isinstance(source, (str, bytes, os.PathLike)):
         points = read_points(source, dim=dim, merge_duplicates=merge_duplicates)
     else:
-        points = np.asarray(source, dtype=float)
-        if dim is not None and points.ndim == 2 and points.shape[1] != dim:
-            points = points[:, :dim]
+        try:
+            points = np.asarray(source)
+        except (TypeError, ValueError) as e:  # (ragged rows)
+            raise _invalid(f"points must be an (N, 2) or (N, 3) array of numbers ({e})") from None
+        if points.dtype.kind == "c":  # (a cast to float would keep the real part)
+            raise _invalid(f"points must be real numbers, not {points.dtype}")
+        if points.ndim != 2 or points.shape[1] not in (2, 3):
+            raise _invalid(f"points must have shape (N, 2) or (N, 3), got {points.shape}")
+        if dim is not None and points.shape[1] != dim:
+            if points.shape[1] < dim:
+                raise _invalid(f"dim={dim}: the array has {points.shape[1]} columns")
+            points = points[:, :dim]  # (dim=2 drops z, as read_points does)
         options["merge_duplicates"] = merge_duplicates
     if points.ndim == 2 and points.shape[1] == 3:
         return reconstruct3(points, **options)
@@ -605,16 +667,23 @@ def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optiona
     """:func:`read_points` plus what the reader saw: a dict with ``points_read``,
     ``merged_duplicates`` (count), ``original_index`` (int64: the file row of each point),
     ``warnings`` and, from PLY files, ``normals`` (N, 3) and ``colors`` (N, 3 or 4) in [0, 1]."""
-    path = os.fspath(path)
+    path = _path(path)
     _check_dim(dim)
     _check_flags(merge_duplicates=merge_duplicates, check=check)
     if columns is None:
         return _core.read_points(path, 0 if dim is None else dim, merge_duplicates, check)
+    if isinstance(columns, (str, bytes)):
+        raise _invalid(f"columns must be a sequence of 2 or 3 field numbers or header names, not {columns!r}")
     cols = list(columns)
     if len(cols) not in (2, 3) or dim not in (None, len(cols)):
         raise _invalid(f"columns must name 2 or 3 columns (and match dim), got {cols}")
+    if len(set(cols)) != len(cols):
+        raise _invalid(f"columns: a column is given twice, {cols}")
     if all(isinstance(c, str) for c in cols):  # header names, as the CLI's --columns x,y,z
-        spec = ",".join(cols)
+        for c in cols:
+            if not c.strip() or "," in c or c.strip().isdigit():
+                raise _invalid(f"columns: {c!r} is not a header name (field numbers are ints, counted from 0)")
+        spec = ",".join(c.strip() for c in cols)
     elif all(isinstance(c, (int, np.integer)) and not isinstance(c, bool) for c in cols):
         if min(cols) < 0:
             raise _invalid(f"columns are 0-based field numbers (or header names), got {cols}")
@@ -652,26 +721,30 @@ def read_points(path: PathLike, dim: Optional[int] = None, columns: Optional[Seq
 def read_mesh(path: PathLike) -> Tuple[np.ndarray, np.ndarray]:
     """(points (V, 3), triangles (F, 3) int64) of an .off, .ply, .obj or .stl mesh (polygons are
     split into fans). No geometric check."""
-    return _core.read_mesh(os.fspath(path))
+    return _core.read_mesh(_path(path))
 
 
 def write_mesh(path: PathLike, points: ArrayLike, triangles: ArrayLike, ascii: bool = False) -> None:
     """Writes a triangle mesh; the format follows the extension: .off, .ply (binary unless
     ``ascii``, CLI --ascii), .obj, .stl. Vertices are all points in order, so the triangles'
     ids are row numbers. The bytes are the CLI's for the same surface."""
-    _core.write_mesh(os.fspath(path), points, triangles, ascii)
+    _check_flags(ascii=ascii)
+    name = _path(path)
+    if ascii and not name.lower().endswith(b".ply"):
+        raise _invalid("ascii applies to .ply output (OFF and OBJ are text anyway, STL is binary)")
+    _core.write_mesh(name, points, triangles, bool(ascii))
 
 
 def write_polygon(path: PathLike, points: ArrayLike, boundary: ArrayLike) -> None:
     """Writes a 2D polygon given as rows in boundary order; the format follows the extension:
     .idx (one row number per line), .csv (x,y), .geojson/.json, .wkt, .svg (points and polygon;
     the CLI's SVG also draws the Delaunay edges)."""
-    _core.write_polygon(os.fspath(path), points, boundary)
+    _core.write_polygon(_path(path), points, boundary)
 
 
 def write_body(path: PathLike, points: ArrayLike, tetrahedra: ArrayLike) -> None:
     """Writes a tetrahedral body (Surface.tetrahedra) as VTK legacy .vtk (CLI --body)."""
-    _core.write_body(os.fspath(path), points, tetrahedra)
+    _core.write_body(_path(path), points, tetrahedra)
 
 
 def cli_path() -> str:

@@ -592,5 +592,97 @@ class Threads(unittest.TestCase):
         self.assertEqual(par, seq)
 
 
+class Hostile(unittest.TestCase):
+    """Found by a sweep of hostile arguments (2026-12-07): each was a silently wrong result or an
+    error that was not constrict.Error."""
+
+    def assertInvalid(self, pattern, f, *args, **kw):
+        with self.assertRaisesRegex(constrict.Error, pattern) as ctx:
+            f(*args, **kw)
+        self.assertEqual(ctx.exception.code, "InvalidArgument")
+
+    def test_arrays_reconstruct_refuses(self):
+        pts = sample_data.curve(30, 3)
+        # complex (the cast kept the real part), fewer columns than dim, ragged rows, (N, 4)
+        self.assertInvalid("real numbers", constrict.reconstruct, pts + 1j)
+        self.assertInvalid("dim=3: the array has 2 columns", constrict.reconstruct, pts, dim=3)
+        self.assertInvalid(r"\(N, 2\) or \(N, 3\)", constrict.reconstruct, [[0, 0], [1, 0, 0], [0, 1]])
+        self.assertInvalid(r"\(N, 2\) or \(N, 3\), got \(10, 4\)", constrict.reconstruct, np.zeros((10, 4)))
+        self.assertInvalid(r"\(N, 2\) or \(N, 3\)", constrict.gamma_graph, np.zeros((10, 4)))
+        self.assertInvalid("seed_limit", constrict.reconstruct2, pts, topology="auto", seed_limit=2)
+        self.assertInvalid("topology_gap must be a number", constrict.reconstruct2, pts, topology="auto",
+                           topology_gap=10**400)
+        self.assertInvalid("gamma must be 2 numbers", constrict.gamma_graph, pts, gamma=(0, 10**400))
+
+    def test_validators_name_a_non_finite_point(self):
+        q = np.array([[0, 0], [1, 0], [np.nan, 1]])
+        ok, why = constrict.validate_rings(q, [dict(role="shell", parent=-1, indices=[0, 1, 2])])
+        self.assertFalse(ok)  # (it was valid: every predicate at the NaN point was false)
+        self.assertIn("non-finite", why)
+        ok, why = constrict.validate_polygon(q, [0, 1, 2])
+        self.assertFalse(ok)
+        self.assertIn("non-finite", why)  # (the reason was empty)
+        for bad in ({"role": "shell", "parent": None, "indices": [0, 1, 2]}, {"role": 1, "parent": -1, "indices": [0]},
+                    {"role": "shell", "indices": [0, 1, 2]}, {"role": "shell", "parent": 2**40, "indices": [0]}):
+            self.assertInvalid("ring 0", constrict.validate_rings, q, [bad])
+        ok, _ = constrict.validate_rings(np.array([[0, 0], [1, 0], [0, 1]]), [("shell", -1, [0, 1, 2])])
+        self.assertTrue(ok)
+
+    def test_file_names(self):
+        pts = sample_data.curve(20, 4)
+        poly = constrict.reconstruct2(pts)
+        with tempfile.TemporaryDirectory() as d:
+            # An embedded NUL cut the name there: PLY bytes went into "m.off".
+            self.assertInvalid("null byte", constrict.write_polygon, os.path.join(d, "a.csv\0.idx"), pts, poly.boundary)
+            self.assertFalse(os.path.exists(os.path.join(d, "a.csv")))
+            # Names that are not UTF-8 (bytes, or os.listdir's surrogate escapes) and their errors.
+            raw = os.path.join(os.fsencode(d), b"p\xff.xy")
+            np.savetxt(raw.decode("utf-8", "surrogateescape"), pts)
+            listed = [n for n in os.listdir(d) if n.startswith("p")][0]
+            self.assertEqual(constrict.read_points(raw).shape, pts.shape)
+            self.assertEqual(constrict.read_points(os.path.join(d, listed)).shape, pts.shape)
+            with self.assertRaisesRegex(constrict.Error, r"missing\\xff") as ctx:
+                constrict.read_points(os.path.join(os.fsencode(d), b"missing\xff.xy"))
+            self.assertEqual(ctx.exception.code, "FileNotFound")
+            # A file's bytes that are not UTF-8 in a parse error.
+            bad = os.path.join(d, "latin.xy")
+            with open(bad, "wb") as f:
+                f.write(b"0 0\n1 \xff\n")
+            with self.assertRaisesRegex(constrict.Error, r"latin.xy:2: .*\\xff") as ctx:
+                constrict.read_points(bad)
+            self.assertEqual(ctx.exception.code, "ParseError")
+            # "-" is a file name here, not standard input.
+            np.savetxt(os.path.join(d, "-"), pts[:5])
+            cwd = os.getcwd()
+            try:
+                os.chdir(d)
+                self.assertEqual(constrict.read_points("-").shape, (5, 2))
+            finally:
+                os.chdir(cwd)
+            # Fewer than 3 vertices made "POLYGON (())"; ascii for a format that has no choice.
+            self.assertInvalid("at least 3 vertices", constrict.write_polygon, os.path.join(d, "e.wkt"), pts, [0, 1])
+            s = constrict.reconstruct3(sample_data.shell(30, 5))
+            self.assertInvalid("True or False", constrict.write_mesh, os.path.join(d, "m.ply"),
+                               sample_data.shell(30, 5), s.triangles, ascii="no")
+            self.assertInvalid(".ply", constrict.write_mesh, os.path.join(d, "m.off"), sample_data.shell(30, 5),
+                               s.triangles, ascii=True)
+            # columns: Python's 0-based numbers, header names that are names.
+            np.savetxt(os.path.join(d, "c.xyz"), np.c_[np.arange(20), pts])
+            self.assertInvalid("not a header name", constrict.read_points, os.path.join(d, "c.xyz"), columns=("1", "2"))
+            self.assertInvalid("given twice", constrict.read_points, os.path.join(d, "c.xyz"), columns=(1, 1))
+            self.assertTrue(np.array_equal(constrict.read_points(os.path.join(d, "c.xyz"), columns=(1, 2)), pts))
+
+    def test_result_helpers_check_their_points(self):
+        pts = sample_data.curve(30, 6)
+        poly = constrict.reconstruct2(pts)
+        self.assertTrue(np.array_equal(poly.coordinates(pts), pts[poly.boundary]))
+        self.assertInvalid("over 30 points, got 60", poly.coordinates, np.random.default_rng(5).random((60, 2)))
+        self.assertInvalid(r"shape \(N, 2\)", poly.coordinates, np.c_[pts, pts[:, :1]])
+        shell = sample_data.shell(40, 6)
+        s = constrict.reconstruct3(shell)
+        self.assertInvalid("over 40 points, got 10", s._points, shell[:10], "to_meshio")
+        self.assertEqual(s._points(shell, "to_meshio").shape, (40, 3))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -227,6 +227,9 @@ Status write_polygon2(const std::string& path, const PointSet& points, const std
                       PolygonFormat format, const PolygonSvgLayers* layers) {
   if (points.dim != 2) return {StatusCode::InvalidArgument, path + ": a polygon needs 2D points"};
   if (Status st = detail::check_finite_coordinates(path, points); !st) return st;
+  // (Fewer made "POLYGON (())" in WKT, an empty GeoJSON ring: files other programs refuse.)
+  if (boundary.size() < 3)
+    return {StatusCode::InvalidArgument, path + ": a polygon needs at least 3 vertices, got " + std::to_string(boundary.size())};
   for (int i : boundary)
     if (i < 0 || static_cast<std::size_t>(i) >= points.size())
       return {StatusCode::InvalidArgument, path + ": polygon index " + std::to_string(i) + " out of range"};

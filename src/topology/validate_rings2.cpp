@@ -11,6 +11,7 @@
 #include "constrict/detail/segments2.hpp"
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
+#include "core/detail/check_points.hpp"
 #include "topology/detail/ring_nesting.hpp"
 
 namespace constrict {
@@ -66,6 +67,11 @@ Status fail(RingsCheck* d, const std::string& why) {
 
 Status check_indices(const PointSet& points, const std::vector<Ring2>& rings, RingsCheck* d) {
   if (points.dim != 2) return fail(d, "validate_rings2: points must be 2D");
+  // (A NaN point made every predicate at it false: a ring through it passed as valid.)
+  if (Status f = detail::check_finite(points, "validate_rings2"); !f) {
+    if (d) d->reason = f.message();
+    return f;
+  }
   const std::size_t n = points.size();
   std::vector<char> seen(n, 0);
   for (std::size_t k = 0; k < rings.size(); ++k) {
