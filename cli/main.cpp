@@ -176,6 +176,7 @@ int main(int argc, char** argv) {
         const int rc = c.run();
         // What went to standard output (compare's verdict, the summary lines) is part of the
         // result: a full disk or a closed stream there is a failed write, not success.
+        errno = 0;  // (set by the flush when it fails; an earlier failed write leaves only ferror)
         if (rc == 0 && (std::fflush(stdout) != 0 || std::ferror(stdout) != 0)) {
           std::fprintf(stderr, "constrict: error [WriteFailed]: writing to standard output failed%s\n",
                        errno == EPIPE ? " (the reader closed the pipe)" : "");

@@ -7,7 +7,8 @@
 # FUZZ_SEED (default 1) fixes the mutation sequence, so a CI run repeats the inputs a local run of
 # the same length tried first; FUZZ_SEED=0 lets libFuzzer pick one (long local runs).
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]
-#   targets: text ply off obj stl geojson (readers), reconstruct2 reconstruct3 surfaces3 gamma_graph (engines);
+#   targets: text ply off obj stl geojson (readers), reconstruct2 reconstruct3 surfaces3 gamma_graph (engines),
+#   compare3 (the mesh comparison);
 #   docs/fuzzing.md. MAX_LEN (default 4096) bounds the input size; fuzz/dict/<target>.dict is
 #   passed as -dict when it exists. KEEP_CORPUS=1 fuzzes $FUZZ_BUILD/corpus/<target>/ (seeded from
 #   fuzz/corpus/) instead of a temporary copy, so long runs continue where the last one stopped.

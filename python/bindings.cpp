@@ -593,20 +593,31 @@ std::vector<Ring2> to_rings(const py::handle& obj) {
     } else {
       bad(k, "expected a Ring, a dict with role, parent and indices, or a (role, parent, indices) triple");
     }
-    if (!py::isinstance<py::str>(role)) bad(k, "role must be 'shell' or 'hole', not " + py::repr(role).cast<std::string>());
-    const std::string r = role.cast<std::string>();
+    py::ssize_t len = 0;
+    const char* utf8 = py::isinstance<py::str>(role) ? PyUnicode_AsUTF8AndSize(role.ptr(), &len) : nullptr;
+    if (utf8 == nullptr) {
+      PyErr_Clear();  // (a lone surrogate)
+      bad(k, "role must be 'shell' or 'hole', not " + py::repr(role).cast<std::string>());
+    }
+    const std::string r(utf8, static_cast<std::size_t>(len));
     if (r != "shell" && r != "hole") bad(k, "role must be 'shell' or 'hole', not '" + r + "'");
     g.role = r == "shell" ? RingRole::Shell : RingRole::Hole;
     // (an integer from -1 up; not a bool, not a float)
-    const bool integer = (py::isinstance<py::int_>(parent) || py::hasattr(parent, "__index__")) &&
-                         !py::isinstance<py::bool_>(parent) && !py::isinstance<py::float_>(parent);
+    // (numpy's bool has __index__ too: a dtype kind 'b' is a bool)
+    const bool boolean = py::isinstance<py::bool_>(parent) ||
+                         (py::hasattr(parent, "dtype") && py::str(parent.attr("dtype").attr("kind")).cast<std::string>() == "b");
+    const bool integer = (py::isinstance<py::int_>(parent) || py::hasattr(parent, "__index__")) && !boolean &&
+                         !py::isinstance<py::float_>(parent);
     long long v = -2;
     if (integer) {
       const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(parent.ptr()));
-      if (!i) throw py::error_already_set();
-      int overflow = 0;
-      v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-      if (overflow != 0) v = -2;
+      if (!i) {
+        PyErr_Clear();  // (an array of one element has __index__ and refuses it)
+      } else {
+        int overflow = 0;
+        v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+        if (overflow != 0) v = -2;
+      }
     }
     if (!integer || v < -1 || v > std::numeric_limits<int>::max())
       bad(k, "parent must be -1 or a ring's index, not " + py::repr(parent).cast<std::string>());

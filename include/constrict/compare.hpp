@@ -65,12 +65,16 @@ struct MeshDistance {
 /// Triangles are matched as unordered triples of vertex positions (exact coordinate equality), so
 /// meshes over the same points match whether or not their vertex lists are ordered alike; the
 /// orientation is ignored. Distances: see MeshDistance and DistanceOptions. Degenerate
-/// (zero-area) triangles are sampled at their vertices only and left out of the distance targets.
+/// (collinear) triangles are sampled at their vertices only and left out of the distance targets;
+/// so are triangles smaller or thinner than 2^-200 of the used coordinates' magnitude (their
+/// projections underflow): points near them are measured to their neighbours.
 /// @param[in] result_points, result the result mesh (dim 3)
 /// @param[in] reference_points, reference the reference mesh (dim 3)
-/// @param[out] out distances and recovery; unchanged on error
+/// @param[out] out distances and recovery (finite and non-negative); unchanged on error
 /// @return Ok, InvalidArgument (not 3D, index out of range, a mesh without any non-degenerate
-///         triangle, bad options)
+///         triangle, or whose every triangle is below 2^-200 of the coordinates: "not at
+///         comparable scales", bad options), NonFinite (a non-finite coordinate, or distances
+///         beyond the largest double near 1e308)
 /// @note O((S + F) log F) for S samples; deterministic (fixed sampling pattern, per-triangle
 ///       results reduced in a fixed order), parallel with TBB.
 Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, const PointSet& reference_points,

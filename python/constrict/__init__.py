@@ -190,8 +190,9 @@ class Rings:
     def to_shapely(self, points: ArrayLike):
         """The rings as a shapely Polygon or MultiPolygon (holes inside their shells). Needs shapely."""
         geometry = _optional("shapely.geometry", "Rings.to_shapely()", "python3-shapely (pip: shapely)")
-        xy = _result_points(points, 2, [r.indices for r in self.rings], sum(len(r.indices) for r in self.rings),
-                            "Rings.to_shapely()")
+        # (A valid ring set covers every point once; an incomplete one, fallback="none", may not.)
+        rows = sum(len(r.indices) for r in self.rings) if self.valid else None
+        xy = _result_points(points, 2, [r.indices for r in self.rings], rows, "Rings.to_shapely()")
         polys = []
         for k, r in enumerate(self.rings):
             if r.role != "shell":
@@ -416,6 +417,8 @@ def _path(path: Any) -> bytes:
         name = os.fsencode(os.fspath(path))
     except TypeError:
         raise _invalid(f"a file name must be str, bytes or os.PathLike, not {type(path).__name__}") from None
+    except UnicodeEncodeError:  # (a lone surrogate that no file system name escapes)
+        raise _invalid(f"file name that cannot be encoded: {path!r}") from None
     if b"\0" in name:
         raise _invalid(f"file name with an embedded null byte: {path!r}")  # (a C string would end there)
     return b"./-" if name == b"-" else name
@@ -610,12 +613,12 @@ def reconstruct(source: Union[ArrayLike, "PathLike"], *, dim: Optional[int] = No
             raise _invalid(f"points must be an (N, 2) or (N, 3) array of numbers ({e})") from None
         if points.dtype.kind == "c":  # (a cast to float would keep the real part)
             raise _invalid(f"points must be real numbers, not {points.dtype}")
-        if points.ndim != 2 or points.shape[1] not in (2, 3):
-            raise _invalid(f"points must have shape (N, 2) or (N, 3), got {points.shape}")
-        if dim is not None and points.shape[1] != dim:
+        if dim is not None and points.ndim == 2 and points.shape[1] != dim:
             if points.shape[1] < dim:
                 raise _invalid(f"dim={dim}: the array has {points.shape[1]} columns")
-            points = points[:, :dim]  # (dim=2 drops z, as read_points does)
+            points = points[:, :dim]  # (the first dim columns, as read_points(dim=...) takes a file's)
+        if points.ndim != 2 or points.shape[1] not in (2, 3):
+            raise _invalid(f"points must have shape (N, 2) or (N, 3), got {points.shape}")
         options["merge_duplicates"] = merge_duplicates
     if points.ndim == 2 and points.shape[1] == 3:
         return reconstruct3(points, **options)
@@ -677,7 +680,7 @@ def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optiona
     cols = list(columns)
     if len(cols) not in (2, 3) or dim not in (None, len(cols)):
         raise _invalid(f"columns must name 2 or 3 columns (and match dim), got {cols}")
-    if len(set(cols)) != len(cols):
+    if all(isinstance(c, (str, int, np.integer)) for c in cols) and len(set(cols)) != len(cols):
         raise _invalid(f"columns: a column is given twice, {cols}")
     if all(isinstance(c, str) for c in cols):  # header names, as the CLI's --columns x,y,z
         for c in cols:

@@ -625,7 +625,12 @@ class Hostile(unittest.TestCase):
         for bad in ({"role": "shell", "parent": None, "indices": [0, 1, 2]}, {"role": 1, "parent": -1, "indices": [0]},
                     {"role": "shell", "indices": [0, 1, 2]}, {"role": "shell", "parent": 2**40, "indices": [0]}):
             self.assertInvalid("ring 0", constrict.validate_rings, q, [bad])
+        for parent in (np.array([-1]), np.bool_(False), True, -1.0):  # (TypeError, or taken for 0/-1)
+            self.assertInvalid("parent must be", constrict.validate_rings, q, [dict(role="shell", parent=parent,
+                                                                                     indices=[0, 1, 2])])
         ok, _ = constrict.validate_rings(np.array([[0, 0], [1, 0], [0, 1]]), [("shell", -1, [0, 1, 2])])
+        self.assertTrue(ok)
+        ok, _ = constrict.validate_rings(np.array([[0, 0], [1, 0], [0, 1]]), [("shell", np.int64(-1), [0, 1, 2])])
         self.assertTrue(ok)
 
     def test_file_names(self):
@@ -671,6 +676,19 @@ class Hostile(unittest.TestCase):
             self.assertInvalid("not a header name", constrict.read_points, os.path.join(d, "c.xyz"), columns=("1", "2"))
             self.assertInvalid("given twice", constrict.read_points, os.path.join(d, "c.xyz"), columns=(1, 1))
             self.assertTrue(np.array_equal(constrict.read_points(os.path.join(d, "c.xyz"), columns=(1, 2)), pts))
+
+    def test_what_worked_before_still_works(self):
+        # Extra columns with dim: the first dim of them (as read_points(dim=...) takes a file's).
+        xyz = sample_data.shell(40, 8)
+        s = constrict.reconstruct(np.c_[xyz, np.arange(40.0)], dim=3)
+        self.assertEqual(s, constrict.reconstruct3(xyz))
+        # An incomplete ring set (fallback="none") draws over the array it was made from.
+        rng = np.random.default_rng(6)
+        pts = np.vstack([rng.random((40, 2)), rng.random((40, 2)) + [5, 0]])
+        rr = constrict.reconstruct2(pts, topology="auto", fallback="none")
+        if importlib.util.find_spec("shapely") is not None:
+            rr.to_shapely(pts)
+        self.assertInvalid("at least", rr.to_shapely, pts[:10])
 
     def test_result_helpers_check_their_points(self):
         pts = sample_data.curve(30, 6)

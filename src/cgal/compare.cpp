@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Distances between a reconstruction and a reference (compare.hpp): deterministic grid sampling of
-// one side, exact point-to-primitive distances to the other side through CGAL's AABB tree (Epick),
+// one side, point-to-primitive distances to the other side through CGAL's AABB tree (in doubles),
 // both directions; triangle recovery by exact vertex positions. All of compare.hpp is here, inside
 // the CGAL fence (src/cgal/), because the sampling loops query the AABB trees directly. Sampling
 // and its accuracy: docs/evaluation.md.
@@ -110,6 +110,16 @@ void put_sides(const Side& ab, const Side& ba, Distance& d) {
   }
 }
 
+// Distances scaled back near 1e308 can pass the largest double: refused rather than reported as
+// inf (a report would hold null).
+template <class D>
+Status finite_distances(const D& d) {
+  for (double x : {d.hausdorff, d.mean, d.bbox_diagonal})
+    if (!std::isfinite(x))
+      return {StatusCode::NonFinite, "the distances exceed the largest double (coordinates near 1e308): scale both sides down"};
+  return Status::ok();
+}
+
 // Built before the parallel sampling: CGAL builds the tree and the distance search structure
 // lazily on the first query, which is not safe from several threads at once.
 template <class Tree>
@@ -163,6 +173,9 @@ int common_exponent(const PointSet& a, const PointSet& b) {
 template <class CountAt>
 double choose_spacing(double h, double diagonal, double longest, std::size_t budget, CountAt&& count_at) {
   const double bound = std::max(diagonal, longest);
+  // Below longest / kMaxGrid a spacing changes nothing (the grid's cap); a spacing that rounded to
+  // 0 (--spacing 5e-324) skipped this loop and sampled 5e11 points per triangle.
+  h = std::max(h, longest / kMaxGrid);
   // (Among subnormals h * 1.25 can round back to h: then the next double up.)
   while (h > 0 && std::isfinite(h) && h <= bound && count_at(h) > budget)
     h = std::max(h * kSpacingGrowth, std::nextafter(h, std::numeric_limits<double>::infinity()));
@@ -250,6 +263,16 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
     }
   });
   return reduce(tmax, tint, tarea, tcount);
+}
+
+// The largest binary exponent of the coordinates the triangles use (as max_coordinate_exponent).
+int used_exponent(const Mesh& a) {
+  int e = std::numeric_limits<int>::min();
+  for (const auto& f : a.m.triangles)
+    for (int v : f)
+      for (int k = 0; k < 3; ++k)
+        if (const double x = a.p(v)[k]; x != 0) e = std::max(e, std::ilogb(x) + 1);
+  return e == std::numeric_limits<int>::min() ? 0 : e;
 }
 
 double longest3(const Mesh& a) {
@@ -371,7 +394,8 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   // A, B: the geometry (scaled if far from 1); A0: the coordinates as given, for the matching.
   const Mesh A{e != 0 ? result_scaled : result_points, result}, B{e != 0 ? reference_scaled : reference_points, reference};
   const Mesh A0{result_points, result};
-  const double tiny = std::ldexp(1.0, std::max(max_coordinate_exponent(A.pts), max_coordinate_exponent(B.pts)) - kTinyExponent);
+  // (Over the vertices the triangles use: an unused vertex far off made every triangle "tiny".)
+  const double tiny = std::ldexp(1.0, std::max(used_exponent(A), used_exponent(B)) - kTinyExponent);
   bool proper_a = false, proper_b = false;
   const std::vector<Tri3> ta = triangles_of(A, tiny, proper_a), tb = triangles_of(B, tiny, proper_b);
   for (const auto& [tris, proper, what] : {std::tuple{&ta, proper_a, "result"}, std::tuple{&tb, proper_b, "reference"}}) {
@@ -468,6 +492,7 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
                       &d.spacing_result, &d.spacing_reference})
       *x = std::ldexp(*x, e);
   }
+  if (Status f = finite_distances(d); !f) return f;
   out = d;
   return Status::ok();
 }
@@ -588,7 +613,13 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
         for (double* v : {&g.a[0], &g.a[1], &g.b[0], &g.b[1]}) *v = std::ldexp(*v, -e);
   const double tiny = std::ldexp(1.0, (e != 0 ? 0 : std::max(emax, -kRescaleExponent)) - kTinyExponent);
   const std::vector<Seg3> ga = seg3_of(sa, tiny), gb = seg3_of(sb, tiny);
-  if (ga.empty() || gb.empty()) return {StatusCode::InvalidArgument, "a curve has only zero-length segments"};
+  for (const auto& [segs, tree, what] : {std::tuple{&sa, &ga, "result"}, std::tuple{&sb, &gb, "reference"}}) {
+    if (!tree->empty()) continue;
+    const bool any = std::any_of(segs->begin(), segs->end(), [](const Seg2& g) { return g.length() > 0; });
+    if (!any) return {StatusCode::InvalidArgument, std::string(what) + ": a curve has only zero-length segments"};
+    return {StatusCode::InvalidArgument, std::string(what) + ": every segment is shorter than 2^-" + std::to_string(kTinyExponent) +
+                                             " of the coordinates' magnitude: not comparable at this scale"};
+  }
   CurveDistance2 d;
   double lo[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()}, hi[2] = {-lo[0], -lo[1]};
   for (const auto& g : sb)
@@ -611,6 +642,7 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
                       &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
                       &d.spacing_result, &d.spacing_reference})
       *x = std::ldexp(*x, e);
+  if (Status f = finite_distances(d); !f) return f;
   out = d;
   return Status::ok();
 }

@@ -197,6 +197,25 @@ TEST(CompareMeshes3, MeshesOfVeryDifferentSizesAndPlaces) {
   ASSERT_TRUE(compare_meshes3(q, n, p, m, shifted, fast()));
   EXPECT_NEAR(shifted.hausdorff, 1e15, 1.0);
   EXPECT_NEAR(shifted.mean, 1e15, 2.0);
+  // A vertex no triangle uses, far off, changes nothing (it made every triangle "tiny").
+  cube(0.1, q, n);
+  q.coords.insert(q.coords.end(), {1e70, 0, 0});
+  MeshDistance stray;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, stray, fast()));
+  EXPECT_NEAR(stray.hausdorff, 0.1, 1e-12);
+  // A spacing that rounds to 0: the grid's cap, not 5e11 samples per triangle.
+  DistanceOptions zero = fast();
+  zero.relative_spacing = 4.9e-324;
+  cube(0.1, q, n);
+  MeshDistance z;
+  ASSERT_TRUE(compare_meshes3(q, n, p, m, z, zero));
+  EXPECT_LE(z.samples_result, zero.max_samples);
+  // Distances beyond the largest double: refused, not inf.
+  PointSet hp = p, hq = p;
+  for (double& x : hp.coords) x *= 1.5e308;
+  for (double& x : hq.coords) x = -x * 1.5e308;
+  MeshDistance h;
+  EXPECT_EQ(compare_meshes3(hq, m, hp, m, h).code(), StatusCode::NonFinite);
   // 2^300 apart in size: no common frame for the distance search.
   for (double size : {1e100, 1e-100}) {
     cube(0, q, n);
