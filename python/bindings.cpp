@@ -85,6 +85,11 @@ void run_nogil(F&& f) {
 
 // (N, dim) float array -> PointSet (copied; any numeric dtype and memory layout is accepted).
 PointSet to_points(const py::handle& obj, int dim) {
+  // (numpy's conversion reads a masked array's hidden values as points: refused.)
+  if (const py::module_ ma = py::module_::import("numpy.ma");
+      py::isinstance(obj, ma.attr("MaskedArray")) && ma.attr("is_masked")(obj).cast<bool>())
+    raise({StatusCode::InvalidArgument, "points is a masked array with masked entries: drop those rows first "
+                                        "(points[~points.mask.any(axis=1)]) or fill them (points.filled(...))"});
   // (The cast keeps a complex number's real part, with only numpy's warning: refused.)
   if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
     raise(
