@@ -607,15 +607,10 @@ def reconstruct(source: Union[ArrayLike, "PathLike"], *, dim: Optional[int] = No
     if isinstance(source, (str, bytes, os.PathLike)):
         points = read_points(source, dim=dim, merge_duplicates=merge_duplicates)
     else:
-        try:
-            points = np.asarray(source)
+        try:  # (not cast here: reconstruct2/3 refuse complex numbers and masked entries)
+            points = np.asanyarray(source)
         except (TypeError, ValueError) as e:  # (ragged rows)
             raise _invalid(f"points must be an (N, 2) or (N, 3) array of numbers ({e})") from None
-        if points.dtype.kind == "c":  # (a cast to float would keep the real part)
-            raise _invalid(f"points must be real numbers, not {points.dtype}")
-        if np.ma.is_masked(source):  # (asarray drops the mask: the hidden values would be points)
-            raise _invalid("points is a masked array with masked entries: drop those rows first "
-                           "(points[~points.mask.any(axis=1)]) or fill them (points.filled(...))")
         if dim is not None and points.ndim == 2 and points.shape[1] != dim:
             if points.shape[1] < dim:
                 raise _invalid(f"dim={dim}: the array has {points.shape[1]} columns")

@@ -110,10 +110,16 @@ void put_sides(const Side& ab, const Side& ba, Distance& d) {
   }
 }
 
-// Distances scaled back near 1e308 can pass the largest double: refused rather than reported as
-// inf (a report would hold null).
+// The lengths of a MeshDistance or CurveDistance2 measured on coordinates times 2^-e, back to the
+// input's scale (the relative values stay as measured). Near 1e308 they can pass the largest
+// double: refused rather than reported as inf (a report would hold null).
 template <class D>
-Status finite_distances(const D& d) {
+Status scale_back(D& d, int e) {
+  if (e != 0)
+    for (double* x : {&d.hausdorff, &d.hausdorff_result_to_reference, &d.hausdorff_reference_to_result,
+                      &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
+                      &d.spacing_result, &d.spacing_reference})
+      *x = std::ldexp(*x, e);
   for (double x : {d.hausdorff, d.mean, d.bbox_diagonal})
     if (!std::isfinite(x))
       return {StatusCode::NonFinite, "the distances exceed the largest double (coordinates near 1e308): scale both sides down"};
@@ -157,13 +163,25 @@ std::size_t grid_k(double longest, double h) {
   return static_cast<std::size_t>(std::min(k, kMaxGrid));
 }
 
+// The binary exponent of the largest magnitude added (|x| < 2^e), 0 when none is non-zero: what
+// max_coordinate_exponent gives for a point set.
+struct MaxExponent {
+  double m = 0;
+  void add(double x) { m = std::max(m, std::fabs(x)); }
+  int get() const {
+    int e = 0;
+    if (m > 0) std::frexp(m, &e);
+    return e;
+  }
+};
+
 // Far from 1 in magnitude (beyond 2^±kRescaleExponent) squared lengths and cross products
-// overflow or underflow: the distances are measured on both meshes' coordinates times 2^-e (e
-// the larger exponent of the two) and scaled back. Vertices are matched on the coordinates as
-// given. Returns 0 when no scaling is needed.
+// overflow or underflow: the distances are measured on both sides' coordinates times 2^-e (e the
+// larger exponent of the two) and scaled back. Vertices are matched on the coordinates as given.
+// 0 when no scaling is needed.
+int rescale_exponent(int e) { return e > kRescaleExponent || e < -kRescaleExponent ? e : 0; }
 int common_exponent(const PointSet& a, const PointSet& b) {
-  const int e = std::max(max_coordinate_exponent(a), max_coordinate_exponent(b));
-  return e > kRescaleExponent || e < -kRescaleExponent ? e : 0;
+  return rescale_exponent(std::max(max_coordinate_exponent(a), max_coordinate_exponent(b)));
 }
 
 // Spacing that honours both the wanted relative spacing and the sample budget. `longest`: the
@@ -265,14 +283,13 @@ Side sample_to_tree(const Mesh& a, const TriTree& tree, double h, const std::vec
   return reduce(tmax, tint, tarea, tcount);
 }
 
-// The largest binary exponent of the coordinates the triangles use (as max_coordinate_exponent).
+// The binary exponent of the coordinates the triangles use (MaxExponent).
 int used_exponent(const Mesh& a) {
-  int e = std::numeric_limits<int>::min();
+  MaxExponent e;
   for (const auto& f : a.m.triangles)
     for (int v : f)
-      for (int k = 0; k < 3; ++k)
-        if (const double x = a.p(v)[k]; x != 0) e = std::max(e, std::ilogb(x) + 1);
-  return e == std::numeric_limits<int>::min() ? 0 : e;
+      for (int k = 0; k < 3; ++k) e.add(a.p(v)[k]);
+  return e.get();
 }
 
 double longest3(const Mesh& a) {
@@ -486,13 +503,7 @@ Status compare_meshes3(const PointSet& result_points, const TriMesh3& result, co
   const Side ab = sample_to_tree(A, tree_b, d.spacing_result, exact_a);
   const Side ba = sample_to_tree(B, tree_a, d.spacing_reference, exact_b);
   put_sides(ab, ba, d);
-  if (e != 0) {  // back to the input's scale (the relative values stay as measured)
-    for (double* x : {&d.hausdorff, &d.hausdorff_result_to_reference, &d.hausdorff_reference_to_result,
-                      &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
-                      &d.spacing_result, &d.spacing_reference})
-      *x = std::ldexp(*x, e);
-  }
-  if (Status f = finite_distances(d); !f) return f;
+  if (Status f = scale_back(d, e); !f) return f;
   out = d;
   return Status::ok();
 }
@@ -581,12 +592,12 @@ std::vector<char> shared_segments(const std::vector<Seg2>& s, const std::vector<
   return out;
 }
 
-// The search tree's segments: those of a length, not below `tiny` (kTinyExponent).
+// The search tree's segments: those not shorter than `tiny` (> 0; kTinyExponent).
 std::vector<Seg3> seg3_of(const std::vector<Seg2>& s, double tiny) {
   std::vector<Seg3> out;
   out.reserve(s.size());
   for (const auto& g : s)
-    if (g.length() > 0 && g.length() >= tiny) out.emplace_back(P3(g.a[0], g.a[1], 0.0), P3(g.b[0], g.b[1], 0.0));
+    if (g.length() >= tiny) out.emplace_back(P3(g.a[0], g.a[1], 0.0), P3(g.b[0], g.b[1], 0.0));
   return out;
 }
 
@@ -601,17 +612,16 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
   // Far from 1 in magnitude, as in 3D (common_exponent): measured on the coordinates times 2^-e
   // (exact: the shared segments stay equal) and scaled back. (Before, curves near 1e200 measured
   // a Hausdorff distance of 0 and a mean of NaN: the squared distances overflowed.)
-  int emax = std::numeric_limits<int>::min();
+  MaxExponent magnitude;
   for (const auto* segs : {&sa, &sb})
     for (const Seg2& g : *segs)
-      for (double v : {g.a[0], g.a[1], g.b[0], g.b[1]})
-        if (v != 0) emax = std::max(emax, std::ilogb(v) + 1);
-  const int e = emax == std::numeric_limits<int>::min() || (emax <= kRescaleExponent && emax >= -kRescaleExponent) ? 0 : emax;
+      for (double v : {g.a[0], g.a[1], g.b[0], g.b[1]}) magnitude.add(v);
+  const int e = rescale_exponent(magnitude.get());
   if (e != 0)
     for (auto* segs : {&sa, &sb})
       for (Seg2& g : *segs)
         for (double* v : {&g.a[0], &g.a[1], &g.b[0], &g.b[1]}) *v = std::ldexp(*v, -e);
-  const double tiny = std::ldexp(1.0, (e != 0 ? 0 : std::max(emax, -kRescaleExponent)) - kTinyExponent);
+  const double tiny = std::ldexp(1.0, magnitude.get() - e - kTinyExponent);  // (of the scaled magnitude)
   const std::vector<Seg3> ga = seg3_of(sa, tiny), gb = seg3_of(sb, tiny);
   for (const auto& [segs, tree, what] : {std::tuple{&sa, &ga, "result"}, std::tuple{&sb, &gb, "reference"}}) {
     if (!tree->empty()) continue;
@@ -637,12 +647,7 @@ Status compare_curves2(const std::vector<Polyline2>& result, const std::vector<P
   const Side ab = sample2(sa, tb, d.spacing_result, shared_segments(sa, sb));
   const Side ba = sample2(sb, ta, d.spacing_reference, shared_segments(sb, sa));
   put_sides(ab, ba, d);
-  if (e != 0)  // back to the input's scale (the relative values stay as measured)
-    for (double* x : {&d.hausdorff, &d.hausdorff_result_to_reference, &d.hausdorff_reference_to_result,
-                      &d.mean_result_to_reference, &d.mean_reference_to_result, &d.mean, &d.bbox_diagonal,
-                      &d.spacing_result, &d.spacing_reference})
-      *x = std::ldexp(*x, e);
-  if (Status f = finite_distances(d); !f) return f;
+  if (Status f = scale_back(d, e); !f) return f;
   out = d;
   return Status::ok();
 }

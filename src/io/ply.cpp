@@ -219,11 +219,13 @@ Status parse_ply_header(std::string_view data, const std::string& name, PlyHeade
       have_format = true;
     } else if (w[0] == "element") {
       PlyElement el;
-      if (w.size() == 3 && !w[2].empty() && std::all_of(w[2].begin(), w[2].end(), [](char ch) { return ch >= '0' && ch <= '9'; }) &&
-          !parse_count(w[2].data(), w[2].data() + w[2].size(), el.count))
-        return bad("PLY element " + quote_word(w[1]) + ": count " + std::string(w[2]) + " is too large");
-      if (w.size() != 3 || !parse_count(w[2].data(), w[2].data() + w[2].size(), el.count))
-        return bad("malformed PLY element line (expected 'element NAME COUNT')");
+      if (w.size() != 3 || !parse_count(w[2].data(), w[2].data() + w[2].size(), el.count)) {
+        // (digits that do not fit a count: a count too large, not a malformed line)
+        const bool digits = w.size() == 3 && !w[2].empty() &&
+                            std::all_of(w[2].begin(), w[2].end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+        return bad(digits ? "PLY element " + quote_word(w[1]) + ": count " + std::string(w[2]) + " is too large"
+                          : "malformed PLY element line (expected 'element NAME COUNT')");
+      }
       el.name = std::string(w[1]);
       el.header_line = line;
       h.elements.push_back(std::move(el));
