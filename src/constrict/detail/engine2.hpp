@@ -257,7 +257,7 @@ struct Constrictor2::Impl {
   }
   // The heap's top after a pop is most often the next pop: its state, adjacency and vertices
   // are fetched while this removal is made (the pops read the triangles in key order, at random).
-  void prefetch_triangle(std::uint32_t t) const {
+  [[gnu::always_inline]] void prefetch_triangle(std::uint32_t t) const {
     __builtin_prefetch(&ver[t]);
     __builtin_prefetch(&alive[t]);
     __builtin_prefetch(&dt.neighbors[t]);
