@@ -289,6 +289,7 @@ struct Piece {
   bool joined;  // the next piece continues this one's run of elements in the same block
 };
 constexpr std::size_t kPieceElements = 8192;
+constexpr std::size_t kCellsAhead = 16;
 
 // export_finite for the 3D triangulation without the local mesh, in three passes:
 //  (1) number the finite cells in container order, and cut the container into pieces;
@@ -322,14 +323,27 @@ void export_released3(DT3& dt, const detail::BigArray<int>& id, Delaunay3& out) 
     }
   }
 
-  const auto for_cells = [&](std::size_t p0, std::size_t p1, const auto& f) {
+  // f(cell, its bytes) for each finite cell of pieces [p0, p1); ahead(cell) for the element
+  // kCellsAhead further in the same piece, when it is a cell in use.
+  const auto for_cells = [&](std::size_t p0, std::size_t p1, const auto& f, const auto& ahead) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(p0, p1, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
         unsigned char* e = pieces[p].first;
-        for (std::size_t k = 0; k < pieces[p].n; ++k, e += kCell)
+        for (std::size_t k = 0; k < pieces[p].n; ++k, e += kCell) {
+          if (k + kCellsAhead < pieces[p].n && is_used(e + kCellsAhead * kCell))
+            ahead(*reinterpret_cast<const DT3::Cell*>(e + kCellsAhead * kCell));
           if (is_used(e) && reinterpret_cast<DT3::Cell*>(e)->info() >= 0) f(*reinterpret_cast<DT3::Cell*>(e), e);
+        }
       }
     });
+  };
+  // The records read the cell's vertices and neighbours, which lie anywhere in CGAL's containers:
+  // fetched kCellsAhead elements before.
+  const auto fetch_around = [](const DT3::Cell& c) {
+    for (int k = 0; k < 4; ++k) {
+      __builtin_prefetch(&c.vertex(k)->info());
+      __builtin_prefetch(&c.neighbor(k)->info());
+    }
   };
   for_cells(0, pieces.size(), [&](DT3::Cell& c, unsigned char* bytes) {
     CellRecord rec{};
@@ -339,7 +353,7 @@ void export_released3(DT3& dt, const detail::BigArray<int>& id, Delaunay3& out) 
       rec.nb[u] = c.neighbor(k)->info();
     }
     std::memcpy(bytes + kRecordOffset, &rec, sizeof rec);
-  });
+  }, fetch_around);
 
   out.tets.clear();
   out.neighbors.clear();
@@ -356,7 +370,7 @@ void export_released3(DT3& dt, const detail::BigArray<int>& id, Delaunay3& out) 
       const auto t = static_cast<std::size_t>(c.info());
       out.tets[t] = rec.tet;
       out.neighbors[t] = rec.nb;
-    });
+    }, [](const DT3::Cell&) {});
     // Only as many bytes as the output holds by now are given back: the peak stays the
     // triangulation's, and the rest stays with the heap, which takes the engine's next (small)
     // arrays from it without faulting pages in again.
