@@ -16,6 +16,10 @@
 namespace constrict {
 namespace {
 
+// The loops over the faces read their points at random (in input order): each fetches those of
+// the face kFacesAhead further on first.
+constexpr std::size_t kFacesAhead = 16;
+
 std::array<double, 3> bbox_centre(const PointSet& pts) {
   std::array<double, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
   if (pts.size() == 0) return lo;
@@ -117,7 +121,14 @@ double detail::mesh_volume_of_surfaces(const PointSet& pts, const TriMesh3& mesh
   double vol = 0;
   // (The filter's terms read the coordinates as given, in the triangle's own order.)
   VolumeFilterSum filter(mesh.triangles.empty() ? nullptr : pts[static_cast<std::size_t>(mesh.triangles[0][0])]);
-  for (const auto& t : mesh.triangles) {
+  const std::size_t nf = mesh.triangles.size();
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (f + kFacesAhead < nf)
+      for (int v : mesh.triangles[f + kFacesAhead]) {
+        __builtin_prefetch(q[static_cast<std::size_t>(v)]);
+        if (!one) __builtin_prefetch(&comp[static_cast<std::size_t>(v)]);
+      }
+    const auto& t = mesh.triangles[f];
     if (estimate)
       filter.add(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])], pts[static_cast<std::size_t>(t[2])]);
     const double* a = q[static_cast<std::size_t>(t[0])];
@@ -145,7 +156,11 @@ double mesh_area(const PointSet& pts, const TriMesh3& mesh) {
   const bool mul = e >= -1022 && e <= 1022;
   const double f = std::ldexp(1.0, -e);
   double area = 0;
-  for (const auto& t : mesh.triangles) {
+  const std::size_t nf = mesh.triangles.size();
+  for (std::size_t i = 0; i < nf; ++i) {
+    if (i + kFacesAhead < nf)
+      for (int v : mesh.triangles[i + kFacesAhead]) __builtin_prefetch(pts[static_cast<std::size_t>(v)]);
+    const auto& t = mesh.triangles[i];
     double p[3][3];
     for (int k = 0; k < 3; ++k)
       for (int d = 0; d < 3; ++d) {
