@@ -140,7 +140,9 @@ class Growth3 {
 
  private:
   // The next pop is most often the heap's top now: its records are fetched while this one is
-  // examined (the walk through the heap order reads the tetrahedra at random).
+  // examined (the walk through the heap order reads the tetrahedra at random). (Every helper that
+  // only fetches is always_inline: GCC 12 finds such a function free of side effects and deletes
+  // its calls before inlining; docs/benchmarks.md, thirty-third 2026-12-07 session.)
   [[gnu::always_inline]] void prefetch(int t) const {
     __builtin_prefetch(&cell_[uz(t)]);
     __builtin_prefetch(&b_.nbr[uz(t)]);
