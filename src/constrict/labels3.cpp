@@ -287,15 +287,14 @@ class LabelQueue {
     if (bk < best_b_[uz(t)]) return false;
     best_b_[uz(t)] = static_cast<std::int16_t>(bk);
     const int lab = std::signbit(code) ? -lab_from : lab_from;
-    bucket_[uz(bk)].push_back({t, lab < 0 ? -conf : conf});
+    bucket_[uz(bk)].push({t, lab < 0 ? -conf : conf});
     top_ = std::max(top_, bk);
     return true;
   }
   bool pop(Item& out) {
     while (top_ >= 0 && bucket_[uz(top_)].empty()) --top_;
     if (top_ < 0) return false;
-    out = bucket_[uz(top_)].back();
-    bucket_[uz(top_)].pop_back();
+    out = bucket_[uz(top_)].pop();
     return true;
   }
   // The tetrahedron of the next pop if no push comes first, or -1 (a guess for prefetching).
@@ -307,7 +306,24 @@ class LabelQueue {
 
  private:
   static constexpr std::int16_t kDone = kBuckets + 1;
-  std::vector<std::vector<Item>> bucket_;
+  // A bucket: a stack whose push is inline (std::vector's was an out-of-line call per push, 15 %
+  // of the propagation on the 10^6 star).
+  class Stack {
+   public:
+    bool empty() const { return size_ == 0; }
+    const Item& back() const { return data_[size_ - 1]; }
+    Item pop() { return data_[--size_]; }
+    void push(const Item& x) {
+      if (size_ == data_.size()) grow();
+      data_[size_++] = x;
+    }
+
+   private:
+    [[gnu::noinline]] void grow() { data_.resize(std::max<std::size_t>(64, 2 * data_.size())); }
+    std::vector<Item> data_;
+    std::size_t size_ = 0;
+  };
+  std::vector<Stack> bucket_;
   std::vector<std::int16_t> best_b_;
   int top_ = -1;
 };
