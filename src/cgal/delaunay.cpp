@@ -289,7 +289,6 @@ struct Piece {
   bool joined;  // the next piece continues this one's run of elements in the same block
 };
 constexpr std::size_t kPieceElements = 8192;
-constexpr std::size_t kCellsAhead = 16;
 
 // export_finite for the 3D triangulation without the local mesh, in three passes:
 //  (1) number the finite cells in container order, and cut the container into pieces;
@@ -324,21 +323,21 @@ void export_released3(DT3& dt, const detail::BigArray<int>& id, Delaunay3& out) 
   }
 
   // f(cell, its bytes) for each finite cell of pieces [p0, p1); ahead(cell) for the element
-  // kCellsAhead further in the same piece, when it is a cell in use.
+  // kAhead further in the same piece, when it is a cell in use.
   const auto for_cells = [&](std::size_t p0, std::size_t p1, const auto& f, const auto& ahead) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(p0, p1, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
         unsigned char* e = pieces[p].first;
         for (std::size_t k = 0; k < pieces[p].n; ++k, e += kCell) {
-          if (k + kCellsAhead < pieces[p].n && is_used(e + kCellsAhead * kCell))
-            ahead(*reinterpret_cast<const DT3::Cell*>(e + kCellsAhead * kCell));
+          if (k + kAhead < pieces[p].n && is_used(e + kAhead * kCell))
+            ahead(*reinterpret_cast<const DT3::Cell*>(e + kAhead * kCell));
           if (is_used(e) && reinterpret_cast<DT3::Cell*>(e)->info() >= 0) f(*reinterpret_cast<DT3::Cell*>(e), e);
         }
       }
     });
   };
   // The records read the cell's vertices and neighbours, which lie anywhere in CGAL's containers:
-  // fetched kCellsAhead elements before.
+  // fetched kAhead elements before.
   const auto fetch_around = [](const DT3::Cell& c) {
     for (int k = 0; k < 4; ++k) {
       __builtin_prefetch(&c.vertex(k)->info());

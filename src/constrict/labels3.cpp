@@ -16,6 +16,7 @@
 
 #include "constrict/detail/stages3.hpp"
 #include "core/detail/big_vector.hpp"
+#include "core/detail/fetch_ahead.hpp"
 #include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
@@ -24,8 +25,6 @@ namespace {
 // Quantisation of the confidence in [0, 1] for the bucket queue.
 constexpr int kBuckets = 1024;
 constexpr std::size_t kGrain = 4096;
-// How many tetrahedra ahead the passes over all of them fetch what they read of other ones.
-constexpr std::size_t kAhead = 16;
 
 using Ball = std::array<double, 4>;  // centre xyz, radius (radius < 0: flat)
 
@@ -145,8 +144,7 @@ BigArray<Ball> circumballs(const Body3& b, std::vector<char>& flags) {
   ball.allocate(b.T0);  // (every entry written below, on both cores: not zero-filled first)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, b.T0, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
-      if (t + kAhead < r.end())
-        for (int x : b.tets[t + kAhead]) __builtin_prefetch(b.P(x));
+      fetch_ahead(b.tets, t, r.end(), [&](int x) { __builtin_prefetch(b.P(x)); });
       const auto& v = b.tets[t];
       const double* a = b.P(v[0]);
       double e1[3], e2[3], e3[3];
@@ -451,14 +449,13 @@ std::shared_ptr<const Labels3> compute_labels3(const Body3& b, const std::functi
       bool seam_here = false, flat_here = false;
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         // The neighbours' balls and flags lie anywhere in their arrays (half of this loop's time
-        // was the first load of a neighbour's ball): fetched kAhead tetrahedra before.
-        if (t + kAhead < r.end())
-          for (int m : b.nbr[t + kAhead])
-            if (m >= 0 && uz(m) < T0) {
-              __builtin_prefetch(&ball[uz(m)][0]);
-              __builtin_prefetch(&ball[uz(m)][3]);
-              __builtin_prefetch(&flags[uz(m)]);
-            }
+        // was the first load of a neighbour's ball): fetched a few tetrahedra before.
+        fetch_ahead(b.nbr, t, r.end(), [&](int m) {
+          if (m < 0 || uz(m) >= T0) return;
+          __builtin_prefetch(&ball[uz(m)][0]);
+          __builtin_prefetch(&ball[uz(m)][3]);
+          __builtin_prefetch(&flags[uz(m)]);
+        });
         const Ball& bt = ball[t];
         seam_here = seam_here || (flags[t] & kSeam);
         flat_here = flat_here || (flags[t] & kFlat);

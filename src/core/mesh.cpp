@@ -9,16 +9,13 @@
 
 #include "constrict/mesh.hpp"
 #include "constrict/points.hpp"
+#include "core/detail/fetch_ahead.hpp"
 #include "core/detail/surface_components.hpp"
 #include "core/detail/union_find.hpp"
 #include "core/detail/volume_filter.hpp"
 
 namespace constrict {
 namespace {
-
-// The loops over the faces read their points at random (in input order): each fetches those of
-// the face kFacesAhead further on first.
-constexpr std::size_t kFacesAhead = 16;
 
 std::array<double, 3> bbox_centre(const PointSet& pts) {
   std::array<double, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
@@ -123,11 +120,11 @@ double detail::mesh_volume_of_surfaces(const PointSet& pts, const TriMesh3& mesh
   VolumeFilterSum filter(mesh.triangles.empty() ? nullptr : pts[static_cast<std::size_t>(mesh.triangles[0][0])]);
   const std::size_t nf = mesh.triangles.size();
   for (std::size_t f = 0; f < nf; ++f) {
-    if (f + kFacesAhead < nf)
-      for (int v : mesh.triangles[f + kFacesAhead]) {
-        __builtin_prefetch(q[static_cast<std::size_t>(v)]);
-        if (!one) __builtin_prefetch(&comp[static_cast<std::size_t>(v)]);
-      }
+    // (The faces name their points in input order, at random for a shuffled file.)
+    detail::fetch_ahead(mesh.triangles, f, nf, [&](int v) {
+      __builtin_prefetch(q[static_cast<std::size_t>(v)]);
+      if (!one) __builtin_prefetch(&comp[static_cast<std::size_t>(v)]);
+    });
     const auto& t = mesh.triangles[f];
     if (estimate)
       filter.add(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])], pts[static_cast<std::size_t>(t[2])]);
@@ -158,8 +155,7 @@ double mesh_area(const PointSet& pts, const TriMesh3& mesh) {
   double area = 0;
   const std::size_t nf = mesh.triangles.size();
   for (std::size_t i = 0; i < nf; ++i) {
-    if (i + kFacesAhead < nf)
-      for (int v : mesh.triangles[i + kFacesAhead]) __builtin_prefetch(pts[static_cast<std::size_t>(v)]);
+    detail::fetch_ahead(mesh.triangles, i, nf, [&](int v) { __builtin_prefetch(pts[static_cast<std::size_t>(v)]); });
     const auto& t = mesh.triangles[i];
     double p[3][3];
     for (int k = 0; k < 3; ++k)

@@ -37,7 +37,7 @@ constexpr std::size_t kBlock = 1024;
 // The apexes across the faces are scattered in memory: prefetch their coordinates.
 constexpr std::size_t kAhead = 8;
 template <int V, class Mesh>
-inline void prefetch_far(const Mesh& loc, const double* X, std::size_t dim, std::size_t t, std::size_t end) {
+[[gnu::always_inline]] inline void prefetch_far(const Mesh& loc, const double* X, std::size_t dim, std::size_t t, std::size_t end) {
   if (t >= end) return;
   for (int i = 0; i < V; ++i) {
     const int q = loc.opposite[t][static_cast<std::size_t>(i)];

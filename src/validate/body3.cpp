@@ -21,6 +21,7 @@
 #include "constrict/predicates.hpp"
 #include "constrict/topology.hpp"
 #include "core/detail/big_vector.hpp"
+#include "core/detail/fetch_ahead.hpp"
 #include "core/detail/first_index.hpp"
 #include "core/detail/owned_ranges.hpp"
 #include "core/detail/tet_faces.hpp"
@@ -30,7 +31,6 @@ namespace {
 
 inline std::size_t uz(int i) { return static_cast<std::size_t>(i); }
 constexpr std::size_t kGrain = 1 << 14;
-constexpr std::size_t kAhead = 16;  // how many tetrahedra or triangles ahead a pass fetches what it reads at random
 using detail::kFaceOut;
 
 // A face occurrence in the group of its smallest vertex, as one key: the other two vertices b < c
@@ -79,9 +79,9 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
     return false;
   };
   const auto negative = [&](std::size_t t) {
-    if (t + kAhead < body.size())
-      for (int x : body[t + kAhead])
-        if (x >= 0 && uz(x) < n) __builtin_prefetch(points[uz(x)]);
+    detail::fetch_ahead(body, t, body.size(), [&](int x) {
+      if (x >= 0 && uz(x) < n) __builtin_prefetch(points[uz(x)]);
+    });
     const auto& v = body[t];
     return orient3(points[uz(v[0])], points[uz(v[1])], points[uz(v[2])], points[uz(v[3])]) <= 0;
   };
@@ -107,10 +107,10 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
     }
   };
   // (The ids are in input order, at random for a shuffled file: each pass over the tetrahedra or
-  // triangles fetches the entries of the one kAhead further on first.)
+  // triangles fetches the entries of one a few further on first.)
+  const auto fetch_label = [&](int v) { __builtin_prefetch(&label[uz(v)]); };
   for (std::size_t t = 0; t < body.size(); ++t) {
-    if (t + kAhead < body.size())
-      for (int v : body[t + kAhead]) __builtin_prefetch(&label[uz(v)]);
+    detail::fetch_ahead(body, t, body.size(), fetch_label);
     for (int v : body[t]) see(v);
   }
   for (const auto& t : mesh.triangles)
@@ -123,8 +123,7 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
   tri_recs.allocate(F);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, T, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t != r.end(); ++t) {
-      if (t + kAhead < r.end())
-        for (int v : body[t + kAhead]) __builtin_prefetch(&label[uz(v)]);
+      detail::fetch_ahead(body, t, r.end(), fetch_label);
       const auto& b = body[t];
       const int v[4] = {label[uz(b[0])], label[uz(b[1])], label[uz(b[2])], label[uz(b[3])]};
       Tet x{};
@@ -138,8 +137,7 @@ Status validate_body3(const PointSet& points, const TriMesh3& mesh, const std::v
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, F, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t f = r.begin(); f != r.end(); ++f) {
-      if (f + kAhead < r.end())
-        for (int v : mesh.triangles[f + kAhead]) __builtin_prefetch(&label[uz(v)]);
+      detail::fetch_ahead(mesh.triangles, f, r.end(), fetch_label);
       const auto& m = mesh.triangles[f];
       const std::array<int, 3> w{{label[uz(m[0])], label[uz(m[1])], label[uz(m[2])]}};
       const auto v = sorted3(w);

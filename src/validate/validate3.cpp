@@ -19,6 +19,7 @@
 #include "constrict/mesh.hpp"
 #include "constrict/predicates.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/fetch_ahead.hpp"
 #include "core/detail/first_index.hpp"
 #include "core/detail/surface_components.hpp"
 
@@ -150,10 +151,6 @@ bool triangles_intersect_improperly(const PointSet& pts, const std::array<int, 3
 
 namespace {
 
-// The passes over the faces read per-vertex entries at random (the points in input order): each
-// fetches those of the face kFacesAhead further on first.
-constexpr std::size_t kFacesAhead = 16;
-
 int find_root(std::vector<int>& parent, int x) {
   while (parent[static_cast<std::size_t>(x)] != x) {
     parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
@@ -271,8 +268,9 @@ Status check_faces(const PointSet& pts, const TriMesh3& mesh, MeshCheck& d) {
   }
   d.indices_ok = true;
   const std::size_t first_flat = detail::first_index(nf, [&](std::size_t f) {
-    if (f + kFacesAhead < nf)
-      for (int v : mesh.triangles[f + kFacesAhead]) __builtin_prefetch(pts[static_cast<std::size_t>(v)]);
+    // (The passes over the faces read per-vertex entries in input order, at random for a shuffled
+    // file: each fetches those of a face a few further on.)
+    detail::fetch_ahead(mesh.triangles, f, nf, [&](int v) { __builtin_prefetch(pts[static_cast<std::size_t>(v)]); });
     const auto& t = mesh.triangles[f];
     return collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])],
                       pts[static_cast<std::size_t>(t[2])]);
@@ -337,16 +335,14 @@ VertexLinks vertex_links(const TriMesh3& mesh, std::size_t n) {
   off.assign(n + 1, 0);
   const std::size_t nf = mesh.triangles.size();
   for (std::size_t f = 0; f < nf; ++f) {
-    if (f + kFacesAhead < nf)
-      for (int v : mesh.triangles[f + kFacesAhead]) __builtin_prefetch(&off[static_cast<std::size_t>(v) + 1], 1);
+    detail::fetch_ahead(mesh.triangles, f, nf, [&](int v) { __builtin_prefetch(&off[static_cast<std::size_t>(v) + 1], 1); });
     for (int v : mesh.triangles[f]) ++off[static_cast<std::size_t>(v) + 1];
   }
   for (std::size_t i = 0; i < n; ++i) off[i + 1] += off[i];
   vl.link.resize(3 * nf);
   std::vector<std::size_t> fill(off.begin(), off.end() - 1);
   for (std::size_t f = 0; f < nf; ++f) {
-    if (f + kFacesAhead < nf)
-      for (int v : mesh.triangles[f + kFacesAhead]) __builtin_prefetch(&fill[static_cast<std::size_t>(v)], 1);
+    detail::fetch_ahead(mesh.triangles, f, nf, [&](int v) { __builtin_prefetch(&fill[static_cast<std::size_t>(v)], 1); });
     const auto& t = mesh.triangles[f];
     for (int k = 0; k < 3; ++k)
       vl.link[fill[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])]++] =
@@ -458,8 +454,7 @@ std::vector<int> face_union_find(const TriMesh3& mesh, std::size_t n) {
   std::iota(parent.begin(), parent.end(), 0);
   const std::size_t nf = mesh.triangles.size();
   for (std::size_t f = 0; f < nf; ++f) {
-    if (f + kFacesAhead < nf)
-      for (int v : mesh.triangles[f + kFacesAhead]) __builtin_prefetch(&parent[static_cast<std::size_t>(v)], 1);
+    detail::fetch_ahead(mesh.triangles, f, nf, [&](int v) { __builtin_prefetch(&parent[static_cast<std::size_t>(v)], 1); });
     const auto& t = mesh.triangles[f];
     const int r0 = find_root(parent, t[0]);
     for (int k = 1; k < 3; ++k) {
