@@ -5,13 +5,14 @@
 // long faces across the tube at the cut; closing the loop removes it. Two parts that nearly touch
 // (labels leaking across a gap) would instead get new faces spanning the gap: more bridges.
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <queue>
-#include <unordered_map>
 #include <vector>
 
 #include "constrict/detail/stages3.hpp"
@@ -302,39 +303,46 @@ double shortest_loop(const Body3& b, const std::vector<int>& changed, const std:
 }
 
 // Do two of the region's contact patches (as in shortest_loop) meet through body tetrahedra
-// labelled inside, outside the region? A breadth-first search from every contact at once, each
-// tetrahedron marked with its patch.
-bool loop_through_inside(const Body3& b, const std::vector<int>& changed, const Labels3& lab) {
+// labelled inside, outside the region? That is: does one component of those tetrahedra (joined
+// across shared faces) hold the neighbours of contacts of two patches? On a true handle the two
+// patches meet only round the object, through nearly the whole body, so the components are found
+// by one pass over the tetrahedra in their (spatial) order, a union-find, rather than by a search
+// from the contacts (a torus of 10^5 random points: 0.53 s with the search's marks in a hash map,
+// 0.19 s in a flat array, 0.05 s so). in_region: all 0, kept between calls, given back so.
+bool loop_through_inside(const Body3& b, const std::vector<int>& changed, const Labels3& lab,
+                         std::vector<char>& in_region) {
   std::vector<int> sorted = changed;
   std::sort(sorted.begin(), sorted.end());
-  const auto in_r = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };
-  const auto passable = [&](int t) {
-    return t >= 0 && b.alive(t) && !in_r(t) && (uz(t) >= lab.label.size() || lab.label[uz(t)] < 0);
-  };
-  UnionFind uf(0);
-  const std::vector<Contact> cf = contact_faces(b, changed, sorted, uf);
+  UnionFind patches(0);
+  const std::vector<Contact> cf = contact_faces(b, changed, sorted, patches);
   if (cf.size() < 2) return false;
-  std::unordered_map<int, int> patch_of;
-  std::vector<int> queue;
+  const std::size_t nt = b.tets.size();
+  if (in_region.size() < nt) in_region.resize(nt, 0);
+  for (int t : changed) in_region[uz(t)] = 1;
+  const auto passable = [&](int t) {
+    return t >= 0 && b.state[uz(t)] == kAlive && !in_region[uz(t)] && (uz(t) >= lab.label.size() || lab.label[uz(t)] < 0);
+  };
+  // The contacts' neighbours that can be passed, with their patches.
+  std::vector<std::array<int, 2>> seeds;  // (tetrahedron, patch)
   for (std::size_t k = 0; k < cf.size(); ++k) {
     const int m = b.nbr[uz(cf[k].t)][uz(cf[k].i)];
-    if (!passable(m)) continue;
-    const int p = uf.find(static_cast<int>(k));
-    const auto [it, fresh] = patch_of.emplace(m, p);
-    if (fresh) queue.push_back(m);
-    else if (it->second != p) return true;
+    if (passable(m)) seeds.push_back({m, patches.find(static_cast<int>(k))});
   }
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const int t = queue[q];
-    const int p = patch_of[t];
-    for (int m : b.nbr[uz(t)]) {
-      if (!passable(m)) continue;
-      const auto [it, fresh] = patch_of.emplace(m, p);
-      if (fresh) queue.push_back(m);
-      else if (it->second != p) return true;
+  bool met = false;
+  if (seeds.size() >= 2) {
+    UnionFind comp(nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (!passable(static_cast<int>(t))) continue;
+      for (int m : b.nbr[t])
+        if (m > static_cast<int>(t) && passable(m)) comp.join(static_cast<int>(t), m);
     }
+    // (component root, patch), sorted: two patches in one component are neighbours.
+    for (auto& s : seeds) s[0] = comp.find(s[0]);
+    std::sort(seeds.begin(), seeds.end());
+    for (std::size_t i = 1; i < seeds.size() && !met; ++i) met = seeds[i][0] == seeds[i - 1][0] && seeds[i][1] != seeds[i - 1][1];
   }
-  return false;
+  for (int t : changed) in_region[uz(t)] = 0;
+  return met;
 }
 
 }  // namespace
@@ -347,7 +355,8 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
-  return [spacing, uneven, debug, part_of, mixed0, log, labels](const Body3& b, const std::vector<int>& changed, bool added,
+  auto in_region = std::make_shared<std::vector<char>>();  // loop_through_inside's marks
+  return [spacing, uneven, debug, part_of, mixed0, log, labels, in_region](const Body3& b, const std::vector<int>& changed, bool added,
                                                 long long dF, bool pinched, std::vector<int>* trim) {
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
@@ -522,7 +531,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // boxes 2 spacings apart, 6 of 8 false handles of bench/near_parts3.py at gaps of 1-2 spacings
     // gone, and a grid-sampled box's false handle; of 627 control sets 3 changed, two noisy
     // implicit chains of rings that already missed handles lost one more.
-    if (keep && added && dF > 0 && labels && !loop_through_inside(b, changed, *labels)) {
+    if (keep && added && dF > 0 && labels && !loop_through_inside(b, changed, *labels, *in_region)) {
       if (debug) std::fprintf(stderr, "handle close: %zu tets close no loop through inside-labelled tetrahedra: undone\n", changed.size());
       keep = false;
     }
