@@ -7,6 +7,7 @@
 #include "constrict/predicates.hpp"
 #include "core/detail/first_index.hpp"
 #include "core/detail/ordered_pack.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
 
@@ -67,31 +68,40 @@ void Body3::edge_ring(int t, int i, int j, std::vector<int>& out) const {
     });
 }
 
+// The components by one union-find pass over the tetrahedra in their order (neighbours are mostly
+// near in that spatial order), not a search from one start, whose reads jump about the arrays: a
+// torus of 3·10^5 random points (5 M tetrahedra) in its auto mode, 398 perf samples before and 249
+// after.
 bool Body3::side_connected(std::uint8_t side) const {
-  std::vector<char> seen(tets.size(), 0);
-  std::vector<int> st;
-  for (std::size_t t = 0; t < tets.size(); ++t) {
+  const std::size_t count = tets.size();
+  UnionFind uf(count);
+  bool any = false;
+  for (std::size_t t = 0; t < count; ++t) {
     if (state[t] != side) continue;
-    bool start = side == kAlive;
-    for (int m : nbr[t]) start = start || m < 0;
-    if (start) {
-      seen[t] = 1;
-      st.push_back(static_cast<int>(t));
-      if (side == kAlive) break;
+    any = true;
+    for (int m : nbr[t])
+      if (m > static_cast<int>(t) && state[uz(m)] == side) uf.join(static_cast<int>(t), m);
+  }
+  if (side == kAlive) {  // one piece
+    if (!any) return false;
+    int root = -1;
+    for (std::size_t t = 0; t < count; ++t) {
+      if (state[t] != side) continue;
+      const int r = uf.find(static_cast<int>(t));
+      if (root < 0) root = r;
+      else if (r != root) return false;
     }
+    return true;
   }
-  if (side == kAlive && st.empty()) return false;
-  while (!st.empty()) {
-    const int t = st.back();
-    st.pop_back();
-    for (int m : nbr[uz(t)])
-      if (m >= 0 && state[uz(m)] == side && !seen[uz(m)]) {
-        seen[uz(m)] = 1;
-        st.push_back(m);
-      }
+  // Every piece touches the convex hull (a tetrahedron with a face on it: neighbour -1).
+  std::vector<char> at_hull(count, 0);  // per root
+  for (std::size_t t = 0; t < count; ++t) {
+    if (state[t] != side) continue;
+    for (int m : nbr[t])
+      if (m < 0) at_hull[uz(uf.find(static_cast<int>(t)))] = 1;
   }
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    if (state[t] == side && !seen[t]) return false;
+  for (std::size_t t = 0; t < count; ++t)
+    if (state[t] == side && !at_hull[uz(uf.find(static_cast<int>(t)))]) return false;
   return true;
 }
 

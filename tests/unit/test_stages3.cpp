@@ -551,6 +551,83 @@ TEST(Stages3, NearestSpacingIsTheShortestDelaunayEdgeAtEveryPoint) {
   }
 }
 
+// Body3::side_connected against its definition, a search: kAlive, one face-connected piece;
+// kOutside, every outside piece reaches the convex hull. States: random (mostly broken), a piece
+// grown by a search from one tetrahedron (whole; the rest then outside, a void only where the
+// growth enclosed one), and that piece with one tetrahedron taken out (split or not).
+TEST(Stages3, SideConnectedIsTheSearchDefinition) {
+  const auto reference = [](const Body3& b, std::uint8_t side) {
+    std::vector<char> seen(b.tets.size(), 0);
+    std::vector<int> st;
+    for (std::size_t t = 0; t < b.tets.size(); ++t) {
+      if (b.state[t] != side) continue;
+      bool start = side == detail::kAlive;
+      for (int m : b.nbr[t]) start = start || m < 0;
+      if (!start) continue;
+      seen[t] = 1;
+      st.push_back(static_cast<int>(t));
+      if (side == detail::kAlive) break;
+    }
+    if (side == detail::kAlive && st.empty()) return false;
+    while (!st.empty()) {
+      const int t = st.back();
+      st.pop_back();
+      for (int m : b.nbr[static_cast<std::size_t>(t)])
+        if (m >= 0 && b.state[static_cast<std::size_t>(m)] == side && !seen[static_cast<std::size_t>(m)]) {
+          seen[static_cast<std::size_t>(m)] = 1;
+          st.push_back(m);
+        }
+    }
+    for (std::size_t t = 0; t < b.tets.size(); ++t)
+      if (b.state[t] == side && !seen[t]) return false;
+    return true;
+  };
+  int agreed[2][2] = {{0, 0}, {0, 0}};  // [side][answer]
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    const PointSet p = cloud(300, seed);
+    Body3 b = start_body(p);
+    std::mt19937 rng(seed);
+    const std::size_t nt = b.tets.size();
+    for (int trial = 0; trial < 12; ++trial) {
+      const int kind = trial % 3;
+      if (kind == 0) {
+        const double keep = std::uniform_real_distribution<double>(0.5, 1.0)(rng);
+        for (std::size_t t = 0; t < nt; ++t)
+          b.state[t] = std::uniform_real_distribution<double>(0, 1)(rng) < keep ? detail::kAlive : detail::kOutside;
+      } else {
+        std::fill(b.state.begin(), b.state.end(), detail::kOutside);
+        const std::size_t want = std::uniform_int_distribution<std::size_t>(1, nt)(rng);
+        std::vector<int> st{static_cast<int>(std::uniform_int_distribution<std::size_t>(0, nt - 1)(rng))};
+        b.state[static_cast<std::size_t>(st[0])] = detail::kAlive;
+        std::vector<int> grown = st;
+        while (!st.empty() && grown.size() < want) {
+          const int t = st.back();
+          st.pop_back();
+          for (int m : b.nbr[static_cast<std::size_t>(t)])
+            if (m >= 0 && b.state[static_cast<std::size_t>(m)] != detail::kAlive && grown.size() < want) {
+              b.state[static_cast<std::size_t>(m)] = detail::kAlive;
+              grown.push_back(m);
+              st.push_back(m);
+            }
+        }
+        if (kind == 2 && grown.size() > 2)
+          b.state[static_cast<std::size_t>(grown[std::uniform_int_distribution<std::size_t>(1, grown.size() - 1)(rng)])] =
+              detail::kOutside;
+      }
+      for (const std::uint8_t side : {detail::kAlive, detail::kOutside}) {
+        const bool want = reference(b, side);
+        ASSERT_EQ(b.side_connected(side), want) << "seed " << seed << ", trial " << trial << ", side " << int(side);
+        ++agreed[side == detail::kAlive ? 0 : 1][want ? 1 : 0];
+      }
+    }
+  }
+  // Both answers met on both sides (a check that cannot fail on one answer is no check).
+  for (const auto& a : agreed) {
+    EXPECT_GT(a[0], 0);
+    EXPECT_GT(a[1], 0);
+  }
+}
+
 // bucket_sort (core/detail/bucket_sort.hpp) gives the order of its comparator, on one thread and
 // on several: keys spread over the whole range, clustered in a few values (long runs of equal keys
 // that the comparator's second field decides), all equal, and with extremes (0 and 2^64 - 1).
