@@ -46,7 +46,6 @@
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
 #include "core/detail/link_cycle.hpp"
-#include "core/detail/owned_ranges.hpp"
 #include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
 #include "core/detail/tet_order.hpp"
@@ -89,9 +88,11 @@ double len2(const double* a, const double* b) {
 // lexicographically smaller point; fewer neighbours -> the farthest).
 std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
   constexpr int k = kSpacingRank;
-  std::vector<std::array<int, k>> best(pts.size());
-  std::vector<std::array<double, k>> best_d2(pts.size());  // their len2 from the point
-  for (auto& b : best) b.fill(-1);
+  // Each point's k nearest so far and their len2 from it, sorted; one such list per task.
+  struct Nearest {
+    std::vector<std::array<int, k>> id;
+    std::vector<std::array<double, k>> d2;
+  };
   // Is q (at squared distance dq from p) nearer to p than r (dr)? compare_distance3's own filter
   // (gap_filtered) on the cached squared lengths, its exact arithmetic when that cannot decide.
   const auto closer = [&](int p, int q, double dq, int r, double dr) {
@@ -100,9 +101,9 @@ std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
     if (!ok) c = compare_distance3(pts[uz(p)], pts[uz(q)], pts[uz(r)]);
     return c < 0 || (c == 0 && lex_less3(pts[uz(q)], pts[uz(r)]));
   };
-  const auto offer = [&](int p, int q) {
-    auto& b = best[uz(p)];
-    auto& d = best_d2[uz(p)];
+  const auto offer = [&](Nearest& nb, int p, int q) {
+    auto& b = nb.id[uz(p)];
+    auto& d = nb.d2[uz(p)];
     for (int x : b)
       if (x == q) return;
     const double dq = len2(pts[uz(p)], pts[uz(q)]);
@@ -117,20 +118,42 @@ std::vector<int> spacing_neighbours(const PointSet& pts, const Delaunay3& dt) {
     b[uz(i)] = q;
     d[uz(i)] = dq;
   };
-  // In parallel over ranges of points: each range reads every tetrahedron and offers only to its
-  // own points, so each point sees the same offers in the same order as one sequential pass (and
-  // the order of the k nearest is a strict total order anyway).
-  detail::for_owned_ranges(pts.size(), dt.tets.size(), [&](std::size_t lo_, std::size_t hi_) {
-    const int lo = static_cast<int>(lo_), hi = static_cast<int>(hi_);
-    for_tet_edges(dt, [&](int p, int q) {
-      if (p >= lo && p < hi) offer(p, q);
-      if (q >= lo && q < hi) offer(q, p);
-    });
+  // The order "nearer" is a strict total order (ties to the lexicographically smaller point), so
+  // the k nearest of a point are the k nearest of the union of any split of its offers. In
+  // parallel over fixed blocks of tetrahedra (each task its own lists), then the lists merged per
+  // point: the same lists for any number of threads. (Ranges of points whose tasks each read every
+  // tetrahedron read them twice on two cores: 0.44-0.49 s on a torus of 3·10^5 random points, 5 M
+  // tetrahedra; 0.33-0.34 s so, in 2 of 3 runs.)
+  const std::size_t nt = dt.tets.size();
+  constexpr std::size_t kBlocks = 2;
+  const std::size_t blocks = nt < (std::size_t{1} << 16) ? 1 : kBlocks;
+  std::vector<Nearest> lists(blocks);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t blk) {
+    Nearest& nb = lists[blk];
+    std::array<int, k> none;
+    none.fill(-1);
+    nb.id.assign(pts.size(), none);
+    nb.d2.resize(pts.size());
+    for (std::size_t t = nt * blk / blocks, e = nt * (blk + 1) / blocks; t < e; ++t) {
+      const auto& v = dt.tets[t];
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          offer(nb, v[uz(i)], v[uz(j)]);
+          offer(nb, v[uz(j)], v[uz(i)]);
+        }
+    }
   });
   std::vector<int> out(pts.size(), -1);
-  for (std::size_t v = 0; v < pts.size(); ++v)
-    for (int x : best[v])
-      if (x >= 0) out[v] = x;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), std::size_t{1} << 14),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                        for (std::size_t blk = 1; blk < blocks; ++blk)
+                          for (int x : lists[blk].id[v])
+                            if (x >= 0) offer(lists[0], static_cast<int>(v), x);
+                        for (int x : lists[0].id[v])
+                          if (x >= 0) out[v] = x;
+                      }
+                    });
   return out;
 }
 
