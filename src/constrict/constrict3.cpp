@@ -236,7 +236,7 @@ void Constrictor3::Impl::handles_stage(Mesh3Result& r) {
   const double conf = detail::fill_confidence(opt);
   auto log = std::make_shared<std::vector<Handle3Change>>();
   const std::size_t changed =
-      detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get(), log, keys.labels.get()), handles_closed,
+      detail::handles3(body, *keys.labels, conf, detail::bridge_handle_decision(body, part_of.get(), log, keys.labels.get(), keys.spacing), handles_closed,
                        handles_opened, /*local_repair=*/!part_of);
   // (Enclosed voids are the cavities of inner shells: allowed here.)
   if (changed > 0 && !body.side_connected(kAlive)) {

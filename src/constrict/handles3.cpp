@@ -348,15 +348,21 @@ bool loop_through_inside(const Body3& b, const std::vector<int>& changed, const 
 }  // namespace
 
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
-                                      std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels) {
-  // (The spacing on first use: most bodies have no candidate region.)
-  auto spacing = std::make_shared<std::vector<double>>();
+                                      std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels,
+                                      std::shared_ptr<const std::vector<double>> given_spacing) {
+  // The spacing: the engine's, or made on first use (most bodies have no candidate region).
+  auto own_spacing = std::make_shared<std::vector<double>>();
+  const auto spacing_of = [given_spacing, own_spacing](const Body3& b) -> const std::vector<double>& {
+    if (given_spacing) return *given_spacing;
+    if (own_spacing->empty()) *own_spacing = nearest_spacing3(b);
+    return *own_spacing;
+  };
   auto uneven = std::make_shared<double>(-1);  // the surface's 90th-percentile ratio, on first use
   const bool debug = std::getenv("CONSTRICT_DEBUG_HANDLES") != nullptr;
   // Before any change: the surfaces holding two parts (one, or none).
   const int mixed0 = part_of ? mixed_surfaces(body, *part_of) : 0;  // (only with parts: the fallback run)
   auto in_region = std::make_shared<std::vector<char>>();  // loop_through_inside's marks
-  return [spacing, uneven, debug, part_of, mixed0, log, labels, in_region](const Body3& b, const std::vector<int>& changed, bool added,
+  return [spacing_of, uneven, debug, part_of, mixed0, log, labels, in_region](const Body3& b, const std::vector<int>& changed, bool added,
                                                 long long dF, bool pinched, std::vector<int>* trim) {
     Handle3Change h;
     h.kind = !added ? Handle3Change::Kind::OpenTunnel : dF > 0 ? Handle3Change::Kind::CloseLoop : Handle3Change::Kind::SealCavity;
@@ -379,8 +385,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       CavityMeasure m = enclosed_cavity(b, changed);
       const bool large = dF == -4 && m.voids == 1 && m.tets >= kMinCavity && m.points >= kMinCavity;
       if (large || debug) {
-        if (spacing->empty()) *spacing = nearest_spacing3(b);
-        m.widest = cavity_width(b, m.void_tets, *spacing);
+        m.widest = cavity_width(b, m.void_tets, spacing_of(b));
       }
       const bool shell = large && m.widest >= kMinCavityWidth;
       if (debug)
@@ -408,7 +413,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
           return false;
         }
       }
-    if (spacing->empty()) *spacing = nearest_spacing3(b);
+    const std::vector<double>& spacing = spacing_of(b);
     std::vector<int> sorted = changed;
     std::sort(sorted.begin(), sorted.end());
     const auto was_changed = [&](int t) { return std::binary_search(sorted.begin(), sorted.end(), t); };
@@ -416,7 +421,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     BridgeCount before, after;
     const auto count = [&](BridgeCount& c, int t, int i) {
       const auto& v = b.tets[uz(t)];
-      const double r = bridge_ratio3(*b.pts, *spacing, v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]);
+      const double r = bridge_ratio3(*b.pts, spacing, v[uz(kFaceOut[i][0])], v[uz(kFaceOut[i][1])], v[uz(kFaceOut[i][2])]);
       c.worst = std::max(c.worst, r);
       if (r >= Mesh3Result::kBridgeRatio) ++c.faces;
     };
@@ -477,7 +482,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // contact faces (trim).
     const bool several = added && by_bridges && dF >= 8 && !pinched;
     std::vector<int> near_patch;
-    double loop = need_loop ? shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : several ? std::max(min_loop, kSeveralLoopMin) : min_loop,
+    double loop = need_loop ? shortest_loop(b, changed, spacing, debug ? HUGE_VAL : several ? std::max(min_loop, kSeveralLoopMin) : min_loop,
                                             several && trim ? &near_patch : nullptr)
                             : -1;
     bool keep = need_loop ? loop >= min_loop : by_bridges;
@@ -495,7 +500,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     }
     // On an even sample a closing leaves no long face (kUnevenSample above).
     if (keep && added && after.faces > 0) {
-      if (*uneven < 0) *uneven = surface_ratio_quantile(b, *spacing, 0.9);
+      if (*uneven < 0) *uneven = surface_ratio_quantile(b, spacing, 0.9);
       // ... unless it takes nearly all of them away, as from a wide cut, and closes a long loop:
       // where the sample itself has long faces (the vertices of a decimated mesh: long triangles
       // on flat and gently curved parts) a true cut's closing leaves a few of them beside it.
@@ -513,7 +518,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
       bool cut = false;
       if (even && wide_cut) {
         const double need = after.worst <= kCutLeftWorst * before.worst ? kThinLoopMin : kCutLongLoop;
-        if (loop < need) loop = shortest_loop(b, changed, *spacing, debug ? HUGE_VAL : need);
+        if (loop < need) loop = shortest_loop(b, changed, spacing, debug ? HUGE_VAL : need);
         cut = loop >= need;
       }
       if (even && !cut) {

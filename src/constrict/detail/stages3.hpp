@@ -227,9 +227,11 @@ std::size_t handles3(Body3& body, const Labels3& labels, double min_conf, const 
 // The decision of the engine (handles3.cpp): a change is kept when it lowers the bridge measure
 // of the surface around it; with part_of (the parts of the gap rule, per point; may be null) also
 // a sealed cavity that leaves fewer surfaces holding points of two parts.
-// log (may be null) receives every change the decision keeps.
+// log (may be null) receives every change the decision keeps. spacing (may be null): the body's
+// nearest_spacing3, when the engine has it (else made on first use).
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
-                                      std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels = nullptr);
+                                      std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels = nullptr,
+                                      std::shared_ptr<const std::vector<double>> spacing = nullptr);
 
 // ---- edge flips (flips3.cpp; docs/reconstruction-3d.md §4) -------------------------------------
 
