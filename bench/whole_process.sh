@@ -42,6 +42,18 @@ save("surface3.xyz", v * [2.0, 1.2, 0.8])
 # only carved). About 7.6 Delaunay tetrahedra per point instead of 4.6.
 th = np.arctan2(v[:, 1], v[:, 0]); ph = np.arccos(np.clip(v[:, 2], -1, 1))
 save("star3.xyz", v * (1 + 0.25 * np.sin(3 * th) * np.sin(ph) ** 3 + 0.15 * np.cos(4 * ph))[:, None])
+# A torus (R = 1, r = 0.35) of N/3 uniformly random points (by area: rejection on the tube angle):
+# a handle for --topology auto to close, and 17 Delaunay tetrahedra per point (docs/benchmarks.md,
+# thirty-fourth session). Its own generator, so the inputs above keep their points.
+trng = np.random.default_rng(29)
+m, tor = n // 3, []
+while sum(len(x) for x in tor) < m:
+    k = 2 * m
+    u, w, keep = trng.random(k) * 2 * math.pi, trng.random(k) * 2 * math.pi, trng.random(k)
+    ok = keep < (1 + 0.35 * np.cos(w)) / 1.35
+    u, w = u[ok], w[ok]
+    tor.append(np.c_[(1 + 0.35 * np.cos(w)) * np.cos(u), (1 + 0.35 * np.cos(w)) * np.sin(u), 0.35 * np.sin(w)])
+save("torus3.xyz", np.vstack(tor)[:m])
 if os.environ.get("HOSTILE") == "1":
     rng = np.random.default_rng(23)
     m = n - n // 100
@@ -61,7 +73,7 @@ if os.environ.get("HOSTILE") == "1":
     t = rng.random(n) * 2 * math.pi
     save("concentric2.xy", np.c_[np.cos(t), np.sin(t)] * np.where(np.arange(n) < k, 1.0, 0.5)[:, None])
 PY
-inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3" "star3.xyz 3")
+inputs=("curve2.xy 2" "noisy2.xy 2" "uniform2.xy 2" "surface3.xyz 3" "star3.xyz 3" "torus3.xyz 3")
 [ "${HOSTILE:-0}" = 1 ] && inputs+=("outliers2.xy 2" "spiral2.xy 2" "cauchy2.xy 2" "clusters2.xy 2" "concentric2.xy 2")
 [ -f ../shared/data/3d/igea.xyz ] && inputs+=("../shared/data/3d/igea.xyz 3")
 median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
