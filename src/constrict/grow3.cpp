@@ -18,6 +18,10 @@
 #include <utility>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -390,7 +394,21 @@ class Growth3 {
     bool has(int a, int c) const {
       if (size_[uz(c)] < size_[uz(a)]) std::swap(a, c);
       const int* p = nb_.data() + off_[uz(a)];
-      return std::find(p, p + size_[uz(a)], c) != p + size_[uz(a)];
+      const int n = size_[uz(a)];
+#if defined(__SSE2__)
+      // Four entries per compare: on random samples (17 tetrahedra per point, long lists) the
+      // scan was a fifth of the growth's samples; 2 596-2 620 against 2 747-3 034 samples of
+      // Growth3::run on a random torus of 3·10^5 points (eight per step measured: no better).
+      const __m128i key = _mm_set1_epi32(c);
+      int i = 0;
+      for (; i + 4 <= n; i += 4)
+        if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i)), key)) != 0) return true;
+      for (; i < n; ++i)
+        if (p[i] == c) return true;
+      return false;
+#else
+      return std::find(p, p + n, c) != p + n;
+#endif
     }
     void add(int a, int c) {
       push(a, c);
