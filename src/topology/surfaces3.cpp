@@ -45,6 +45,7 @@
 #include "core/detail/bucket_sort.hpp"
 #include "core/detail/canonical_order.hpp"
 #include "core/detail/check_points.hpp"
+#include "core/detail/edge_key.hpp"
 #include "core/detail/link_cycle.hpp"
 #include "core/detail/semi_static.hpp"
 #include "core/detail/tet_faces.hpp"
@@ -231,9 +232,7 @@ void sort_unique_edges(std::vector<std::array<int, 2>>& edges) {
   detail::BigArray<std::array<int, 2>> a;
   a.allocate(edges.size());
   std::copy(edges.begin(), edges.end(), a.data());
-  const auto key = [](const std::array<int, 2>& e) {
-    return static_cast<std::uint64_t>(static_cast<std::uint32_t>(e[0])) << 32 | static_cast<std::uint32_t>(e[1]);
-  };
+  const auto key = [](const std::array<int, 2>& e) { return detail::edge_key(e[0], e[1]); };  // (p < q: ascending pairs)
   detail::bucket_sort(a, key, [&](const std::array<int, 2>& x, const std::array<int, 2>& y) { return key(x) < key(y); });
   edges.assign(a.data(), std::unique(a.data(), a.data() + a.size()));
 }
@@ -390,7 +389,7 @@ struct RecentEdges {
   std::vector<std::uint64_t> slot = std::vector<std::uint64_t>(std::size_t{1} << 16, ~std::uint64_t{0});
   /// Was {p, q} the last edge of its slot? Makes it so.
   bool seen(int p, int q) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(p, q))) << 32) | static_cast<std::uint32_t>(std::max(p, q));
+    const std::uint64_t key = detail::edge_key(p, q);
     std::uint64_t& s = slot[(key * 0x9E3779B97F4A7C15ull) >> 40 & (slot.size() - 1)];
     if (s == key) return true;
     s = key;

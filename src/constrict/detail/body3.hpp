@@ -18,6 +18,7 @@
 #include "constrict/status.hpp"
 #include "core/detail/edge_key.hpp"
 #include "core/detail/tet_faces.hpp"
+#include "core/detail/union_find.hpp"
 
 namespace constrict::detail {
 
@@ -115,6 +116,19 @@ struct Body3 {
   // side kAlive: is the body one face-connected piece? kOutside: does every tetrahedron outside
   // the body reach the convex hull through outside tetrahedra (no enclosed void)?
   bool side_connected(std::uint8_t side) const;
+  // The face-connected components of the tetrahedra t with in(t): a union-find over all
+  // tetrahedra (the others stay alone), made by one pass in tetrahedron order, whose neighbours
+  // are mostly near (a search from one start jumps about the arrays).
+  template <class In>
+  UnionFind face_components(const In& in) const {
+    UnionFind uf(tets.size());
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      if (!in(static_cast<int>(t))) continue;
+      for (int m : nbr[t])
+        if (m > static_cast<int>(t) && in(m)) uf.join(static_cast<int>(t), m);
+    }
+    return uf;
+  }
 
   // Appends a tetrahedron (in the body, no neighbours yet); returns its index.
   int new_tet(const std::array<int, 4>& v);
