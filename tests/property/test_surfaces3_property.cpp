@@ -194,7 +194,7 @@ TEST(Surfaces3Property, RandomHollowBallIsTwoSurfaces) {
 // The same with normal noise of 0.3 spacings per coordinate: a point that noise moved off its
 // shell leaves a tent of faces that are not Delaunay faces of all points, which no edge flip
 // removes. The parts' surfaces are then put into the common tetrahedralization and the points
-// where that body is not a surface are repaired (parts_body, SurfaceRepair in surfaces3.cpp).
+// where that body is not a surface are repaired (parts_body, SurfaceRepair in repair3.cpp).
 // Before that, 1 of 8 numpy samples gave the two shells; now 7 of 8 (docs/topology.md §Limits).
 TEST(Surfaces3Property, NoisyRandomHollowBallIsTwoSurfaces) {
   const double h = std::sqrt(4 * M_PI * (1.0 + 0.49) / 20000);  // mean spacing over both shells
@@ -664,7 +664,7 @@ TEST(Surfaces3Property, MachinedPartsGetNoFalseHandles) {
 // surface with a bridge across the gap and, where its labels left cuts in the gap, false handles
 // (without the labels these six came out as one surface of genus 2, 0, 1, 1, 0, 1). The gap is labelled
 // outside but for label noise: parts that the narrower rule (3/4 T) keeps apart stay apart unless
-// tetrahedra labelled inside join them (surfaces3.cpp, split_by_labels).
+// tetrahedra labelled inside join them (parts3.cpp, split_by_labels).
 TEST(Surfaces3Property, StackedBoxesAFewSpacingsApartStayTwoParts) {
   for (const double gap : {2.5, 3.0})
     for (unsigned seed = 1; seed <= 3; ++seed) {
@@ -757,7 +757,7 @@ Surfaces3Result run_regression_file(const std::string& name, const char* what) {
 // rounding, each part's own tetrahedralization triangulates them otherwise than that of all
 // points, the common body cannot be repaired, and the parts' bounding boxes overlap (rotated): the
 // decision fell back to one part, one surface with a bridge. A plane separates them
-// (surfaces3.cpp, planes_apart), so each keeps its own body.
+// (assemble3.cpp, planes_apart), so each keeps its own body.
 TEST(Surfaces3Property, RotatedPlatesApartKeepTheirOwnBodies) {
   const PointSet p = regression_points("plates_rotated_gap4.xyz");
   ASSERT_GT(p.size(), 0u);
@@ -811,7 +811,7 @@ TEST(Surfaces3Property, DecimatedPretzelKeepsItsThirdHandle) {
   EXPECT_EQ(long_loops, 1);
 }
 
-// Patches of one surface (surfaces3.cpp join_patches; docs/topology.md, "Decimated meshes"). The
+// Patches of one surface (parts3.cpp join_patches; docs/topology.md, "Decimated meshes"). The
 // vertices of decimated machined parts are dense at fillets and rounded corners and sparse on the
 // flat faces around them (long triangles), so a fillet can lie more than T local spacings from the
 // rest of its own surface: a part of its own. Regression files from the decimated-mesh sweep
@@ -838,7 +838,7 @@ TEST(Surfaces3Property, DecimatedBracketFilletIsNoPartOfItsOwn) {
 // area. Between 3 and 4 spacings the narrower gap rule splits the shells but the labels of the
 // wall between them are inside: until 2026-12-07 the pieces were joined as one object, and the
 // handle stage failed to seal the inner shell (one surface of genus 0-2). A piece around a void
-// of tetrahedra labelled outside now stays a part of its own (surfaces3.cpp,
+// of tetrahedra labelled outside now stays a part of its own (parts3.cpp,
 // pieces_around_voids); the nesting of the parts' surfaces gives the roles.
 PointSet random_shells(int shells, double gap, int n, unsigned seed) {
   std::mt19937_64 rng(seed);

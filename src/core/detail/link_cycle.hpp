@@ -2,7 +2,7 @@
 // Is a vertex's link one cycle? The link is given as its edges (the surface faces at the vertex,
 // each with the vertex left out): every link vertex has degree 2 and one walk passes every edge.
 // Shared by the 3D engine's region passes (carve3.cpp) and the auto topology's body repair
-// (surfaces3.cpp).
+// (repair3.cpp).
 #pragma once
 
 #include <algorithm>
