@@ -2,6 +2,7 @@
 // `constrict compare RESULT REFERENCE`: measures a reconstruction against a ground truth.
 // 2D: a polygon (.idx .csv .gt) against a .gt reference over the same points (--points);
 // 3D: two meshes (.off .ply .obj .stl). The numbers come from the library (compare.hpp, metrics.hpp).
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <fstream>
@@ -19,10 +20,20 @@
 namespace constrict::cli {
 namespace {
 
+// A fraction as a percentage with `decimals` places; from 10^6 % on in the shortest exponent form
+// (a far-off vertex gave a 60-digit figure).
+std::string percent(double fraction, int decimals) {
+  char buf[64];
+  const double p = 100 * fraction;
+  if (std::fabs(p) < 1e6) std::snprintf(buf, sizeof buf, "%.*f", decimals, p);
+  else std::snprintf(buf, sizeof buf, "%.4g", p);
+  return buf;
+}
+
 struct CompareArgs {
   std::string result, reference, points, report;
   double spacing = 2e-3;
-  std::size_t max_samples = 1000000;
+  double max_samples = 1e6;  // (a double: "1e6", as the help writes it, is accepted)
   bool quiet = false;
 };
 
@@ -74,11 +85,11 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   j["edge_precision"] = pc.edge_precision;
   put_distance(j, d);
   if (!a.quiet) {
-    std::printf("%s: edges recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox diagonal), "
-                "mean %.6g (%.4f%%)\n",
+    std::printf("%s: edges recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%s%% of bbox diagonal), "
+                "mean %.6g (%s%%)\n",
                 pc.exact_match ? "exact match" : "differs", pc.recovered_edges, pc.reference_edges,
-                100 * pc.edge_recall, 100 * pc.edge_precision, d.hausdorff, 100 * d.relative_hausdorff, d.mean,
-                100 * d.relative_mean);
+                100 * pc.edge_recall, 100 * pc.edge_precision, d.hausdorff, percent(d.relative_hausdorff, 3).c_str(), d.mean,
+                percent(d.relative_mean, 4).c_str());
     if (rc.result_rings > 1 || rc.reference_rings > 1)
       std::printf("rings: %zu in the result, %zu in the reference, %zu of them with the same point set\n",
                   rc.result_rings, rc.reference_rings, rc.same_point_sets);
@@ -123,11 +134,11 @@ int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
                 {"reference_triangle", d.worst_reference_element},
                 {"reference_at", centroid(bp, bm, d.worst_reference_element)}};
   if (!a.quiet)
-    std::printf("%s: triangles recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%.3f%% of bbox "
-                "diagonal; result->reference %.6g, reference->result %.6g), mean %.6g (%.4f%%)\n",
+    std::printf("%s: triangles recovered %zu/%zu (%.1f%%), precision %.1f%%, hausdorff %.6g (%s%% of bbox "
+                "diagonal; result->reference %.6g, reference->result %.6g), mean %.6g (%s%%)\n",
                 d.identical ? "identical" : "differs", d.recovered_triangles, d.reference_triangles,
-                100 * d.triangle_recovery, 100 * d.triangle_precision, d.hausdorff, 100 * d.relative_hausdorff,
-                d.hausdorff_result_to_reference, d.hausdorff_reference_to_result, d.mean, 100 * d.relative_mean);
+                100 * d.triangle_recovery, 100 * d.triangle_precision, d.hausdorff, percent(d.relative_hausdorff, 3).c_str(),
+                d.hausdorff_result_to_reference, d.hausdorff_reference_to_result, d.mean, percent(d.relative_mean, 4).c_str());
   return 0;
 }
 
@@ -137,7 +148,10 @@ int run_compare(const CompareArgs& a) {
     return fail(s);
   DistanceOptions o;
   o.relative_spacing = a.spacing;
-  o.max_samples = a.max_samples;
+  // A whole number of samples up to 2^53 (the doubles' whole numbers; larger ones passed unchecked).
+  if (!(a.max_samples >= 1 && a.max_samples <= 9007199254740992.0 && std::floor(a.max_samples) == a.max_samples))
+    return fail({StatusCode::InvalidArgument, "--max-samples must be a whole number from 1 to 2^53 (for example 1e6)"});
+  o.max_samples = static_cast<std::size_t>(a.max_samples);
   nlohmann::json j;
   j["command"] = "compare";
   j["result"] = a.result;

@@ -5,10 +5,13 @@
 // library (render.hpp, write_polygon2).
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,19 @@
 
 namespace constrict::cli {
 namespace {
+
+// The input as a mesh of format `fmt` (off, ply, obj, stl): by its extension, or as --format names
+// it, which also reads standard input ("-"; the faces of a piped mesh were dropped and its
+// vertices reconstructed instead).
+Status read_mesh_input(const std::string& path, const std::string& fmt, PointSet& pts, TriMesh3& mesh) {
+  if (path != "-" && lower_ext(path) == fmt) return read_mesh(path, pts, mesh);
+  std::ifstream f(path == "-" ? std::string("/dev/stdin") : path, std::ios::binary);
+  if (!f) return {StatusCode::FileNotFound, (path == "-" ? std::string("standard input") : path) + ": cannot open"};
+  std::ostringstream data;
+  data << f.rdbuf();
+  // (read_mesh_from_buffer takes the format from the name's extension)
+  return read_mesh_from_buffer(data.str(), (path == "-" ? std::string("standard input") : path) + " as ." + fmt, pts, mesh);
+}
 
 constexpr int kMaxViews = 1024;  // 32 x 32 panels of 512 pixels: the largest picture (16384 pixels)
 
@@ -373,10 +389,13 @@ int run_render(const RenderArgs& a) {
     return 0;
   }
   const std::string ie = lower_ext(a.in.path);
-  if (is_mesh_ext(ie)) {  // a mesh, unless it has no faces
+  std::string fmt = a.in.format;
+  std::transform(fmt.begin(), fmt.end(), fmt.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string mesh_fmt = is_mesh_ext(fmt) ? fmt : fmt == "auto" || fmt.empty() ? ie : std::string();
+  if (is_mesh_ext(mesh_fmt)) {  // a mesh, unless it has no faces (by --format too, and on standard input)
     PointSet pts;
     TriMesh3 mesh;
-    const Status s = read_mesh(a.in.path, pts, mesh);
+    const Status s = read_mesh_input(a.in.path, mesh_fmt, pts, mesh);
     if (s) {
       if (!a.stages.empty() || !a.animate.empty() || a.stop_after != SIZE_MAX)
         return fail({StatusCode::InvalidArgument, "--stages, --animate and --stop-after need a point set, not a mesh"});

@@ -94,6 +94,11 @@ Status check_distinct_files(std::initializer_list<NamedPath> inputs, std::initia
   const std::vector<NamedPath> out(outputs), in(inputs);
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (out[i].second->empty()) continue;
+    // (Before the input is read: a graph of a minute's work then failed to write into a directory.)
+    std::error_code ec;
+    if (std::filesystem::is_directory(*out[i].second, ec))
+      return {StatusCode::InvalidArgument, std::string(out[i].first) + " names a directory (" + *out[i].second +
+                                               "): give a file name in it"};
     for (const NamedPath& x : in)
       if (!x.second->empty() && same_file(*out[i].second, *x.second))
         return {StatusCode::InvalidArgument, std::string(out[i].first) + " names the input " + x.first + " (" + *x.second +

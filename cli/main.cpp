@@ -158,6 +158,18 @@ int main(int argc, char** argv) {
   const std::vector<cli::Command> commands = {cli::add_reconstruct_command(app), cli::add_graph_command(app),
                                              cli::add_compare_command(app), cli::add_render_command(app)};
 
+  // A mistyped command word (`constrict grph ...`) met CLI11's "A subcommand is required": name it.
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    for (const auto& c : commands) known = known || c.app->check_name(argv[1]);
+    if (!known) {
+      std::fprintf(stderr,
+                   "constrict: error [InvalidArgument]: unknown command '%s': use reconstruct, graph, compare or render "
+                   "(see constrict --help)\n",
+                   argv[1]);
+      return exit_code(StatusCode::InvalidArgument);
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -112,7 +112,10 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
       hi[k] = std::max(hi[k], points[i][k]);
     }
   if (n == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0;
-  const double ext = std::max({hi[0] - lo[0], hi[1] - lo[1], 1e-300});
+  // Half the extent, and the centre from halves: finite for data spanning more than the largest
+  // double (it gave a blank picture), bit for bit the plain values below that.
+  const double half_ext = std::max({0.5 * hi[0] - 0.5 * lo[0], 0.5 * hi[1] - 0.5 * lo[1], 0.5e-300});
+  const double mid[2] = {0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]};
 
   const int P = static_cast<int>(panels.size());
   const int cols = o.columns > 0 ? std::min(o.columns, P) : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(P))));
@@ -128,8 +131,8 @@ Status render_sheet2(const PointSet& points, const std::vector<Panel2>& panels, 
               (p / cols + 1) * o.height / rows};
     const int cw = cv.cx1 - cv.cx0, ch = cv.cy1 - cv.cy0;
     const double margin = std::max(4.0, 0.03 * std::min(cw, ch));
-    const double s = std::max(1e-300, std::min(cw - 2 * margin, ch - 2 * margin)) / ext;
-    const double ox = cv.cx0 + 0.5 * cw - s * 0.5 * (lo[0] + hi[0]), oy = cv.cy0 + 0.5 * ch + s * 0.5 * (lo[1] + hi[1]);
+    const double s = 0.5 * std::max(1e-300, std::min(cw - 2 * margin, ch - 2 * margin)) / half_ext;
+    const double ox = cv.cx0 + 0.5 * cw - s * mid[0], oy = cv.cy0 + 0.5 * ch + s * mid[1];
     const auto X = [&](std::size_t i) { return ox + s * points[i][0]; };
     const auto Y = [&](std::size_t i) { return oy - s * points[i][1]; };
     const double unit = std::min(cw, ch) / 800.0;  // the SVG writer draws on an 800-pixel canvas

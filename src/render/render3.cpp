@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "constrict/predicates.hpp"
 #include "constrict/render.hpp"
 #include "core/detail/check_points.hpp"
 
@@ -41,7 +42,9 @@ struct Camera {
 };
 
 Camera camera(const View& v) {
-  const double az = v.azimuth * kPi / 180, el = v.elevation * kPi / 180;
+  // (The angles reduced to a turn first, exactly: 6e307 degrees times pi overflowed to inf, a
+  // blank picture; within a turn fmod changes nothing.)
+  const double az = std::fmod(v.azimuth, 360.0) * kPi / 180, el = std::fmod(v.elevation, 360.0) * kPi / 180;
   Camera c;
   c.dir = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
   c.right = {-std::sin(az), std::cos(az), 0};
@@ -94,7 +97,8 @@ Cell cell_of(const Sheet& g, int p) {
 }
 
 // The stages of render_sheet3, in order (defined after it).
-Status mark_used(const std::vector<Panel3>& panels, std::size_t n, std::vector<char>& used);
+int used_exponent(const PointSet& points, const std::vector<char>& used);
+Status mark_used(const PointSet& pts, const std::vector<Panel3>& panels, std::vector<char>& used);
 Sphere bounding_sphere(const UpFrame& at, const std::vector<char>& used);
 void project_panel(const Panel3& pan, const Cell& cell, const UpFrame& at, const Sphere& frame, const RenderOptions3& o,
                    Screen* tris, char* live);
@@ -134,14 +138,15 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
     return {StatusCode::InvalidArgument, "render: image size must be in [1, 16384]"};
   if (!(o.ambient >= 0 && o.ambient <= 1) || !(o.edge_width > 0) || o.columns < 0 || o.up_axis < 0 || o.up_axis > 2)
     return {StatusCode::InvalidArgument, "render: ambient in [0, 1], edge width > 0, columns >= 0, up axis 0..2"};
+  std::vector<char> used(points.size(), 0);
+  if (Status s = mark_used(points, panels, used); !s) return s;
   // Far from 1 in magnitude the normals' cross products overflow or underflow (a blank or flat
-  // picture): the picture of the points times 2^-e (e their largest exponent) is the same.
-  if (const int e = max_coordinate_exponent(points); e > kRescaleExponent || e < -kRescaleExponent) {
+  // picture): the picture of the points times 2^-e (e the largest exponent of the vertices drawn;
+  // an unused vertex at 1e100 had scaled a unit mesh to 1e-100, blank) is the same.
+  if (const int e = used_exponent(points, used); e > kRescaleExponent || e < -kRescaleExponent) {
     return render_sheet3(scaled_by_power_of_two(points, -e), panels, o, out);
   }
   const UpFrame at(points, o.up_axis);
-  std::vector<char> used(points.size(), 0);
-  if (Status s = mark_used(panels, points.size(), used); !s) return s;
   const Sphere frame = bounding_sphere(at, used);
 
   const int P = static_cast<int>(panels.size());
@@ -183,8 +188,21 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
 
 namespace {
 
-// Checks every panel (mesh, view, vertex ids < n) and marks the vertices its mesh uses.
-Status mark_used(const std::vector<Panel3>& panels, std::size_t n, std::vector<char>& used) {
+// The binary exponent of the largest coordinate of the used vertices (|x| < 2^e), 0 when none is
+// non-zero: max_coordinate_exponent() over the vertices drawn.
+int used_exponent(const PointSet& points, const std::vector<char>& used) {
+  double m = 0;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (used[i])
+      for (int k = 0; k < 3; ++k) m = std::max(m, std::fabs(points[i][k]));
+  int e = 0;
+  if (m > 0) std::frexp(m, &e);
+  return e;
+}
+
+// Checks every panel (mesh, view, vertex ids, a proper triangle) and marks the vertices its mesh uses.
+Status mark_used(const PointSet& pts, const std::vector<Panel3>& panels, std::vector<char>& used) {
+  const std::size_t n = pts.size();
   for (const auto& p : panels) {
     if (!p.mesh) return {StatusCode::InvalidArgument, "render: panel without a mesh"};
     if (!std::isfinite(p.view.azimuth) || !std::isfinite(p.view.elevation))
@@ -195,6 +213,14 @@ Status mark_used(const std::vector<Panel3>& panels, std::size_t n, std::vector<c
           return {StatusCode::InvalidArgument, "render: vertex index " + std::to_string(v) + " out of range"};
         used[static_cast<std::size_t>(v)] = 1;
       }
+    // A mesh of degenerate triangles only (points on a line, repeated ids) draws nothing: refused,
+    // as compare refuses it, rather than a blank picture (exact test, up to the first proper one).
+    const auto proper = [&](const std::array<int, 3>& t) {
+      return !collinear3(pts[static_cast<std::size_t>(t[0])], pts[static_cast<std::size_t>(t[1])], pts[static_cast<std::size_t>(t[2])]);
+    };
+    if (!p.mesh->triangles.empty() && std::none_of(p.mesh->triangles.begin(), p.mesh->triangles.end(), proper))
+      return {StatusCode::InvalidArgument,
+              "render: the mesh has no triangle with a positive area (every one is degenerate): nothing to draw"};
   }
   return Status::ok();
 }

@@ -128,6 +128,41 @@ TEST(Render3, SamePictureFarFromOne) {
   }
 }
 
+// Hostile-argument sweep of render (2026-12-07): an unused vertex far off scaled the picture by its
+// exponent (a unit tetrahedron beside an unused vertex at 1e100 drew blank); a view angle of
+// 6e307 degrees overflowed in the conversion to radians (blank); a mesh of degenerate triangles
+// drew nothing and was accepted. Now: the same picture as without the unused vertex, the same as
+// the angle reduced to a turn, and a refusal.
+TEST(Render3, UnusedVerticesAndHugeAnglesDrawTheSamePicture) {
+  RenderOptions3 o;
+  o.width = o.height = 64;
+  Image ref;
+  ASSERT_TRUE(render_mesh3(tetra_points(), tetra_mesh(), {}, o, ref));
+  for (double far : {1e100, -1e300, 1e-200}) {
+    PointSet p = tetra_points();
+    p.coords.insert(p.coords.end(), {far, 0, 0});
+    Image img;
+    ASSERT_TRUE(render_mesh3(p, tetra_mesh(), {}, o, img)) << far;
+    EXPECT_EQ(img.rgb, ref.rgb) << far;
+  }
+  const double turns = 6e307;  // fmod(6e307, 360) is exact
+  const View reduced{std::fmod(turns, 360.0), std::fmod(-turns, 360.0)};
+  Image a, b;
+  ASSERT_TRUE(render_mesh3(tetra_points(), tetra_mesh(), {View{turns, -turns}}, o, a));
+  ASSERT_TRUE(render_mesh3(tetra_points(), tetra_mesh(), {reduced}, o, b));
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_GT(count_colour(a, o.background, 0), 0u);
+  EXPECT_LT(count_colour(a, o.background, 0), static_cast<std::size_t>(64 * 64));  // not blank
+  PointSet line;
+  line.dim = 3;
+  line.coords = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
+  TriMesh3 flat;
+  flat.triangles = {{{0, 1, 2}}, {{1, 2, 3}}, {{0, 0, 3}}};
+  const Status s = render_mesh3(line, flat, {}, o, a);
+  EXPECT_EQ(s.code(), StatusCode::InvalidArgument);
+  EXPECT_NE(s.message().find("no triangle with a positive area"), std::string::npos) << s.message();
+}
+
 // A face repeated (same orientation, any cyclic start) draws as once: the same picture, wireframe
 // too (a face repeated 3·10^5 times took minutes, each copy rasterised over the whole picture). A
 // repeat with the opposite orientation is another face and is kept.
@@ -259,6 +294,29 @@ TEST(Render2, RingsFillEvenOdd) {
   EXPECT_GT(count_colour(img, {{31, 78, 140}}, 10), 60u);  // three rings' edges
   pan.rings.push_back({0, 1, 12});
   EXPECT_EQ(render_sheet2(p, {pan}, o, img).code(), StatusCode::InvalidArgument);  // ring index out of range
+}
+
+// Points spanning more than the largest double (±9e307): the frame's span overflowed, the SVG
+// held NaN coordinates and the PNG was blank (hostile-argument sweep, 2026-12-07).
+TEST(Render2, DataSpanningMoreThanTheLargestDouble) {
+  PointSet p;
+  p.dim = 2;
+  p.coords = {-9e307, -9e307, 9e307, -9e307, 9e307, 9e307, -9e307, 9e307};
+  const std::vector<int> square{0, 1, 2, 3};
+  RenderOptions2 o;
+  o.width = o.height = 64;
+  Image img;
+  ASSERT_TRUE(render_sheet2(p, {Panel2{square}}, o, img));
+  EXPECT_GT(count_colour(img, {{255, 255, 255}}, 0), 0u);
+  EXPECT_LT(count_colour(img, {{255, 255, 255}}, 0), static_cast<std::size_t>(64 * 64) / 2);  // filled, not blank
+  const std::string svg = tmp("huge_span.svg");
+  ASSERT_TRUE(write_polygon2(svg, p, square, PolygonFormat::Svg));
+  std::ifstream f(svg);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_EQ(ss.str().find("nan"), std::string::npos);
+  EXPECT_NE(ss.str().find("width=\"800\""), std::string::npos);
+  std::filesystem::remove(svg);
 }
 
 TEST(Png, RoundTripAndErrors) {

@@ -128,13 +128,16 @@ struct SvgFrame {
         lo[k] = std::min(lo[k], pts[i][k]);
         hi[k] = std::max(hi[k], pts[i][k]);
       }
-    const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300);
-    scale = (size - 2 * margin) / std::max(w, h);
-    W = w * scale + 2 * margin;
-    H = h * scale + 2 * margin;
+    // Half extents and half differences: a span beyond the largest double (points near ±1e308)
+    // stays finite (it gave NaN coordinates), and below it every value is bit for bit that of the
+    // plain span (halving and doubling are exact).
+    const double hw = std::max(0.5 * hi[0] - 0.5 * lo[0], 0.5e-300), hh = std::max(0.5 * hi[1] - 0.5 * lo[1], 0.5e-300);
+    scale = 0.5 * (size - 2 * margin) / std::max(hw, hh);
+    W = hw * (2 * scale) + 2 * margin;
+    H = hh * (2 * scale) + 2 * margin;
   }
-  double x(double v) const { return margin + (v - lo[0]) * scale; }
-  double y(double v) const { return H - margin - (v - lo[1]) * scale; }
+  double x(double v) const { return margin + (0.5 * v - 0.5 * lo[0]) * (2 * scale); }
+  double y(double v) const { return H - margin - (0.5 * v - 0.5 * lo[1]) * (2 * scale); }
   /// XML header, <svg> with size and viewBox, title, white background.
   std::string open(const std::string& title) const {
     std::string s = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
