@@ -537,7 +537,8 @@ Status segments_of(const std::vector<Polyline2>& lines, const char* what, std::v
       out.push_back({{l.xy[2 * i], l.xy[2 * i + 1]}, {l.xy[2 * j], l.xy[2 * j + 1]}});
     }
   }
-  if (out.empty()) return {StatusCode::InvalidArgument, std::string(what) + ": no segment"};
+  if (out.empty())
+    return {StatusCode::InvalidArgument, std::string(what) + ": no segment to measure (every curve in it has fewer than two points)"};
   return Status::ok();
 }
 

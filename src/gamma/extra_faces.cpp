@@ -12,6 +12,7 @@
 #include "gamma/detail/extra_faces.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -865,10 +866,13 @@ Status lens_faces(const PointSet& points, double m, const GammaFaces& delaunay_f
     return {StatusCode::Unsupported, "lens faces (3D): at most 2^21 points"};
   const double dn = static_cast<double>(n);
   const double subsets = points.dim == 2 ? dn * (dn - 1) / 2 : dn * (dn - 1) * (dn - 2) / 6;
-  if (m <= -1.0 && subsets > kMaxSubsets)
+  if (m <= -1.0 && subsets > kMaxSubsets) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", subsets);
     return {StatusCode::Unsupported,
-            "lens faces: m = -1 asks for every non-blocked face (" + std::to_string(subsets) +
-                " candidates > 2e7); use m > -1"};
+            std::string("the complete graph (gamma = -1, preset complete: every face that no point blocks) of these points "
+                        "has ") + count + " candidate faces, more than 2e7: use fewer points, or a gamma above -1"};
+  }
 
   std::vector<FoundFace> found;
   std::size_t tested = 0;
