@@ -358,6 +358,24 @@ int run_render(const RenderArgs& a) {
                                                     "/frame_*: name the picture otherwise or write it elsewhere"});
   }
   if (a.views < 0 || a.columns < 0) return fail({StatusCode::InvalidArgument, "--views and --columns must be >= 0"});
+  // Options that another one overrides were dropped without a word (hostile-argument sweep,
+  // 2026-12-07): refused, each naming what to do.
+  if (oe == "svg" && !a.size.empty())
+    return fail({StatusCode::InvalidArgument, "--size sets a PNG's pixels; an SVG has none to set: drop --size or write .png"});
+  if (a.stop_after != SIZE_MAX && (!a.stages.empty() || !a.animate.empty()))
+    return fail({StatusCode::InvalidArgument,
+                 "--stop-after draws one state of the run, --stages and --animate several: give one of them"});
+  if (!a.stages.empty() && a.views > 1)
+    return fail({StatusCode::InvalidArgument, "--stages draws each stage from one view, --views one state from several: give one of them"});
+  if (!a.points.empty()) {
+    const char* ignored = !a.stages.empty() ? "--stages" : !a.animate.empty() ? "--animate" : a.stop_after != SIZE_MAX ? "--stop-after"
+                          : a.in.dim != 0 ? "--dim" : a.in.merge_duplicates ? "--merge-duplicates"
+                          : a.in.format != "auto" && !a.in.format.empty() ? "--format" : nullptr;
+    if (ignored)
+      return fail({StatusCode::InvalidArgument,
+                   std::string(ignored) + " applies to a point set that render reconstructs; with --points, " + a.in.path +
+                       " is a result (point indices) drawn as it is: drop " + ignored});
+  }
   // Checked before any view is made: 2e9 views allocated 8 GB before the size check refused them.
   if (a.views > kMaxViews)
     return fail({StatusCode::InvalidArgument, "--views must be at most " + std::to_string(kMaxViews) +
@@ -373,7 +391,17 @@ int run_render(const RenderArgs& a) {
     if (Status s = check_dimension_options(a, 2); !s) return fail(s);
     GammaFaces dt;
     if (!a.no_graph)
-      if (Status s = delaunay_layer(pts, dt); !s) return fail(s);
+      if (Status s = delaunay_layer(pts, dt); !s) {
+        // (The graph's own advice, --merge-duplicates, would renumber the points the result's
+        // indices refer to.)
+        if (s.code() == StatusCode::Duplicate || s.code() == StatusCode::Collinear || s.code() == StatusCode::TooFewPoints) {
+          std::string why = s.message();
+          if (const auto k = why.find("; use --merge-duplicates"); k != std::string::npos) why.erase(k, why.find(')', k) - k);
+          return fail({s.code(), "--points " + a.points + ": the Delaunay graph under the result cannot be drawn: " + why +
+                                     "; draw the result alone with --no-graph"});
+        }
+        return fail(s);
+      }
     PolygonSvgLayers layers;
     layers.graph = a.no_graph ? nullptr : &dt;
     layers.title = "constrict: " + a.in.path;
