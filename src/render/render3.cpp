@@ -169,15 +169,20 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   const int nb = (H + kBand - 1) / kBand;
   const std::vector<std::vector<std::uint32_t>> bins = bin_to_bands(tris, live, nb);
   const std::size_t npix = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
-  std::vector<double> depth(npix, -std::numeric_limits<double>::infinity());
-  std::vector<std::int64_t> id(npix, -1);
   out.width = W;
   out.height = H;
   out.rgb.assign(3 * npix, 0);
   const double half = 0.5 * o.edge_width + 0.5;
+  // The depth buffer and the winners of one band at a time (a band reads and writes only its own
+  // rows): the whole picture's were 16 bytes a pixel, 4.3 GB at 16384 x 16384.
   tbb::parallel_for(tbb::blocked_range<int>(0, nb, 1), [&](const tbb::blocked_range<int>& r) {
+    std::vector<double> depth;
+    std::vector<std::int64_t> id;
     for (int b = r.begin(); b != r.end(); ++b) {
       const int by0 = b * kBand, by1 = std::min(H, by0 + kBand) - 1;
+      const std::size_t cells = static_cast<std::size_t>(by1 - by0 + 1) * static_cast<std::size_t>(W);
+      depth.assign(cells, -std::numeric_limits<double>::infinity());
+      id.assign(cells, -1);
       rasterise_band(tris, bins[static_cast<std::size_t>(b)], by0, by1, W, depth, id);
       shade_band(tris, id, by0, by1, o, half, out);
     }
@@ -294,7 +299,8 @@ std::vector<std::vector<std::uint32_t>> bin_to_bands(const std::vector<Screen>& 
 }
 
 // Depth test of the band's triangles over rows by0..by1: the nearest triangle of each pixel
-// (ties to the lower index) in id, its depth in depth.
+// (ties to the lower index) in id, its depth in depth (the band's rows only: pixel (x, y) at
+// (y - by0) · W + x).
 void rasterise_band(const std::vector<Screen>& tris, const std::vector<std::uint32_t>& bin, int by0, int by1, int W,
                     std::vector<double>& depth, std::vector<std::int64_t>& id) {
   for (std::uint32_t t : bin) {
@@ -309,7 +315,7 @@ void rasterise_band(const std::vector<Screen>& tris, const std::vector<std::uint
         const double l2 = edge(sc.x[0], sc.y[0], sc.x[1], sc.y[1], px, py) * inv;
         if (l0 < 0 || l1 < 0 || l2 < 0) continue;
         const double z = l0 * sc.z[0] + l1 * sc.z[1] + l2 * sc.z[2];
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
+        const std::size_t i = static_cast<std::size_t>(y - by0) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
         if (z > depth[i]) {
           depth[i] = z;
           id[i] = t;
@@ -331,16 +337,18 @@ double edge_alpha(const Screen& sc, double px, double py, double half) {
   return std::clamp(half - dmin, 0.0, 1.0);
 }
 
-// Colours rows by0..by1 from the winners in id: flat shade, wireframe blend, or background.
+// Colours rows by0..by1 from the band's winners in id (as rasterise_band() indexes them): flat
+// shade, wireframe blend, or background.
 void shade_band(const std::vector<Screen>& tris, const std::vector<std::int64_t>& id, int by0, int by1,
                 const RenderOptions3& o, double half, Image& out) {
   const int W = out.width;
   for (int y = by0; y <= by1; ++y)
     for (int x = 0; x < W; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x);
+      const std::int64_t winner = id[static_cast<std::size_t>(y - by0) * static_cast<std::size_t>(W) + static_cast<std::size_t>(x)];
       std::array<std::uint8_t, 3> c = o.background;
-      if (id[i] >= 0) {
-        const Screen& sc = tris[static_cast<std::size_t>(id[i])];
+      if (winner >= 0) {
+        const Screen& sc = tris[static_cast<std::size_t>(winner)];
         c = sc.color;
         if (o.wireframe) {
           const double alpha = edge_alpha(sc, x + 0.5, y + 0.5, half);
