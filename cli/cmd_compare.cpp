@@ -32,6 +32,7 @@ std::string percent(double fraction, int decimals) {
 
 struct CompareArgs {
   std::string result, reference, points, report;
+  std::string columns;  // --columns: the x,y columns of a text --points file
   double spacing = 2e-3;
   double max_samples = 1e6;  // (a double: "1e6", as the help writes it, is accepted)
   bool quiet = false;
@@ -62,6 +63,8 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   ReadOptions ro;
   ro.check = false;
   ro.dim = 2;
+  if (!a.columns.empty())
+    if (Status s = parse_columns(a.columns, ro.columns); !s) return fail(s);
   if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
   Reference2 ref;
   if (Status s = read_reference2(a.reference, pts.size(), ref); !s) return fail(s);
@@ -98,6 +101,10 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
 }
 
 int run_compare3(const CompareArgs& a, nlohmann::json& j, const DistanceOptions& o) {
+  // (They were ignored without a word: a mesh carries its own points.)
+  if (!a.points.empty() || !a.columns.empty())
+    return fail({StatusCode::InvalidArgument, std::string(a.points.empty() ? "--columns" : "--points") +
+                                                  " applies to 2D compare (indices over points); 3D meshes carry their points: drop it"});
   PointSet rp, bp;
   TriMesh3 rm, bm;
   if (!is_mesh_ext(lower_ext(a.result)))
@@ -277,6 +284,8 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("RESULT", a->result, "the result: 2D .idx .csv .gt; 3D .off .ply .obj .stl")->required()->check(non_empty_path());
   cmd->add_option("REFERENCE", a->reference, "the reference: 2D .gt; 3D .off .ply .obj .stl")->required()->check(non_empty_path());
   cmd->add_option("--points", a->points, "2D: the input points the indices refer to (required in 2D)")->check(non_empty_path());
+  cmd->add_option("--columns", a->columns, "2D: the x,y columns of a text --points file, 1-based numbers (2,3) or header names (x,y)")
+      ->check(non_empty());
   cmd->add_option("--report", a->report, "write a JSON report")->check(non_empty_path());
   cmd->add_option("--spacing", a->spacing, "sample spacing relative to the reference's bbox diagonal (default 0.002)")
       ->check(positive_number());

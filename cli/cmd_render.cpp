@@ -491,8 +491,8 @@ Command add_render_command(CLI::App& app) {
                   "INPUT is a 2D result over these points: a polygon (.idx .csv) or rings (.gt .rings)")->check(non_empty_path());
   cmd->add_option("--size", a->size, "image size WxH (default 1024x1024; sheets 512 per cell)")->check(non_empty());
   cmd->add_option("--view", a->view, "3D: azimuth,elevation in degrees (default 35,25)")->check(non_empty());
-  cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)");
-  cmd->add_option("--columns", a->columns, "sheet columns (default: about square)");
+  cmd->add_option("--views", a->views, "3D: a sheet of N views around the object (azimuth steps of 360/N)")->check(non_empty());
+  cmd->add_option("--columns", a->columns, "sheet columns (default: about square)")->check(non_empty());
   cmd->add_flag("--wireframe", a->wireframe, "3D: draw the triangle edges");
   cmd->add_option("--up", a->up, "3D: model axis drawn upwards (default z)")->check(CLI::IsMember({"x", "y", "z"}));
   cmd->add_flag("--no-graph", a->no_graph, "2D: leave out the dashed Delaunay graph");
