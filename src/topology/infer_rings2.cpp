@@ -853,6 +853,426 @@ std::vector<int> nearest_parts(const PointSet& pts, const Links& links, const st
   return out;
 }
 
+// The ladder of infer_rings2() (docs/topology.md, Method) over its state, a round at a time:
+//   rings_of_parts()   a clean crust cycle is its part's ring as it is; the other parts need one;
+//   judge_parts()      with their regions (enclosing(), per level): an open arc, a line or a part
+//                      that encloses nothing is thin without a polygon; the others get one;
+//   make_polygons()    the polygons on both cores; a sliver or an arc closed by a chord is thin;
+//   undo_thin_joins()  a thin part made of thin parts joined to an accepted ring is split back
+//                      (the round is made again);
+//   accept_rings()     no part thin: the rings nested and checked (done), or a crossing pair
+//                      joined; else join_thin(): each thin part joins the part across its gap;
+//   regroup()          the parts made again from the joins, the unchanged parts' rings kept;
+// until the rings are accepted, one part is left (one curve, unless the walk finds holes), a part
+// has no polygon, or the work bound is reached.
+class RingsLadder {
+ public:
+  RingsLadder(const PointSet& points, const Adjacency& adj, const Rings2Options& options,
+              const Constrict2Options& part_options, RingsInference& out)
+      : points_(points), adj_(adj), options_(options), part_options_(part_options), out_(out), gap_(options.topology_gap),
+        crust_(points, adj) {}
+
+  void run() {
+    for (std::size_t v = 0; v < points_.size(); ++v) out_.bad_degree_points += crust_.degree(static_cast<int>(v)) != 2;
+    gaps_.emplace(points_, adj_, crust_, gap_);
+    part_of_ = find_parts(points_, adj_, *gaps_, gap_, links_, out_);
+    parts_ = group_parts(points_, part_of_);
+    out_.parts = parts_.size();
+    if (parts_.size() == 1) return one_part_or_walk();
+    rings_.resize(parts_.size());
+    ring_of_.resize(points_.size());
+    known_.assign(parts_.size(), 0);
+    kept_.resize(parts_.size());
+    made_of_.resize(parts_.size());
+    work_limit_ = options_.infer_work_limit > 0 ? options_.infer_work_limit : kInferWorkPerPoint * points_.size() + kInferWorkBase;
+    for (;;) {
+      Round r;
+      rings_of_parts(r);
+      judge_parts(r);
+      polygon_work_ += points_.size();  // the round itself: its regions and links are O(N)
+      for (const std::size_t k : r.need) polygon_work_ += parts_[k].size();
+      if (polygon_work_ > work_limit_) {
+        out_.decision = RingsDecision::Capped;
+        return;
+      }
+      if (!make_polygons(r)) {
+        out_.decision = RingsDecision::SmallPart;
+        return;
+      }
+      if (undo_thin_joins(r)) continue;
+      UnionFind joined(parts_.size());
+      if (!r.any_thin) {
+        if (accept_rings(joined)) return;
+      } else {
+        join_thin(r, joined);
+      }
+      regroup(r, joined);
+      if (parts_.size() == 1) {
+        out_.decision = RingsDecision::OneCurve;
+        out_.parts_polygon = 0;
+        return one_part_or_walk();
+      }
+    }
+  }
+
+ private:
+  // A part that the last round made by joining thin parts to an accepted ring: what it was made
+  // of (each constituent's points, its ring when it was accepted), to take the join back. A thin
+  // constituent keeps the polygon it was judged by, if it had one (the one part_polygon() would
+  // make again for the test of taking the join back).
+  struct Constituent {
+    std::vector<int> points, ring;
+    bool accepted;
+  };
+  // One round's judgement of the parts (per part unless said).
+  struct Round {
+    std::vector<char> thin, polygon_part, ok, made, isolated, line;
+    std::vector<std::size_t> todo;  // the parts without a ring known from the last round
+    std::vector<std::size_t> need;  // the parts whose polygon is made this round
+    bool any_thin = false;
+  };
+
+  // Method 6: the nearest-neighbour walk's rings replace ours (each point's ring in ours_of, `ours`
+  // rings) when they add holes to them. Traced once, when first asked.
+  void take_walk_rings(const std::vector<int>& ours_of, std::size_t ours) {
+    if (!options_.walk_holes) return;
+    if (!walk_) {
+      walk_.emplace();
+      if (!detail::nearest_walk_rings2(points_, adj_, *walk_)) walk_->clear();
+      order_by_lowest_point(points_, *walk_);  // (nest(): parents first)
+    }
+    if (walk_->size() <= ours) return;
+    RingsInference w;
+    std::vector<std::vector<int>> rings = *walk_;
+    nest(points_, rings, w);
+    if (!detail::walk_adds_holes(w.rings, ours_of, ours)) return;
+    std::vector<int> walk_of(points_.size());
+    for (std::size_t k = 0; k < w.rings.size(); ++k)
+      for (int v : w.rings[k].indices) walk_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+    // Its rings at least kWalkGapShare · T local spacings apart (every closest pair of two rings is
+    // a Delaunay edge): the option moves this threshold too. Then the exact check of the set.
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      for (std::size_t k = adj_.start[p]; k < adj_.start[p + 1]; ++k) {
+        const int q = adj_.nbr[k];
+        if (q > static_cast<int>(p) && walk_of[p] != walk_of[static_cast<std::size_t>(q)] &&
+            gaps_->shorter(static_cast<int>(p), q, detail::kWalkGapShare * gap_))
+          return;
+      }
+    if (!validate_rings2(points_, w.rings, &w.check)) return;
+    out_.rings = std::move(w.rings);
+    out_.check = w.check;
+    out_.min_gap_spacings = std::numeric_limits<double>::infinity();
+    report_gaps(adj_, *gaps_, walk_of, out_);
+    out_.rings_from_walk = out_.rings.size() - ours;
+    out_.decision = RingsDecision::Rings;
+  }
+
+  // OneCurve, unless the walk finds holes. (Only where the crust is not clean: a part that is one
+  // clean NN-crust cycle is a curve by the crust's own reading, which the walk cannot add a hole to.)
+  void one_part_or_walk() {
+    if (!crust_cycle(crust_, parts_[0], part_of_, cycle_)) take_walk_rings(std::vector<int>(points_.size(), 0), 1);
+  }
+
+  // The rings of the parts: a clean crust cycle as it is; the others are to be judged (todo).
+  void rings_of_parts(Round& r) {
+    out_.parts_polygon = 0;
+    r.thin.assign(parts_.size(), 0);
+    r.polygon_part.assign(parts_.size(), 0);
+    r.ok.assign(parts_.size(), 1);
+    for (std::size_t k = 0; k < parts_.size(); ++k) {
+      for (int v : parts_[k]) ring_of_[static_cast<std::size_t>(v)] = static_cast<int>(k);
+      if (crust_cycle(crust_, parts_[k], part_of_, cycle_)) {
+        rings_[k].swap(cycle_);
+        continue;
+      }
+      r.polygon_part[k] = 1;
+      ++out_.parts_polygon;
+      if (!known_[k]) r.todo.push_back(k);
+    }
+  }
+
+  // The regions of this round's parts, per level on both cores. Joined parts are sealed at the
+  // gaps between them, so levels 1.. are made again after a round of joins (level 0 never lies
+  // between two parts): always up to open_arc_rebuild_max points, else where regions_changed().
+  // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
+  // part's own sparse spots up to kSealFactors times the threshold.
+  void make_regions() {
+    const bool incremental = points_.size() > options_.open_arc_rebuild_max;
+    const bool first = enclosures_.empty();
+    if (first) {
+      wall_level_ = wall_levels(adj_, *gaps_, gap_);
+      enclosures_.resize(kLevels);
+      for (std::uint8_t level = 0; level < kLevels; ++level) components_.emplace_back(incremental ? points_.size() : 0);
+      // The edges that a join can make walls: between two parts, at a level > 0.
+      for (std::size_t e = 0; e < wall_level_.size(); ++e) {
+        if (wall_level_[e] == 0 || wall_level_[e] >= kLevels) continue;
+        const auto [a, b] = edge_ends(adj_, e);
+        if (part_of_[static_cast<std::size_t>(a)] != part_of_[static_cast<std::size_t>(b)])
+          joinable_.push_back(static_cast<std::uint32_t>(e));
+      }
+    }
+    std::vector<char> again(kLevels, first ? 1 : 0);
+    tbb::parallel_for(std::uint8_t{0}, kLevels, [&](std::uint8_t level) {
+      if (!first && level > 0)
+        again[level] = !incremental || undone_ || regions_changed(points_, adj_, wall_level_, level, part_of_, built_part_of_,
+                                                                  enclosures_[level]->unbounded(), joinable_, components_[level]);
+      if (!again[level]) return;
+      enclosures_[level].emplace(points_, adj_, wall_level_, level, part_of_);
+      if (incremental) components_[level] = wall_components(points_, adj_, wall_level_, level, part_of_);
+    });
+    built_part_of_ = part_of_;
+    undone_ = false;
+  }
+
+  // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no
+  // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one. But a
+  // part far from every other part (kTinyRingGap) gets its polygon whatever its regions: a small
+  // ring's interior is cut by its own short diagonals (walls), and a small ring's polygon is
+  // judged against the regular m-gon (isolated_ring_fatness). Its links to other parts, each
+  // tested exactly against the gap. The others need a polygon.
+  void judge_parts(Round& r) {
+    const bool test_open = options_.open_arc_test && !r.todo.empty();
+    if (test_open) make_regions();
+    std::vector<char> encl(parts_.size(), !test_open);
+    for (const auto& level : enclosures_) {
+      if (!test_open) break;
+      const std::vector<char> e = level->enclosing(ring_of_, parts_.size());
+      for (std::size_t k = 0; k < parts_.size(); ++k) encl[k] = encl[k] || e[k];
+    }
+    r.isolated.assign(parts_.size(), 0);
+    r.line.assign(parts_.size(), 0);
+    bool any = false;
+    for (const std::size_t k : r.todo) {
+      r.line[k] = collinear(points_, parts_[k]) ? 1 : 0;
+      r.isolated[k] = parts_[k].size() >= 3 && !r.line[k] ? 1 : 0;
+      any = any || r.isolated[k];
+    }
+    if (any)
+      for (const auto& [g, e] : links_) {
+        const int rp = ring_of_[static_cast<std::size_t>(e[0])], rq = ring_of_[static_cast<std::size_t>(e[1])];
+        if (rp == rq || !(r.isolated[static_cast<std::size_t>(rp)] || r.isolated[static_cast<std::size_t>(rq)])) continue;
+        if (gaps_->shorter(e[0], e[1], kTinyRingGap)) r.isolated[static_cast<std::size_t>(rp)] = r.isolated[static_cast<std::size_t>(rq)] = 0;
+      }
+    for (const std::size_t k : r.todo) {
+      if (!r.line[k] && (encl[k] || r.isolated[k] || parts_[k].size() <= kTinyRingPoints)) {
+        r.need.push_back(k);
+        continue;
+      }
+      r.thin[k] = 1;
+      r.any_thin = true;
+      ++out_.open_parts;
+      debug_open_part(parts_[k].size(), k, parts_.size());
+    }
+  }
+
+  // The polygons of the parts that need one (independent: on both cores, each the same whatever
+  // the threads). A polygon that is a sliver along its points, or an arc closed by a chord across
+  // its opening, is not a ring the points show: a piece of a longer curve, split off at a gap
+  // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept from
+  // the last round passed already: a thin one joined another part.) False: a part without one.
+  bool make_polygons(Round& r) {
+    r.made.assign(parts_.size(), 0);
+    for (const std::size_t k : r.need) r.made[k] = 1;
+    tbb::parallel_for(std::size_t{0}, r.need.size(), [&](std::size_t i) {
+      const std::size_t k = r.need[i];
+      if (!kept_[k].empty()) {  // (made in the round a join was taken back; the same again)
+        rings_[k] = std::move(kept_[k]);
+        return;
+      }
+      r.ok[k] = part_polygon(points_, parts_[k], part_options_, rings_[k]) ? 1 : 0;
+    });
+    kept_.assign(parts_.size(), {});
+    for (const std::size_t k : r.need) {
+      if (!r.ok[k]) return false;
+      r.thin[k] = compare_ring_fatness2(points_.coords.data(), rings_[k].data(), rings_[k].size(),
+                                        r.isolated[k] ? isolated_ring_fatness(rings_[k].size()) : kMinRingFatness) <= 0 ||
+                  has_chord(points_, rings_[k], kMaxRingEdge);
+      r.any_thin = r.any_thin || r.thin[k];
+      debug_part(points_, rings_[k], k, parts_.size(), r.thin[k]);
+    }
+    return true;
+  }
+
+  // A thin part made by joining thin parts to an accepted ring is two rings across a gap, not
+  // one curve (a noisy arc of the ring's own curve leaves it fat): the join is taken back and
+  // each thin constituent is a ring of its own, when it has a polygon (else the joins stand).
+  // Every constituent is then known, so nothing else changes and the round is made again (true).
+  bool undo_thin_joins(Round& r) {
+    std::vector<std::size_t> undo;
+    for (std::size_t k = 0; k < parts_.size(); ++k)
+      if (r.thin[k] && !made_of_[k].empty()) undo.push_back(k);
+    std::vector<char> can(undo.size(), 1);
+    tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
+      for (Constituent& c : made_of_[undo[i]]) {
+        if (!c.accepted && c.ring.empty() &&
+            (collinear(points_, c.points) || !part_polygon(points_, c.points, part_options_, c.ring))) {
+          can[i] = 0;
+          break;
+        }
+        // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of
+        // a noisy band (a clean crust cycle of a few points) with the band's arcs joined to it
+        // is not two rings.
+        if (compare_ring_fatness2(points_.coords.data(), c.ring.data(), c.ring.size(),
+                                  isolated_ring_fatness(c.ring.size())) <= 0) {
+          can[i] = 0;
+          break;
+        }
+      }
+    });
+    bool any_undone = false;
+    std::vector<char> split(parts_.size(), 0);
+    for (std::size_t i = 0; i < undo.size(); ++i)
+      if (can[i]) {
+        split[undo[i]] = 1;
+        any_undone = true;
+        for (const Constituent& c : made_of_[undo[i]]) polygon_work_ += c.accepted ? 0 : c.points.size();
+      }
+    if (!any_undone) return false;
+    std::vector<std::pair<std::vector<int>, std::vector<int>>> all;  // (points, ring)
+    std::vector<std::vector<int>> all_kept;                          // (a thin part's polygon)
+    for (std::size_t k = 0; k < parts_.size(); ++k) {
+      if (!split[k]) {  // (a thin part's polygon is no ring: it is evaluated again, and joins)
+        all_kept.emplace_back(r.thin[k] && r.made[k] ? std::move(rings_[k]) : std::vector<int>{});
+        all.emplace_back(std::move(parts_[k]), r.thin[k] ? std::vector<int>{} : std::move(rings_[k]));
+        continue;
+      }
+      for (Constituent& c : made_of_[k]) {
+        ++out_.joins_undone;
+        all.emplace_back(std::move(c.points), std::move(c.ring));
+        all_kept.emplace_back();
+      }
+    }
+    // The parts again in their canonical order (group_parts: by the lexicographically
+    // smallest point); every one is known but those that were not evaluated this round.
+    for (std::size_t j = 0; j < all.size(); ++j)
+      for (int v : all[j].first) part_of_[static_cast<std::size_t>(v)] = static_cast<int>(j);
+    std::vector<std::vector<int>> regrouped = group_parts(points_, part_of_);
+    std::vector<std::vector<int>> regrouped_rings(regrouped.size());
+    std::vector<char> regrouped_known(regrouped.size(), 0);
+    kept_.assign(regrouped.size(), {});
+    for (std::size_t j = 0; j < regrouped.size(); ++j) {
+      const std::size_t from = static_cast<std::size_t>(part_of_[static_cast<std::size_t>(regrouped[j].front())]);
+      regrouped_rings[j] = std::move(all[from].second);
+      regrouped_known[j] = regrouped_rings[j].empty() ? 0 : 1;
+      kept_[j] = std::move(all_kept[from]);
+    }
+    parts_ = std::move(regrouped);  // (part_of keeps its labels: one per part, as after a join)
+    rings_ = std::move(regrouped_rings);
+    known_ = std::move(regrouped_known);
+    made_of_.assign(parts_.size(), {});
+    undone_ = true;
+    return true;
+  }
+
+  // Every part is a ring: nested, oriented and checked (true: done). Two parts whose rings meet
+  // are interleaved, not apart: they are joined and made again (kMaxCrossingJoins), the others
+  // kept; past that, decision Crossing (true).
+  bool accept_rings(UnionFind& joined) {
+    std::vector<std::vector<int>> nested = rings_;  // (kept: a repair goes on with them)
+    nest(points_, nested, out_);
+    report_gaps(adj_, *gaps_, ring_of_, out_);
+    if (validate_rings2(points_, out_.rings, &out_.check)) {
+      out_.decision = RingsDecision::Rings;
+      if (out_.parts_polygon > 0) take_walk_rings(ring_of_, rings_.size());
+      return true;
+    }
+    const int a = out_.check.met_a, b = out_.check.met_b;
+    if (a < 0 || b < 0 || a == b || out_.crossings_joined >= kMaxCrossingJoins) {
+      out_.decision = RingsDecision::Crossing;
+      return true;
+    }
+    const auto part_of_ring = [&](int k) { return ring_of_[static_cast<std::size_t>(out_.rings[static_cast<std::size_t>(k)].indices.front())]; };
+    joined.join(part_of_ring(a), part_of_ring(b));
+    ++out_.crossings_joined;
+    out_.rings.clear();
+    out_.check = RingsCheck{};
+    out_.min_gap_spacings = std::numeric_limits<double>::infinity();
+    return false;
+  }
+
+  // Each thin part joins the part across its smallest gap.
+  void join_thin(const Round& r, UnionFind& joined) {
+    const std::vector<int> nearest = nearest_parts(points_, links_, ring_of_, parts_.size());
+    for (std::size_t k = 0; k < parts_.size(); ++k)
+      if (r.thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out_.thin_parts_joined;
+  }
+
+  // The parts made again from the joins (the rings of parts that did not change are kept), with
+  // what each join of thin parts to an accepted ring was made of (made_of_).
+  void regroup(const Round& r, UnionFind& joined) {
+    std::vector<std::size_t> members(parts_.size(), 0);
+    for (std::size_t k = 0; k < parts_.size(); ++k) ++members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))];
+    for (std::size_t v = 0; v < points_.size(); ++v) part_of_[v] = joined.find(ring_of_[v]);
+    std::vector<std::vector<int>> next = group_parts(points_, part_of_);
+    std::vector<std::vector<int>> next_rings(next.size());
+    std::vector<char> next_known(next.size(), 0);
+    std::vector<std::vector<Constituent>> next_made_of(next.size());
+    {
+      // Which old parts each new one is made of (a join of thin parts to an accepted ring only).
+      std::vector<int> new_of_root(parts_.size(), -1);
+      for (std::size_t j = 0; j < next.size(); ++j)
+        new_of_root[static_cast<std::size_t>(joined.find(ring_of_[static_cast<std::size_t>(next[j].front())]))] = static_cast<int>(j);
+      std::vector<char> has_ring(next.size(), 0), has_thin(next.size(), 0);
+      for (std::size_t k = 0; k < parts_.size(); ++k) {
+        const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
+        (r.thin[k] ? has_thin : has_ring)[j] = 1;
+      }
+      for (std::size_t k = 0; k < parts_.size(); ++k) {
+        const std::size_t j =
+            static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
+        if (has_ring[j] && has_thin[j] && members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))] > 1)
+          next_made_of[j].push_back(
+              Constituent{parts_[k], r.thin[k] && !r.made[k] ? std::vector<int>{} : rings_[k], !r.thin[k]});
+      }
+    }
+    for (std::size_t j = 0; j < next.size(); ++j) {
+      const std::size_t old = static_cast<std::size_t>(ring_of_[static_cast<std::size_t>(next[j].front())]);
+      if (members[static_cast<std::size_t>(joined.find(static_cast<int>(old)))] == 1) {
+        next_rings[j] = std::move(rings_[old]);
+        next_known[j] = 1;
+      }
+    }
+    kept_.assign(next.size(), {});
+    parts_ = std::move(next);
+    rings_ = std::move(next_rings);
+    known_ = std::move(next_known);
+    made_of_ = std::move(next_made_of);
+  }
+
+  // Inputs.
+  const PointSet& points_;
+  const Adjacency& adj_;
+  const Rings2Options& options_;
+  const Constrict2Options& part_options_;  // the part polygons' options
+  RingsInference& out_;
+  const double gap_;
+  const NnCrust crust_;
+  std::optional<Gaps> gaps_;  // (made in run(), after the crust)
+  Links links_;               // the Delaunay edges between parts, with their gaps (find_parts)
+  // The parts and their rings.
+  std::vector<int> part_of_;             // per point
+  std::vector<std::vector<int>> parts_;  // per part, its points
+  std::vector<std::vector<int>> rings_;  // per part
+  std::vector<int> ring_of_;             // per point: its part this round
+  std::vector<char> known_;              // rings_[k] is still the ring of parts_[k]
+  // The polygon of a thin part that a round taking joins back left as it was: the part is judged
+  // again (its links changed) from this polygon, the one part_polygon() would make again.
+  std::vector<std::vector<int>> kept_;
+  std::vector<std::vector<Constituent>> made_of_;  // per part (Constituent)
+  bool undone_ = false;  // the last round took joins back: the regions are made again
+  // The regions (make_regions()).
+  std::vector<std::optional<Enclosures>> enclosures_;  // per level
+  std::vector<std::uint8_t> wall_level_;
+  std::vector<int> built_part_of_;        // part_of_ when the levels were last looked at
+  std::vector<UnionFind> components_;     // per level: the points joined by its walls
+  std::vector<std::uint32_t> joinable_;   // the edges that joins can make walls
+  // The work bound (Rings2Options::infer_work_limit): N per round and the points of the part
+  // polygons made.
+  std::size_t polygon_work_ = 0, work_limit_ = 0;
+  std::optional<std::vector<std::vector<int>>> walk_;  // the walk's rings (empty: it failed)
+  std::vector<int> cycle_;                              // (crust_cycle's output)
+};
+
 }  // namespace
 
 std::shared_ptr<const detail::RingsAdjacency> detail::rings_adjacency(Delaunay2&& dt) {
@@ -876,345 +1296,8 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
     return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
   if (points.dim != 2 || adj.start.size() != points.size() + 1)
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
-  const NnCrust crust(points, adj);
-  for (std::size_t v = 0; v < points.size(); ++v) out.bad_degree_points += crust.degree(static_cast<int>(v)) != 2;
-  Gaps gaps(points, adj, crust, gap);
-  Links links;
-  std::vector<int> part_of = find_parts(points, adj, gaps, gap, links, out);
-  std::vector<std::vector<int>> parts = group_parts(points, part_of);
-  out.parts = parts.size();
-  // Method 6: the nearest-neighbour walk's rings replace ours (each point's ring in ours_of, `ours`
-  // rings) when they add holes to them. Traced once, when first asked.
-  std::optional<std::vector<std::vector<int>>> walk;  // (empty: the walk failed)
-  const auto take_walk_rings = [&](const std::vector<int>& ours_of, std::size_t ours) {
-    if (!options.walk_holes) return;
-    if (!walk) {
-      walk.emplace();
-      if (!detail::nearest_walk_rings2(points, adj, *walk)) walk->clear();
-      order_by_lowest_point(points, *walk);  // (nest(): parents first)
-    }
-    if (walk->size() <= ours) return;
-    RingsInference w;
-    std::vector<std::vector<int>> rings = *walk;
-    nest(points, rings, w);
-    if (!detail::walk_adds_holes(w.rings, ours_of, ours)) return;
-    std::vector<int> walk_of(points.size());
-    for (std::size_t k = 0; k < w.rings.size(); ++k)
-      for (int v : w.rings[k].indices) walk_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
-    // Its rings at least kWalkGapShare · T local spacings apart (every closest pair of two rings is
-    // a Delaunay edge): the option moves this threshold too. Then the exact check of the set.
-    for (std::size_t p = 0; p < points.size(); ++p)
-      for (std::size_t k = adj.start[p]; k < adj.start[p + 1]; ++k) {
-        const int q = adj.nbr[k];
-        if (q > static_cast<int>(p) && walk_of[p] != walk_of[static_cast<std::size_t>(q)] &&
-            gaps.shorter(static_cast<int>(p), q, kWalkGapShare * gap))
-          return;
-      }
-    if (!validate_rings2(points, w.rings, &w.check)) return;
-    out.rings = std::move(w.rings);
-    out.check = w.check;
-    out.min_gap_spacings = std::numeric_limits<double>::infinity();
-    report_gaps(adj, gaps, walk_of, out);
-    out.rings_from_walk = out.rings.size() - ours;
-    out.decision = RingsDecision::Rings;
-  };
-  // (Only where the crust is not clean: a part that is one clean NN-crust cycle is a curve by the
-  // crust's own reading, which the walk cannot add a hole to.)
-  std::vector<int> cycle;
-  const auto one_part_or_walk = [&] {  // OneCurve, unless the walk finds holes
-    if (!crust_cycle(crust, parts[0], part_of, cycle)) take_walk_rings(std::vector<int>(points.size(), 0), 1);
-    return Status::ok();
-  };
-  if (parts.size() == 1) return one_part_or_walk();
-  // Made when a part is not a clean crust cycle: at the gap threshold, and with the walls of a
-  // part's own sparse spots up to kSealFactors times the threshold.
-  std::vector<std::optional<Enclosures>> enclosures;  // per level
-  std::vector<std::uint8_t> wall_level;
-  std::vector<int> built_part_of;  // part_of when the levels were last looked at
-  std::vector<UnionFind> components;  // per level: the points joined by its walls
-  std::vector<std::uint32_t> joinable;  // the edges that joins can make walls
-  std::vector<std::vector<int>> rings(parts.size());
-  std::vector<int> ring_of(points.size());
-  std::vector<char> known(parts.size(), 0);  // rings[k] is still the ring of parts[k]
-  // The polygon of a thin part that a round taking joins back left as it was: the part is judged
-  // again (its links changed) from this polygon, the one part_polygon() would make again.
-  std::vector<std::vector<int>> kept(parts.size());
-  // A part that the last round made by joining thin parts to an accepted ring: what it was made
-  // of (each constituent's points, its ring when it was accepted), to take the join back.
-  // A thin constituent keeps the polygon it was judged by, if it had one (the one part_polygon()
-  // would make again for the test of taking the join back).
-  struct Constituent {
-    std::vector<int> points, ring;
-    bool accepted;
-  };
-  std::vector<std::vector<Constituent>> made_of(parts.size());
-  bool undone = false;  // the last round took joins back: the regions are made again
-  std::size_t polygon_work = 0;  // N per round and the points of the part polygons made (Rings2Options::infer_work_limit)
-  const std::size_t work_limit =
-      options.infer_work_limit > 0 ? options.infer_work_limit : kInferWorkPerPoint * points.size() + kInferWorkBase;
-  for (;;) {
-    // The rings of the parts: a clean crust cycle as it is, otherwise reconstruct2()'s polygon.
-    out.parts_polygon = 0;
-    std::vector<char> thin(parts.size(), 0);
-    bool any_thin = false;
-    std::vector<char> polygon_part(parts.size(), 0), ok(parts.size(), 1);
-    std::vector<std::size_t> todo;
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      for (int v : parts[k]) ring_of[static_cast<std::size_t>(v)] = static_cast<int>(k);
-      if (crust_cycle(crust, parts[k], part_of, cycle)) {
-        rings[k].swap(cycle);
-        continue;
-      }
-      polygon_part[k] = 1;
-      ++out.parts_polygon;
-      if (!known[k]) todo.push_back(k);
-    }
-    const bool test_open = options.open_arc_test && !todo.empty();
-    // The regions of this round's parts, per level on both cores. Joined parts are sealed at the
-    // gaps between them, so levels 1.. are made again after a round of joins (level 0 never lies
-    // between two parts): always up to open_arc_rebuild_max points, else where regions_changed().
-    const bool incremental = points.size() > options.open_arc_rebuild_max;
-    if (test_open) {
-      const bool first = enclosures.empty();
-      if (first) {
-        wall_level = wall_levels(adj, gaps, gap);
-        enclosures.resize(kLevels);
-        for (std::uint8_t level = 0; level < kLevels; ++level) components.emplace_back(incremental ? points.size() : 0);
-        // The edges that a join can make walls: between two parts, at a level > 0.
-        for (std::size_t e = 0; e < wall_level.size(); ++e) {
-          if (wall_level[e] == 0 || wall_level[e] >= kLevels) continue;
-          const auto [a, b] = edge_ends(adj, e);
-          if (part_of[static_cast<std::size_t>(a)] != part_of[static_cast<std::size_t>(b)])
-            joinable.push_back(static_cast<std::uint32_t>(e));
-        }
-      }
-      std::vector<char> again(kLevels, first ? 1 : 0);
-      tbb::parallel_for(std::uint8_t{0}, kLevels, [&](std::uint8_t level) {
-        if (!first && level > 0)
-          again[level] = !incremental || undone || regions_changed(points, adj, wall_level, level, part_of, built_part_of,
-                                                         enclosures[level]->unbounded(), joinable, components[level]);
-        if (!again[level]) return;
-        enclosures[level].emplace(points, adj, wall_level, level, part_of);
-        if (incremental) components[level] = wall_components(points, adj, wall_level, level, part_of);
-      });
-      built_part_of = part_of;
-      undone = false;
-    }
-    std::vector<char> encl(parts.size(), !test_open);
-    for (const auto& level : enclosures) {
-      if (!test_open) break;
-      const std::vector<char> e = level->enclosing(ring_of, parts.size());
-      for (std::size_t k = 0; k < parts.size(); ++k) encl[k] = encl[k] || e[k];
-    }
-    // A part of fewer than 3 points or on one line has no polygon, and a part that encloses no
-    // region (Enclosures) is an open arc: thin without a polygon, joined like a thin one. But a
-    // part far from every other part (kTinyRingGap) gets its polygon whatever its regions: a small
-    // ring's interior is cut by its own short diagonals (walls), and a small ring's polygon is
-    // judged against the regular m-gon (isolated_ring_fatness). Its links to other parts, each
-    // tested exactly against the gap.
-    std::vector<char> isolated(parts.size(), 0), line(parts.size(), 0);
-    {
-      bool any = false;
-      for (const std::size_t k : todo) {
-        line[k] = collinear(points, parts[k]) ? 1 : 0;
-        isolated[k] = parts[k].size() >= 3 && !line[k] ? 1 : 0;
-        any = any || isolated[k];
-      }
-      if (any)
-        for (const auto& [g, e] : links) {
-          const int rp = ring_of[static_cast<std::size_t>(e[0])], rq = ring_of[static_cast<std::size_t>(e[1])];
-          if (rp == rq || !(isolated[static_cast<std::size_t>(rp)] || isolated[static_cast<std::size_t>(rq)])) continue;
-          if (gaps.shorter(e[0], e[1], kTinyRingGap)) isolated[static_cast<std::size_t>(rp)] = isolated[static_cast<std::size_t>(rq)] = 0;
-        }
-    }
-    std::vector<std::size_t> need;
-    for (const std::size_t k : todo) {
-      if (!line[k] && (encl[k] || isolated[k] || parts[k].size() <= kTinyRingPoints)) {
-        need.push_back(k);
-        continue;
-      }
-      thin[k] = 1;
-      any_thin = true;
-      ++out.open_parts;
-      debug_open_part(parts[k].size(), k, parts.size());
-    }
-    polygon_work += points.size();  // the round itself: its regions and links are O(N)
-    for (const std::size_t k : need) polygon_work += parts[k].size();
-    if (polygon_work > work_limit) {
-      out.decision = RingsDecision::Capped;
-      return Status::ok();
-    }
-    // The polygons of the others are independent: on both cores (each the same whatever the threads).
-    std::vector<char> made(parts.size(), 0);
-    for (const std::size_t k : need) made[k] = 1;
-    tbb::parallel_for(std::size_t{0}, need.size(), [&](std::size_t i) {
-      const std::size_t k = need[i];
-      if (!kept[k].empty()) {  // (made in the round a join was taken back; the same again)
-        rings[k] = std::move(kept[k]);
-        return;
-      }
-      ok[k] = part_polygon(points, parts[k], part_options, rings[k]) ? 1 : 0;
-    });
-    kept.assign(parts.size(), {});
-    for (const std::size_t k : need) {
-      if (!ok[k]) {
-        out.decision = RingsDecision::SmallPart;
-        return Status::ok();
-      }
-      // A polygon that is a sliver along its points, or an arc closed by a chord across its
-      // opening, is not a ring the points show: a piece of a longer curve, split off at a gap
-      // that a large random sample has somewhere (docs/topology.md, "Open arcs"). (A ring kept
-      // from the last round passed already: a thin one joined another part.)
-      thin[k] = compare_ring_fatness2(points.coords.data(), rings[k].data(), rings[k].size(),
-                                      isolated[k] ? isolated_ring_fatness(rings[k].size()) : kMinRingFatness) <= 0 ||
-                has_chord(points, rings[k], kMaxRingEdge);
-      any_thin = any_thin || thin[k];
-      debug_part(points, rings[k], k, parts.size(), thin[k]);
-    }
-    // A thin part made by joining thin parts to an accepted ring is two rings across a gap, not
-    // one curve (a noisy arc of the ring's own curve leaves it fat): the join is taken back and
-    // each thin constituent is a ring of its own, when it has a polygon (else the joins stand).
-    // Every constituent is then known, so nothing else changes and the round is made again.
-    {
-      std::vector<std::size_t> undo;
-      for (std::size_t k = 0; k < parts.size(); ++k)
-        if (thin[k] && !made_of[k].empty()) undo.push_back(k);
-      std::vector<char> can(undo.size(), 1);
-      tbb::parallel_for(std::size_t{0}, undo.size(), [&](std::size_t i) {
-        for (Constituent& c : made_of[undo[i]]) {
-          if (!c.accepted && c.ring.empty() &&
-              (collinear(points, c.points) || !part_polygon(points, c.points, part_options, c.ring))) {
-            can[i] = 0;
-            break;
-          }
-          // Each is a ring by the measure of an isolated part (isolated_ring_fatness): a loop of
-          // a noisy band (a clean crust cycle of a few points) with the band's arcs joined to it
-          // is not two rings.
-          if (compare_ring_fatness2(points.coords.data(), c.ring.data(), c.ring.size(),
-                                    isolated_ring_fatness(c.ring.size())) <= 0) {
-            can[i] = 0;
-            break;
-          }
-        }
-      });
-      bool any_undone = false;
-      std::vector<char> split(parts.size(), 0);
-      for (std::size_t i = 0; i < undo.size(); ++i)
-        if (can[i]) {
-          split[undo[i]] = 1;
-          any_undone = true;
-          for (const Constituent& c : made_of[undo[i]]) polygon_work += c.accepted ? 0 : c.points.size();
-        }
-      if (any_undone) {
-        std::vector<std::pair<std::vector<int>, std::vector<int>>> all;  // (points, ring)
-        std::vector<std::vector<int>> all_kept;                          // (a thin part's polygon)
-        for (std::size_t k = 0; k < parts.size(); ++k) {
-          if (!split[k]) {  // (a thin part's polygon is no ring: it is evaluated again, and joins)
-            all_kept.emplace_back(thin[k] && made[k] ? std::move(rings[k]) : std::vector<int>{});
-            all.emplace_back(std::move(parts[k]), thin[k] ? std::vector<int>{} : std::move(rings[k]));
-            continue;
-          }
-          for (Constituent& c : made_of[k]) {
-            ++out.joins_undone;
-            all.emplace_back(std::move(c.points), std::move(c.ring));
-            all_kept.emplace_back();
-          }
-        }
-        // The parts again in their canonical order (group_parts: by the lexicographically
-        // smallest point); every one is known but those that were not evaluated this round.
-        for (std::size_t j = 0; j < all.size(); ++j)
-          for (int v : all[j].first) part_of[static_cast<std::size_t>(v)] = static_cast<int>(j);
-        std::vector<std::vector<int>> regrouped = group_parts(points, part_of);
-        std::vector<std::vector<int>> regrouped_rings(regrouped.size());
-        std::vector<char> regrouped_known(regrouped.size(), 0);
-        kept.assign(regrouped.size(), {});
-        for (std::size_t j = 0; j < regrouped.size(); ++j) {
-          const std::size_t from = static_cast<std::size_t>(part_of[static_cast<std::size_t>(regrouped[j].front())]);
-          regrouped_rings[j] = std::move(all[from].second);
-          regrouped_known[j] = regrouped_rings[j].empty() ? 0 : 1;
-          kept[j] = std::move(all_kept[from]);
-        }
-        parts = std::move(regrouped);  // (part_of keeps its labels: one per part, as after a join)
-        rings = std::move(regrouped_rings);
-        known = std::move(regrouped_known);
-        made_of.assign(parts.size(), {});
-        undone = true;
-        continue;
-      }
-    }
-    UnionFind joined(parts.size());
-    if (!any_thin) {
-      // Every part is a ring: nested, oriented and checked. Two parts whose rings meet are
-      // interleaved, not apart: they are joined and made again (kMaxCrossingJoins), the others kept.
-      std::vector<std::vector<int>> nested = rings;  // (kept: a repair goes on with them)
-      nest(points, nested, out);
-      report_gaps(adj, gaps, ring_of, out);
-      if (validate_rings2(points, out.rings, &out.check)) {
-        out.decision = RingsDecision::Rings;
-        if (out.parts_polygon > 0) take_walk_rings(ring_of, rings.size());
-        return Status::ok();
-      }
-      const int a = out.check.met_a, b = out.check.met_b;
-      if (a < 0 || b < 0 || a == b || out.crossings_joined >= kMaxCrossingJoins) {
-        out.decision = RingsDecision::Crossing;
-        return Status::ok();
-      }
-      const auto part_of_ring = [&](int r) { return ring_of[static_cast<std::size_t>(out.rings[static_cast<std::size_t>(r)].indices.front())]; };
-      joined.join(part_of_ring(a), part_of_ring(b));
-      ++out.crossings_joined;
-      out.rings.clear();
-      out.check = RingsCheck{};
-      out.min_gap_spacings = std::numeric_limits<double>::infinity();
-    } else {
-      // Each thin part joins the part across its smallest gap; the parts are then regrouped (the
-      // rings of parts that did not change are kept).
-      const std::vector<int> nearest = nearest_parts(points, links, ring_of, parts.size());
-      for (std::size_t k = 0; k < parts.size(); ++k)
-        if (thin[k] && nearest[k] >= 0 && joined.join(static_cast<int>(k), nearest[k])) ++out.thin_parts_joined;
-    }
-    std::vector<std::size_t> members(parts.size(), 0);
-    for (std::size_t k = 0; k < parts.size(); ++k) ++members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))];
-    for (std::size_t v = 0; v < points.size(); ++v) part_of[v] = joined.find(ring_of[v]);
-    std::vector<std::vector<int>> next = group_parts(points, part_of);
-    std::vector<std::vector<int>> next_rings(next.size());
-    std::vector<char> next_known(next.size(), 0);
-    std::vector<std::vector<Constituent>> next_made_of(next.size());
-    {
-      // Which old parts each new one is made of (a join of thin parts to an accepted ring only).
-      std::vector<int> new_of_root(parts.size(), -1);
-      for (std::size_t j = 0; j < next.size(); ++j)
-        new_of_root[static_cast<std::size_t>(joined.find(ring_of[static_cast<std::size_t>(next[j].front())]))] = static_cast<int>(j);
-      std::vector<char> has_ring(next.size(), 0), has_thin(next.size(), 0);
-      for (std::size_t k = 0; k < parts.size(); ++k) {
-        const std::size_t j = static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
-        (thin[k] ? has_thin : has_ring)[j] = 1;
-      }
-      for (std::size_t k = 0; k < parts.size(); ++k) {
-        const std::size_t j =
-            static_cast<std::size_t>(new_of_root[static_cast<std::size_t>(joined.find(static_cast<int>(k)))]);
-        if (has_ring[j] && has_thin[j] && members[static_cast<std::size_t>(joined.find(static_cast<int>(k)))] > 1)
-          next_made_of[j].push_back(
-              Constituent{parts[k], thin[k] && !made[k] ? std::vector<int>{} : rings[k], !thin[k]});
-      }
-    }
-    for (std::size_t j = 0; j < next.size(); ++j) {
-      const std::size_t old = static_cast<std::size_t>(ring_of[static_cast<std::size_t>(next[j].front())]);
-      if (members[static_cast<std::size_t>(joined.find(static_cast<int>(old)))] == 1) {
-        next_rings[j] = std::move(rings[old]);
-        next_known[j] = 1;
-      }
-    }
-    kept.assign(next.size(), {});
-    parts = std::move(next);
-    rings = std::move(next_rings);
-    known = std::move(next_known);
-    made_of = std::move(next_made_of);
-    if (parts.size() == 1) {
-      out.decision = RingsDecision::OneCurve;
-      out.parts_polygon = 0;
-      return one_part_or_walk();
-    }
-  }
+  RingsLadder(points, adj, options, part_options, out).run();
+  return Status::ok();
 }
 
 }  // namespace constrict
