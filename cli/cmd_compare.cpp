@@ -62,10 +62,13 @@ int run_compare2(const CompareArgs& a, nlohmann::json& j, const DistanceOptions&
   PointSet pts;
   ReadOptions ro;
   ro.check = false;
-  ro.dim = 2;
   if (!a.columns.empty())
     if (Status s = parse_columns(a.columns, ro.columns); !s) return fail(s);
   if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
+  // (The dimension from the data: a forced 2 had cut 3D points to x, y without a word.)
+  if (pts.dim != 2)
+    return fail({StatusCode::InvalidArgument, a.points + ": 3D points; the indices of a 2D result refer to 2D points "
+                                                          "(give the 2D input, or choose its x,y columns with --columns)"});
   Reference2 ref;
   if (Status s = read_reference2(a.reference, pts.size(), ref); !s) return fail(s);
   std::vector<std::vector<int>> rings;

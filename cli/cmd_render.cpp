@@ -384,8 +384,11 @@ int run_render(const RenderArgs& a) {
     PointSet pts;
     ReadOptions ro;
     ro.check = false;
-    ro.dim = 2;
     if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
+    // (The dimension from the data: a forced 2 had cut 3D points to x, y without a word.)
+    if (pts.dim != 2)
+      return fail({StatusCode::InvalidArgument,
+                   a.points + ": 3D points; the indices of a 2D result refer to 2D points (give the 2D input)"});
     std::vector<std::vector<int>> rings;
     if (Status s = read_rings_result(a.in.path, pts, rings); !s) return fail(s);
     if (Status s = check_dimension_options(a, 2); !s) return fail(s);
