@@ -590,16 +590,29 @@ int run_reconstruct3(const ReconstructArgs& a, const PointSet& pts, const ReadRe
 // the input is read.
 Status check_option_conflicts(const ReconstructArgs& a) {
   if (a.seed_limit > 0 && !is_skeleton(a))
-    return {StatusCode::InvalidArgument, "--seed-limit applies to --method voronoi-skeleton only (it was ignored)"};
+    return {StatusCode::InvalidArgument, "--seed-limit applies to --method voronoi-skeleton only: drop it, or add that method"};
+  // The skeleton has no constriction to stop, no lock fallback, no post-pass and no growth: these
+  // were accepted and changed nothing (cli.md: they do not apply).
+  if (is_skeleton(a)) {
+    const char* unused = a.stop_after != SIZE_MAX ? "--stop-after" : a.fallback != "auto" ? "--fallback" : a.refine != "auto" ? "--refine"
+                         : a.fast ? "--fast" : a.no_grow ? "--no-grow" : nullptr;
+    if (unused)
+      return {StatusCode::InvalidArgument, std::string(unused) +
+                                               " applies to the constriction; --method voronoi-skeleton has none of its stages: drop " + unused};
+  }
   // (In 3D the skeleton ran and --topology was ignored.)
   if (is_skeleton(a) && a.topology != "single")
     return {StatusCode::InvalidArgument,
             "--topology auto needs the constriction (--method voronoi-skeleton gives one polygon or surface)"};
   if (a.topology == "single" && a.topology_gap != kDefaultTopologyGap)
-    return {StatusCode::InvalidArgument, "--topology-gap applies to --topology auto (it was ignored)"};
+    return {StatusCode::InvalidArgument, "--topology-gap applies to --topology auto: drop it, or add --topology auto"};
   if (a.topology == "auto" && a.stop_after != SIZE_MAX)
     return {StatusCode::InvalidArgument,
             "--stop-after stops the one constriction of --topology single; --topology auto reconstructs every part to the end (drop one of them)"};
+  // ("-" would be a file of that name: standard output carries the summary line.)
+  for (const auto& [name, path] : {std::pair<const char*, const std::string*>{"-o", &a.out}, {"--report", &a.report}, {"--body", &a.body}, {"--render", &a.render}})
+    if (*path == "-")
+      return {StatusCode::InvalidArgument, std::string(name) + " -: results are written to files, not to standard output; give a file name"};
   std::error_code ec;
   if (std::filesystem::is_directory(a.out, ec))
     return {StatusCode::InvalidArgument, a.out + " is a directory; give -o a file name (for example " +

@@ -163,6 +163,12 @@ struct Constrict3Options {
   /// Include the exact self-intersection test in the validation (O(F log F + K); off by default:
   /// the surface is the boundary of a tetrahedralization, which already excludes it).
   bool validate_self_intersections = false;
+
+  /// Do these options plan the growth (grow, the γ criterion, no stop_after, no sculpting)? It
+  /// then runs unless every point is on the convex hull. The report's `grow.enabled`.
+  bool growth_planned() const noexcept {
+    return grow && criterion == Criterion::Gamma && stop_after == SIZE_MAX && sculpt == Sculpt3::None;
+  }
 };
 
 /// The stages of the 3D engine, in pipeline order (docs/architecture.md).

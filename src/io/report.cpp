@@ -2,6 +2,7 @@
 // The JSON reports of reconstruct2 / reconstruct3 (report.hpp): one writer for every caller.
 #include "constrict/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -79,12 +80,17 @@ std::string to_json(const Mesh3Result& r, const Constrict3Options& opt) {
   j["surface_area"] = r.surface_area;
   j["bridges"] = {{"faces", r.bridge_faces}, {"area", r.bridge_area}, {"max_ratio", r.max_bridge_ratio},
                   {"min_ratio", Mesh3Result::kBridgeRatio}};
-  j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : "flips"},
+  // What the options let run, not only what was asked: the flips run on a complete surface of the
+  // constriction or the growth (not on a partial one, nor after the skeleton); the growth only with
+  // the γ criterion and no stop_after (growth_planned). (Both had named passes that never ran.)
+  const bool flips_ran = r.complete && r.method != Method3::VoronoiSkeleton && r.method != Method3::Incomplete;
+  const bool grow_ran = opt.growth_planned() && r.method != Method3::VoronoiSkeleton && r.method != Method3::Incomplete;
+  j["refine"] = {{"mode", opt.refine == Refine3::None ? "none" : flips_ran ? "flips" : "skipped"},
                  {"added", r.refine_added},
                  {"removed", r.refine_removed},
                  {"capped", r.refine_capped}};
   j["carve"] = {{"removed", r.carved}, {"undone", r.carve_undone}, {"capped", r.carve_capped}};
-  j["grow"] = {{"enabled", opt.grow},
+  j["grow"] = {{"enabled", grow_ran},
                {"tetrahedra", r.grown},
                {"labelled_outside", r.grown_outside},
                {"thin_part_steps", r.grown_crawled},
@@ -129,7 +135,9 @@ std::string to_json(const Polygon2Result& r, const Constrict2Options& opt) {
   j["fallback_edges"] = r.fallback_edges.size();
   j["area"] = r.area;
   j["perimeter"] = r.perimeter;
-  j["refine"] = {{"mode", opt.refine == Refine2::None ? "none" : "local-search"},
+  // (The local search runs on a complete polygon of the constriction, not after the skeleton.)
+  const bool search_ran = r.complete && r.method != "voronoi-skeleton" && r.method != "incomplete";
+  j["refine"] = {{"mode", opt.refine == Refine2::None ? "none" : search_ran ? "local-search" : "skipped"},
                  {"moves", r.refine_moves},
                  {"budget_hit", r.refine_budget_hit},
                  {"perimeter_before", r.perimeter_before_refine}};

@@ -82,9 +82,7 @@ struct Constrictor3::Impl {
   // The options ask for the growth (decided before the tetrahedralization: init builds the DT
   // alone then); it runs when the labels exist and some point is inside the hull (else the hull
   // itself is the answer).
-  bool grow_planned() const {
-    return opt.grow && opt.criterion == Criterion::Gamma && opt.stop_after == SIZE_MAX && opt.sculpt == Sculpt3::None;
-  }
+  bool grow_planned() const { return opt.growth_planned(); }
   bool can_grow() const { return grow_planned() && keys.labels && n_hull < body.n; }
   detail::HullConstriction3 constriction() { return {body, hull, keys, opt, visitor}; }
 
