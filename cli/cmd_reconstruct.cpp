@@ -609,10 +609,6 @@ Status check_option_conflicts(const ReconstructArgs& a) {
   if (a.topology == "auto" && a.stop_after != SIZE_MAX)
     return {StatusCode::InvalidArgument,
             "--stop-after stops the one constriction of --topology single; --topology auto reconstructs every part to the end (drop one of them)"};
-  // ("-" would be a file of that name: standard output carries the summary line.)
-  for (const auto& [name, path] : {std::pair<const char*, const std::string*>{"-o", &a.out}, {"--report", &a.report}, {"--body", &a.body}, {"--render", &a.render}})
-    if (*path == "-")
-      return {StatusCode::InvalidArgument, std::string(name) + " -: results are written to files, not to standard output; give a file name"};
   std::error_code ec;
   if (std::filesystem::is_directory(a.out, ec))
     return {StatusCode::InvalidArgument, a.out + " is a directory; give -o a file name (for example " +

@@ -5,13 +5,10 @@
 // library (render.hpp, write_polygon2).
 #include <algorithm>
 #include <charconv>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,19 +24,6 @@
 
 namespace constrict::cli {
 namespace {
-
-// The input as a mesh of format `fmt` (off, ply, obj, stl): by its extension, or as --format names
-// it, which also reads standard input ("-"; the faces of a piped mesh were dropped and its
-// vertices reconstructed instead).
-Status read_mesh_input(const std::string& path, const std::string& fmt, PointSet& pts, TriMesh3& mesh) {
-  if (path != "-" && lower_ext(path) == fmt) return read_mesh(path, pts, mesh);
-  std::ifstream f(path == "-" ? std::string("/dev/stdin") : path, std::ios::binary);
-  if (!f) return {StatusCode::FileNotFound, (path == "-" ? std::string("standard input") : path) + ": cannot open"};
-  std::ostringstream data;
-  data << f.rdbuf();
-  // (read_mesh_from_buffer takes the format from the name's extension)
-  return read_mesh_from_buffer(data.str(), (path == "-" ? std::string("standard input") : path) + " as ." + fmt, pts, mesh);
-}
 
 constexpr int kMaxViews = 1024;  // 32 x 32 panels of 512 pixels: the largest picture (16384 pixels)
 
@@ -394,17 +378,9 @@ int run_render(const RenderArgs& a) {
     if (Status s = check_dimension_options(a, 2); !s) return fail(s);
     GammaFaces dt;
     if (!a.no_graph)
-      if (Status s = delaunay_layer(pts, dt); !s) {
-        // (The graph's own advice, --merge-duplicates, would renumber the points the result's
-        // indices refer to.)
-        if (s.code() == StatusCode::Duplicate || s.code() == StatusCode::Collinear || s.code() == StatusCode::TooFewPoints) {
-          std::string why = s.message();
-          if (const auto k = why.find("; use --merge-duplicates"); k != std::string::npos) why.erase(k, why.find(')', k) - k);
-          return fail({s.code(), "--points " + a.points + ": the Delaunay graph under the result cannot be drawn: " + why +
-                                     "; draw the result alone with --no-graph"});
-        }
-        return fail(s);
-      }
+      if (Status s = delaunay_layer(pts, dt); !s)  // (--merge-duplicates would renumber what the indices refer to)
+        return fail({s.code(), "--points " + a.points + ": the Delaunay graph under the result cannot be drawn (" + s.message() +
+                                   "); with --points, --merge-duplicates does not apply: draw the result alone with --no-graph"});
     PolygonSvgLayers layers;
     layers.graph = a.no_graph ? nullptr : &dt;
     layers.title = "constrict: " + a.in.path;
@@ -420,13 +396,13 @@ int run_render(const RenderArgs& a) {
     return 0;
   }
   const std::string ie = lower_ext(a.in.path);
-  std::string fmt = a.in.format;
-  std::transform(fmt.begin(), fmt.end(), fmt.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  // (--format names a mesh format too, and "-" is standard input: a piped mesh was read as points.)
+  const std::string& fmt = a.in.format;
   const std::string mesh_fmt = is_mesh_ext(fmt) ? fmt : fmt == "auto" || fmt.empty() ? ie : std::string();
   if (is_mesh_ext(mesh_fmt)) {  // a mesh, unless it has no faces (by --format too, and on standard input)
     PointSet pts;
     TriMesh3 mesh;
-    const Status s = read_mesh_input(a.in.path, mesh_fmt, pts, mesh);
+    const Status s = read_mesh(a.in.path, mesh_fmt, pts, mesh);
     if (s) {
       if (!a.stages.empty() || !a.animate.empty() || a.stop_after != SIZE_MAX)
         return fail({StatusCode::InvalidArgument, "--stages, --animate and --stop-after need a point set, not a mesh"});

@@ -94,6 +94,10 @@ Status check_distinct_files(std::initializer_list<NamedPath> inputs, std::initia
   const std::vector<NamedPath> out(outputs), in(inputs);
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (out[i].second->empty()) continue;
+    // ("-" would be a file of that name: standard output carries the summary line.)
+    if (*out[i].second == "-")
+      return {StatusCode::InvalidArgument,
+              std::string(out[i].first) + " -: results are written to files, not to standard output; give a file name"};
     // (Before the input is read: a graph of a minute's work then failed to write into a directory.)
     std::error_code ec;
     if (std::filesystem::is_directory(*out[i].second, ec))

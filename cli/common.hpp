@@ -82,8 +82,8 @@ bool is_mesh_ext(const std::string& ext);
 using NamedPath = std::pair<const char*, const std::string*>;
 /// InvalidArgument when two of @p outputs, or an output and one of @p inputs, name the same file
 /// (the same path after resolving ".." and links, or the same existing file): a run must not
-/// overwrite its own input or one output with another; or when an output names a directory. Empty
-/// paths are skipped.
+/// overwrite its own input or one output with another; or when an output names a directory or is
+/// "-" (results go to files). Empty paths are skipped.
 Status check_distinct_files(std::initializer_list<NamedPath> inputs, std::initializer_list<NamedPath> outputs);
 
 Status write_report(const std::string& path, const nlohmann::json& j);

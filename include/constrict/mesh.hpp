@@ -147,6 +147,12 @@ struct MeshReadReport {
 /// @note O(file size) (STL: O(F log F) for the vertex identification).
 Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, MeshReadReport* report = nullptr);
 
+/// read_mesh() in the format @p format ("off", "ply", "obj", "stl"; empty: by the extension),
+/// whatever the extension; @p path "-" reads standard input (messages then start with "standard
+/// input").
+Status read_mesh(const std::string& path, const std::string& format, PointSet& points, TriMesh3& mesh,
+                 MeshReadReport* report = nullptr);
+
 /// Same as read_mesh() on an in-memory buffer; the format follows the extension of @p name,
 /// which also starts every message. FileNotFound cannot occur.
 Status read_mesh_from_buffer(std::string_view data, const std::string& name, PointSet& points,

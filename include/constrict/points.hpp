@@ -60,6 +60,9 @@ constexpr int kRescaleExponent = 64;
 /// Binary exponent e of the largest |coordinate| (std::frexp: max |x| in [2^(e-1), 2^e)); 0 when
 /// every coordinate is 0. @pre finite coordinates. O(N).
 int max_coordinate_exponent(const PointSet& points) noexcept;
+/// The same over the points with @p used[i] set (@p used has one entry per point): a picture or a
+/// measurement of the vertices a mesh uses is not rescaled for an unused vertex far off.
+int max_coordinate_exponent(const PointSet& points, const std::vector<char>& used) noexcept;
 
 /// A copy of @p points with every coordinate times 2^@p e (std::ldexp: exact unless a result
 /// overflows or becomes subnormal). For measurements and pictures of data far from magnitude 1;

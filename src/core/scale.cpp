@@ -21,12 +21,27 @@ std::string short_number(double x) {
 
 }  // namespace
 
+namespace {
+int exponent_of(double largest) noexcept {
+  int e = 0;
+  if (largest > 0) std::frexp(largest, &e);
+  return e;
+}
+}  // namespace
+
 int max_coordinate_exponent(const PointSet& points) noexcept {
   double m = 0;
   for (double c : points.coords) m = std::max(m, std::fabs(c));
-  int e = 0;
-  if (m > 0) std::frexp(m, &e);
-  return e;
+  return exponent_of(m);
+}
+
+int max_coordinate_exponent(const PointSet& points, const std::vector<char>& used) noexcept {
+  const std::size_t dim = points.dim > 0 ? static_cast<std::size_t>(points.dim) : 1;
+  double m = 0;
+  for (std::size_t i = 0; i < used.size() && i < points.size(); ++i)
+    if (used[i])
+      for (std::size_t k = 0; k < dim; ++k) m = std::max(m, std::fabs(points.coords[i * dim + k]));
+  return exponent_of(m);
 }
 
 PointSet scaled_by_power_of_two(const PointSet& points, int e) {

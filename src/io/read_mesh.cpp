@@ -168,9 +168,11 @@ Status parse_stl(std::string_view data, Builder& b) {
 
 }  // namespace
 
-Status read_mesh_from_buffer(std::string_view data, const std::string& name, PointSet& points, TriMesh3& mesh,
-                             MeshReadReport* report) {
-  const std::string ext = detail::extension(name);
+namespace {
+
+// The mesh of `data` in format `ext` (off, ply, obj, stl); `name` starts every message.
+Status read_mesh_as(std::string_view data, const std::string& name, const std::string& ext, PointSet& points, TriMesh3& mesh,
+                    MeshReadReport* report) {
   if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
     return {StatusCode::ParseError, name + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};
   Builder b{name, {}, {}, {}};
@@ -188,15 +190,29 @@ Status read_mesh_from_buffer(std::string_view data, const std::string& name, Poi
   return Status::ok();
 }
 
+}  // namespace
+
+Status read_mesh_from_buffer(std::string_view data, const std::string& name, PointSet& points, TriMesh3& mesh,
+                             MeshReadReport* report) {
+  return read_mesh_as(data, name, detail::extension(name), points, mesh, report);
+}
+
 Status read_mesh(const std::string& path, PointSet& points, TriMesh3& mesh, MeshReadReport* report) {
-  const std::string ext = detail::extension(path);
+  return read_mesh(path, "", points, mesh, report);
+}
+
+Status read_mesh(const std::string& path, const std::string& format, PointSet& points, TriMesh3& mesh,
+                 MeshReadReport* report) {
+  // "-": standard input, as read_points() reads it (render's piped mesh was read as points).
+  const std::string name = path == "-" ? std::string("standard input") : path;
+  const std::string ext = format.empty() ? detail::extension(path) : format;
   if (ext != "off" && ext != "ply" && ext != "obj" && ext != "stl")
-    return {StatusCode::ParseError, path + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return {StatusCode::FileNotFound, path + ": cannot open: " + std::strerror(errno)};
+    return {StatusCode::ParseError, name + ": unknown mesh format '" + ext + "' (use .off, .ply, .obj or .stl)"};
+  std::ifstream f(path == "-" ? std::string("/dev/stdin") : path, std::ios::binary);
+  if (!f) return {StatusCode::FileNotFound, name + ": cannot open: " + std::strerror(errno)};
   std::ostringstream ss;
   ss << f.rdbuf();
-  return read_mesh_from_buffer(ss.str(), path, points, mesh, report);
+  return read_mesh_as(ss.str(), name, ext, points, mesh, report);
 }
 
 }  // namespace constrict

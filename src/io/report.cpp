@@ -2,7 +2,6 @@
 // The JSON reports of reconstruct2 / reconstruct3 (report.hpp): one writer for every caller.
 #include "constrict/report.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>

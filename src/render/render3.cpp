@@ -97,7 +97,6 @@ Cell cell_of(const Sheet& g, int p) {
 }
 
 // The stages of render_sheet3, in order (defined after it).
-int used_exponent(const PointSet& points, const std::vector<char>& used);
 Status mark_used(const PointSet& pts, const std::vector<Panel3>& panels, std::vector<char>& used);
 Sphere bounding_sphere(const UpFrame& at, const std::vector<char>& used);
 void project_panel(const Panel3& pan, const Cell& cell, const UpFrame& at, const Sphere& frame, const RenderOptions3& o,
@@ -143,7 +142,7 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
   // Far from 1 in magnitude the normals' cross products overflow or underflow (a blank or flat
   // picture): the picture of the points times 2^-e (e the largest exponent of the vertices drawn;
   // an unused vertex at 1e100 had scaled a unit mesh to 1e-100, blank) is the same.
-  if (const int e = used_exponent(points, used); e > kRescaleExponent || e < -kRescaleExponent) {
+  if (const int e = max_coordinate_exponent(points, used); e > kRescaleExponent || e < -kRescaleExponent) {
     return render_sheet3(scaled_by_power_of_two(points, -e), panels, o, out);
   }
   const UpFrame at(points, o.up_axis);
@@ -192,18 +191,6 @@ Status render_sheet3(const PointSet& points, const std::vector<Panel3>& panels, 
 }
 
 namespace {
-
-// The binary exponent of the largest coordinate of the used vertices (|x| < 2^e), 0 when none is
-// non-zero: max_coordinate_exponent() over the vertices drawn.
-int used_exponent(const PointSet& points, const std::vector<char>& used) {
-  double m = 0;
-  for (std::size_t i = 0; i < used.size(); ++i)
-    if (used[i])
-      for (int k = 0; k < 3; ++k) m = std::max(m, std::fabs(points[i][k]));
-  int e = 0;
-  if (m > 0) std::frexp(m, &e);
-  return e;
-}
 
 // Checks every panel (mesh, view, vertex ids, a proper triangle) and marks the vertices its mesh uses.
 Status mark_used(const PointSet& pts, const std::vector<Panel3>& panels, std::vector<char>& used) {
