@@ -186,13 +186,18 @@ namespace {
 // A result visits each point at most once: a repeated index would be counted as recovered edges
 // twice over (and is no simple polygon), so it is refused, naming the index.
 Status check_no_repeated_index(const std::string& path, const std::vector<std::vector<int>>& rings, std::size_t n) {
-  std::vector<char> seen(n, 0);
-  for (const auto& ring : rings)
-    for (const int i : ring) {
-      if (seen[static_cast<std::size_t>(i)])
-        return {StatusCode::ParseError, path + ": index " + std::to_string(i) +
-                                            " appears twice; a result visits each point at most once"};
-      seen[static_cast<std::size_t>(i)] = 1;
+  std::vector<std::size_t> ring_of(n, 0);  // 1 + the ring that holds the index, 0: none yet
+  for (std::size_t r = 0; r < rings.size(); ++r)
+    for (const int i : rings[r]) {
+      std::size_t& at = ring_of[static_cast<std::size_t>(i)];
+      if (at != 0) {
+        const std::string where = rings.size() == 1 ? std::string()
+                                  : at == r + 1     ? " (in ring " + std::to_string(r + 1) + ")"
+                                                    : " (in rings " + std::to_string(at) + " and " + std::to_string(r + 1) + ")";
+        return {StatusCode::ParseError, path + ": index " + std::to_string(i) + " appears twice" + where +
+                                            "; a result visits each point at most once"};
+      }
+      at = r + 1;
     }
   return Status::ok();
 }
@@ -208,8 +213,10 @@ Status read_rings_any(const std::string& path, const PointSet& pts, std::vector<
   if (!r.open.empty())
     return {StatusCode::InvalidArgument, path + ": " + std::to_string(r.open.size()) +
                                              " open polyline(s); a result is closed rings ('c' lines) only"};
-  for (const auto& c : r.closed)
-    if (c.size() < 3) return {StatusCode::InvalidArgument, path + ": a ring needs at least 3 indices"};
+  for (std::size_t k = 0; k < r.closed.size(); ++k)
+    if (r.closed[k].size() < 3)
+      return {StatusCode::InvalidArgument, path + ": ring " + std::to_string(k + 1) + " has " +
+                                               std::to_string(r.closed[k].size()) + " indices; a ring needs at least 3"};
   rings = r.closed;
   return Status::ok();
 }
