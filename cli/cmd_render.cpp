@@ -313,6 +313,20 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
 
 // Options of one dimension given for an input of the other are refused, not ignored (issue 18).
 // --up's default (z) cannot be told from an explicit `--up z`, which is let through.
+// render's --columns lays out sheets: the columns of a point file of more than 3 columns are
+// chosen by a header line here, or (points to reconstruct) by reconstruct's --columns, whose
+// --render draws the result.
+Status columns_advice(const Status& s, bool reconstructs) {
+  const std::string m = s.message();
+  const std::size_t at = m.find(kChooseColumnsAdvice);
+  if (at == std::string::npos) return s;
+  return {s.code(), m.substr(0, at) +
+                        "name the coordinate columns " + (reconstructs ? "x, y[, z]" : "x, y") +
+                        " in a header line (render's --columns lays out sheets)" +
+                        (reconstructs ? ", or draw it with constrict reconstruct FILE --columns 2,3,4 --render PICTURE" : "") +
+                        m.substr(at + std::string(kChooseColumnsAdvice).size())};
+}
+
 Status check_dimension_options(const RenderArgs& a, int dim) {
   if (dim == 2) {
     if (!a.view.empty()) return wrong_dimension("--view", 2, a.in.path);
@@ -368,7 +382,7 @@ int run_render(const RenderArgs& a) {
     PointSet pts;
     ReadOptions ro;
     ro.check = false;
-    if (Status s = read_points(a.points, ro, pts); !s) return fail(s);
+    if (Status s = read_points(a.points, ro, pts); !s) return fail(columns_advice(s, false));
     // (The dimension from the data: a forced 2 had cut 3D points to x, y without a word.)
     if (pts.dim != 2)
       return fail({StatusCode::InvalidArgument,
@@ -417,7 +431,7 @@ int run_render(const RenderArgs& a) {
                  a.in.path + " is a 2D result (point indices), not points: give its points with --points"});
   PointSet pts;
   ReadReport rep;
-  if (Status s = read_input(a.in, pts, rep); !s) return fail(s);
+  if (Status s = read_input(a.in, pts, rep); !s) return fail(columns_advice(s, true));
   if (Status s = check_dimension_options(a, pts.dim); !s) return fail(s);
   return pts.dim == 2 ? render_points2(a, pts) : render_points3(a, pts);
 }

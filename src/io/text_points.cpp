@@ -61,9 +61,7 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-constexpr const char* kHowToChoose =
-    "choose the coordinate columns with --columns (1-based numbers such as 2,3,4, or header "
-    "names such as x,y,z) or name them x, y, z in a header line";
+constexpr const char* kHowToChoose = kChooseColumnsAdvice;
 
 Status too_many_fields(const std::string& name, std::size_t line, std::size_t count) {
   return error_at(StatusCode::ParseError, name, line,
