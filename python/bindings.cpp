@@ -48,6 +48,11 @@ std::string python_message(const Status& st) {
       if (const auto at = msg.find(r[0]); at != std::string::npos) msg.replace(at, std::string(r[0]).size(), r[1]);
     return msg;
   }
+  // (read_points' advice names the CLI's 1-based --columns: here the keyword, 0-based.)
+  if (const auto at = msg.find(kChooseColumnsAdvice); at != std::string::npos)
+    msg.replace(at, std::string(kChooseColumnsAdvice).size(),
+                "choose the coordinate columns with columns= (0-based field numbers such as (1, 2, 3), or header "
+                "names such as (\"x\", \"y\", \"z\")) or name them x, y, z in a header line");
   if (st.code() != StatusCode::Duplicate) return msg;
   const auto at = msg.find(kCliDuplicateRemedy);
   if (at != std::string::npos) msg.replace(at, std::string(kCliDuplicateRemedy).size(), kPythonDuplicateRemedy);

@@ -435,6 +435,13 @@ class Files(unittest.TestCase):
             constrict.read_points(self.path("flat.xyz"))
         self.assertEqual(ctx.exception.code, "Coplanar")
         self.assertIn("columns=(1, 2)", str(ctx.exception))  # Python's keyword, not the CLI's flag
+        with open(self.path("wide.txt"), "w") as f:  # more fields than x, y, z: the keyword's advice
+            f.write("0 0 0 1\n1 4 0 1\n2 4 4 1\n")
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.read_points(self.path("wide.txt"))
+        self.assertEqual(ctx.exception.code, "ParseError")
+        self.assertIn("columns= (0-based", str(ctx.exception))
+        self.assertNotIn("--columns", str(ctx.exception))
         for kw in ({"dim": "3"}, {"dim": 1}, {"merge_duplicates": 1}, {"check": "no"}):
             with self.assertRaises(constrict.Error, msg=kw) as ctx:
                 constrict.read_points_info(self.path("t.csv"), **kw)
