@@ -200,6 +200,34 @@ TEST(VoronoiSkeleton2, SquareWithCentre) {
   EXPECT_NEAR(r.stats.tree_length, 2 * std::sqrt(2.0), 1e-12);
 }
 
+TEST(VoronoiSkeleton2, AreaFarFromTheOriginAndAtHugeScales) {
+  // The square with its centre (area 4 - 1): moved by 2^52 (every coordinate still exact), the
+  // area is still exactly 3 (about the origin its terms cancelled: -2.8e14 for a real set moved by
+  // 10^15); scaled by 2^1000 it is +inf, the true area beyond the doubles (it was inf - inf, NaN).
+  double perimeter0 = 0;
+  for (const double shift : {0.0, 0x1p52}) {
+    PointSet p;
+    p.dim = 2;
+    p.coords = {0, 0, 2, 0, 2, 2, 0, 2, 1, 1};
+    for (double& c : p.coords) c += shift;
+    VoronoiSkeleton2Result r;
+    ASSERT_TRUE(voronoi_skeleton2(p, {}, r).is_ok());
+    ASSERT_TRUE(r.complete);
+    EXPECT_EQ(std::fabs(r.area), 3.0) << "shift " << shift;
+    EXPECT_DOUBLE_EQ(r.perimeter, 6 + 2 * std::sqrt(2.0)) << "shift " << shift;
+    if (shift == 0) perimeter0 = r.perimeter;
+    EXPECT_EQ(r.perimeter, perimeter0) << "shift " << shift;  // the same differences
+  }
+  PointSet p;
+  p.dim = 2;
+  p.coords = {0, 0, 2, 0, 2, 2, 0, 2, 1, 1};
+  for (double& c : p.coords) c = std::ldexp(c, 1000);
+  VoronoiSkeleton2Result r;
+  ASSERT_TRUE(voronoi_skeleton2(p, {}, r).is_ok());
+  EXPECT_TRUE(std::isinf(r.area)) << r.area;
+  EXPECT_EQ(r.perimeter, std::ldexp(perimeter0, 1000));
+}
+
 TEST(VoronoiSkeleton2, NonHamiltonianDelaunayIsReportedIncomplete) {
   // Spec §6.2 Example N9 (Dillencourt-type): the Delaunay triangulation has no Hamiltonian cycle,
   // so no growth can reach all 9 points; the exhaustive search agrees.
