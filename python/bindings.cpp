@@ -88,6 +88,13 @@ void run_nogil(F&& f) {
   check(st);
 }
 
+// An object array with a str or bytes entry (numpy would parse it as a number).
+bool holds_text(const py::array& a) {
+  for (const py::handle x : a.attr("ravel")())
+    if (PyUnicode_Check(x.ptr()) || PyBytes_Check(x.ptr()) || PyBool_Check(x.ptr())) return true;
+  return false;
+}
+
 // (N, dim) float array -> PointSet (copied; any numeric dtype and memory layout is accepted).
 PointSet to_points(const py::handle& obj, int dim) {
   // (numpy's conversion reads a masked array's hidden values as points: refused.)
@@ -95,10 +102,17 @@ PointSet to_points(const py::handle& obj, int dim) {
       py::isinstance(obj, ma.attr("MaskedArray")) && ma.attr("is_masked")(obj).cast<bool>())
     raise({StatusCode::InvalidArgument, "points is a masked array with masked entries: drop those rows first "
                                         "(points[~points.mask.any(axis=1)]) or fill them (points.filled(...))"});
-  // (The cast keeps a complex number's real part, with only numpy's warning: refused.)
-  if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
-    raise(
-        {StatusCode::InvalidArgument, "points must be real numbers, not " + py::str(raw.dtype()).cast<std::string>()});
+  // (The cast keeps a complex number's real part, with only numpy's warning; and it reads text
+  // ("0.5"), dates, time spans and booleans as numbers without a word: all refused.)
+  if (const py::array raw = py::array::ensure(obj)) {
+    const char kind = raw.dtype().kind();
+    const bool numbers = kind == 'f' || kind == 'i' || kind == 'u' || (kind == 'O' && !holds_text(raw));
+    if (!numbers)
+      raise({StatusCode::InvalidArgument, "points must be real numbers, not " + py::str(raw.dtype()).cast<std::string>() +
+                                              (kind == 'U' || kind == 'S' || kind == 'O'
+                                                   ? " (text: convert it with np.asarray(points, dtype=float) first)"
+                                                   : "")});
+  }
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!a) raise({StatusCode::InvalidArgument, "points must be an array of numbers"});
   if (a.ndim() != 2 || a.shape(1) != dim)
@@ -126,6 +140,13 @@ void check_integer_dtype(const py::handle& obj, const char* what) {
   if (kind != 'i' && kind != 'u' && !(a.size() == 0 && kind == 'f'))  // (an empty list is float64)
     raise({StatusCode::InvalidArgument, std::string(what) + " must hold integer indices, not " +
                                             py::str(a.dtype()).cast<std::string>()});
+  // (uint64 above 2^63 - 1 wraps to a negative int64 in the cast: "index -1" for 2^64 - 1.)
+  if (kind == 'u' && a.itemsize() == 8 && a.size() > 0) {
+    const py::int_ top = a.attr("max")();
+    if (top > py::int_(std::numeric_limits<std::int64_t>::max()))
+      raise({StatusCode::InvalidArgument,
+             std::string(what) + ": index " + py::str(py::object(top)).cast<std::string>() + " out of range"});
+  }
 }
 
 template <std::size_t K>

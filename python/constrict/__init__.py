@@ -14,6 +14,7 @@ reconstructions in parallel. ``python3 -m constrict`` is the command line. See d
 """
 from __future__ import annotations
 
+import collections.abc
 import dataclasses
 import json
 import math
@@ -58,6 +59,11 @@ def _optional(module: str, what: str, package: str):
 def _result_points(points: ArrayLike, dim: int, used: List[np.ndarray], rows: Optional[int], what: str) -> np.ndarray:
     """The points a result's indices refer to, checked: (N, dim), every used row present, and
     exactly ``rows`` rows when the result knows its point count (a complete one)."""
+    raw = np.asarray(points) if not isinstance(points, np.ndarray) else points
+    # (The cast drops a complex number's imaginary part and parses text: as reconstruct2 does,
+    # only real numbers.)
+    if raw.dtype.kind not in "fiuO":
+        raise _invalid(f"{what}: points must be real numbers, not {raw.dtype}")
     try:
         xy = np.asarray(points, dtype=float)
     except (TypeError, ValueError) as e:
@@ -332,11 +338,11 @@ def _reject(func: str, extra: Dict[str, Any]) -> None:
 
 
 def _refine_name(refine: Refine) -> str:
-    if refine is True or refine is False:
+    if isinstance(refine, (bool, np.bool_)):
         return "auto" if refine else "none"
     if isinstance(refine, str):
         return refine
-    raise TypeError(f"refine must be a bool or 'auto'/'none', got {type(refine).__name__}")
+    raise _invalid(f"refine must be True, False or a name ('auto', 'none'), not {refine!r}")
 
 
 def _skeleton_options(method: str, seed_limit: int, **constriction: Any) -> None:
@@ -649,7 +655,10 @@ def validate_rings(points: ArrayLike, rings: Any) -> Tuple[bool, str]:
     """(ok, reason): is ``rings`` (a :class:`Rings`, or a list of :class:`Ring` / dicts with role,
     parent, indices) a valid ring set: every point once, rings simple and disjoint, shells CCW,
     holes CW, each parent the innermost containing ring? Exact predicates."""
-    return _core.validate_rings(points, rings.rings if isinstance(rings, Rings) else rings)
+    rings = rings.rings if isinstance(rings, Rings) else rings
+    if isinstance(rings, (str, bytes, dict)) or not isinstance(rings, collections.abc.Iterable):
+        raise _invalid(f"rings must be a Rings result or a list of Ring / dicts (role, parent, indices), not {rings!r:.80}")
+    return _core.validate_rings(points, rings)
 
 
 def validate_surface(points: ArrayLike, triangles: ArrayLike,
@@ -674,6 +683,8 @@ def read_points_info(path: PathLike, dim: Optional[int] = None, columns: Optiona
     if columns is None:
         return _core.read_points(path, 0 if dim is None else dim, merge_duplicates, check)
     if isinstance(columns, (str, bytes)):
+        raise _invalid(f"columns must be a sequence of 2 or 3 field numbers or header names, not {columns!r}")
+    if not isinstance(columns, collections.abc.Iterable):
         raise _invalid(f"columns must be a sequence of 2 or 3 field numbers or header names, not {columns!r}")
     cols = list(columns)
     if len(cols) not in (2, 3) or dim not in (None, len(cols)):

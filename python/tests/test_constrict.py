@@ -626,6 +626,27 @@ class Hostile(unittest.TestCase):
                            topology_gap=10**400)
         self.assertInvalid("gamma must be 2 numbers", constrict.gamma_graph, pts, gamma=(0, 10**400))
 
+    def test_second_sweep(self):
+        """The second sweep (2026-12-07, 1 770 calls): text, dates and booleans were read as
+        coordinates, refine= raised TypeError, a uint64 index 2**64 - 1 was named -1."""
+        pts = sample_data.curve(30, 3)
+        for bad in (pts.astype(str), pts.astype("S32"), pts.astype(str).astype(object), pts > 0.5,
+                    pts.astype("datetime64[s]") if False else np.zeros(pts.shape, "datetime64[s]"),
+                    np.zeros(pts.shape, "timedelta64[s]"), [["0", "0"], ["1", "0"], ["1", "1"], ["0", "1"]]):
+            self.assertInvalid("real numbers", constrict.reconstruct2, bad)
+            self.assertInvalid("real numbers", constrict.validate_polygon, bad, np.arange(len(bad)))
+        self.assertEqual(constrict.reconstruct2(pts.astype(object)), constrict.reconstruct2(pts))  # numbers
+        poly = constrict.reconstruct2(pts)
+        self.assertInvalid("real numbers", poly.coordinates, pts + 1j)  # (the imaginary part was dropped)
+        self.assertEqual(constrict.reconstruct2(pts, refine=np.bool_(False)), constrict.reconstruct2(pts, refine=False))
+        for bad in (1, None, 0.0):
+            self.assertInvalid("refine must be", constrict.reconstruct2, pts, refine=bad)
+        big = np.array([0, 1, 2, 2**64 - 1], np.uint64)
+        self.assertInvalid("18446744073709551615 out of range", constrict.validate_polygon, pts, big)
+        self.assertInvalid("columns must be a sequence", constrict.read_points, "x.xy", columns=5)
+        for bad in (None, 5, "shell"):
+            self.assertInvalid("rings must be", constrict.validate_rings, pts, bad)
+
     def test_validators_name_a_non_finite_point(self):
         q = np.array([[0, 0], [1, 0], [np.nan, 1]])
         ok, why = constrict.validate_rings(q, [dict(role="shell", parent=-1, indices=[0, 1, 2])])
