@@ -35,6 +35,10 @@ const char* to_string(StatusCode code) noexcept;
 /// Process exit code used by the CLI for a status code (0 for Ok, distinct values otherwise).
 int exit_code(StatusCode code) noexcept;
 
+/// A number as a message shows it: the shortest text that reads back as @p v ("-1", "1e-10",
+/// "inf"), where std::to_string's "%f" gave "-1.000000" and "0.000000".
+std::string number_text(double v);
+
 /// A status code plus a one-line human readable message.
 class Status {
  public:

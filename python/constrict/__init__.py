@@ -380,7 +380,7 @@ def _check_types(**options: Any) -> None:
         else:
             continue
         if not ok:
-            raise _invalid(f"{name} must be {want}, not {value!r}")
+            raise _invalid(f"{name} must be {want}, not {_shown(value)}")
 
 
 def _check_dim(dim: Any) -> None:
@@ -394,6 +394,12 @@ def _check_flags(**flags: Any) -> None:
     for name, value in flags.items():
         if not isinstance(value, (bool, np.bool_)):
             raise _invalid(f"{name} must be True or False, not {value!r}")
+
+
+def _shown(value: Any) -> str:
+    """repr(value) for a message, cut to 60 characters (an int of 400 digits was echoed whole)."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _as_float(value: Any) -> Optional[float]:
@@ -411,7 +417,7 @@ def _numbers(name: str, value: Any, count: int) -> Optional[list]:
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != count or not all(
             isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
             and _as_float(v) is not None for v in value):
-        raise _invalid(f"{name} must be {count} numbers, not {value!r}")
+        raise _invalid(f"{name} must be {count} numbers, not {_shown(value)}")
     return [float(v) for v in value]
 
 

@@ -646,6 +646,10 @@ class Hostile(unittest.TestCase):
         self.assertInvalid("columns must be a sequence", constrict.read_points, "x.xy", columns=5)
         for bad in (None, 5, "shell"):
             self.assertInvalid("rings must be", constrict.validate_rings, pts, bad)
+        self.assertInvalid("not -1$", constrict.reconstruct2, pts, topology="auto", topology_gap=-1)  # (-1.000000)
+        with self.assertRaises(constrict.Error) as ctx:
+            constrict.gamma_graph(pts, gamma=(10**400, 0))
+        self.assertLess(len(str(ctx.exception)), 120)  # (the 400 digits were echoed whole)
 
     def test_validators_name_a_non_finite_point(self):
         q = np.array([[0, 0], [1, 0], [np.nan, 1]])

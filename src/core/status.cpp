@@ -1,7 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "constrict/status.hpp"
 
+#include <charconv>
+#include <string>
+
 namespace constrict {
+
+std::string number_text(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
 
 const char* to_string(StatusCode code) noexcept {
   switch (code) {

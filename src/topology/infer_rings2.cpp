@@ -1293,7 +1293,7 @@ Status detail::infer_rings2(const PointSet& points, const RingsAdjacency& adj, c
   Constrict2Options part_options = options.polygon;  // the part polygons' options
   part_options.refine_multi_start = options.polygon.refine_multi_start && options.infer_multi_start;
   if (!(gap >= 0) || !std::isfinite(gap))
-    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(gap)};
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + number_text(gap)};
   if (points.dim != 2 || adj.start.size() != points.size() + 1)
     return {StatusCode::InvalidArgument, "infer_rings2: the triangulation is not one of these 2D points"};
   RingsLadder(points, adj, options, part_options, out).run();

@@ -75,7 +75,7 @@ Status reconstruct_rings2(const PointSet& points, const Rings2Options& o, Rings2
   r = Rings2Result{};
   r.topology = o.topology;
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
-    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + number_text(o.topology_gap)};
   if (o.topology == Topology2::Auto && o.polygon.stop_after != SIZE_MAX)
     return {StatusCode::InvalidArgument,
             "stop_after stops the one constriction of the single topology; the auto topology reconstructs every part to the end (drop one of them)"};

@@ -219,7 +219,7 @@ Status reconstruct_surfaces3(const PointSet& points, const Surfaces3Options& o, 
   r.gap_threshold = o.topology_gap;
   if (points.dim != 3) return {StatusCode::InvalidArgument, "reconstruct_surfaces3 needs 3D points"};
   if (!(o.topology_gap >= 0) || !std::isfinite(o.topology_gap))
-    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + std::to_string(o.topology_gap)};
+    return {StatusCode::InvalidArgument, "topology gap must be a finite number >= 0, not " + number_text(o.topology_gap)};
   if (Status s = detail::check_points_deferred(points); !s) return s;
   Constrict3Options eo = o.surface;
   eo.handles = o.topology == Topology3::Auto && o.handles;

@@ -56,6 +56,15 @@ std::vector<DuplicatePair> brute_force_duplicates(const PointSet& p) {
 
 // ---- check_points ----------------------------------------------------------------------------
 
+TEST(Status, NumberTextIsTheShortestRoundTrip) {
+  // (Messages used std::to_string: "-1.000000", and 1e-10 as "0.000000".)
+  EXPECT_EQ(number_text(-1), "-1");
+  EXPECT_EQ(number_text(1e-10), "1e-10");
+  EXPECT_EQ(number_text(0.1), "0.1");
+  EXPECT_EQ(number_text(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(std::stod(number_text(2.0 / 3)), 2.0 / 3);
+}
+
 TEST(PointsCheck, AcceptsTriangleAndTetrahedron) {
   EXPECT_TRUE(check_points(make(2, {0, 0, 1, 0, 0, 1})));
   EXPECT_TRUE(check_points(make(3, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1})));
