@@ -167,6 +167,18 @@ std::vector<std::array<int, K>> to_rows(const py::handle& obj, std::size_t n, co
     }
   return rows;
 }
+// For the validators: an index outside [0, n) is kept as the verdict's to name (-1 when it does
+// not fit an int), not raised: validate_polygon([0, 1, 2, 4]) and [0, 1, 2, 2**40] both answer
+// (False, "... out of range ...") (the second raised).
+std::vector<std::int64_t> to_ids64(const py::handle& obj, const char* what) {
+  check_integer_dtype(obj, what);
+  const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!t) raise({StatusCode::InvalidArgument, std::string(what) + " must be an array of integer indices"});
+  return std::vector<std::int64_t>(t.data(), t.data() + t.size());
+}
+int fit_int(std::int64_t v) {
+  return v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max() ? -1 : static_cast<int>(v);
+}
 std::vector<int> to_ids(const py::handle& obj) {
   check_integer_dtype(obj, "indices");
   const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
@@ -677,7 +689,10 @@ PYBIND11_MODULE(_core, m) {
       "validate_polygon",
       [](const py::handle& points, const py::handle& boundary) {
         const PointSet p = to_points(points, 2);
-        const std::vector<int> b = to_ids(boundary);
+        if (const py::array a = py::array::ensure(boundary); a && a.ndim() != 1)
+          raise({StatusCode::InvalidArgument, "indices must be one-dimensional"});
+        std::vector<int> b;
+        for (const std::int64_t v : to_ids64(boundary, "indices")) b.push_back(fit_int(v));
         PolygonCheck c;
         Status st;
         {

@@ -643,6 +643,10 @@ class Hostile(unittest.TestCase):
             self.assertInvalid("refine must be", constrict.reconstruct2, pts, refine=bad)
         big = np.array([0, 1, 2, 2**64 - 1], np.uint64)
         self.assertInvalid("18446744073709551615 out of range", constrict.validate_polygon, pts, big)
+        for far in (len(pts), 2**40, -2**40):  # a verdict either way (2**40 raised)
+            ok, why = constrict.validate_polygon(pts, list(range(len(pts) - 1)) + [far])
+            self.assertFalse(ok)
+            self.assertIn("out of range", why)
         self.assertInvalid("columns must be a sequence", constrict.read_points, "x.xy", columns=5)
         for bad in (None, 5, "shell"):
             self.assertInvalid("rings must be", constrict.validate_rings, pts, bad)
