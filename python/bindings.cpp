@@ -109,9 +109,9 @@ PointSet to_points(const py::handle& obj, int dim) {
     const bool numbers = kind == 'f' || kind == 'i' || kind == 'u' || (kind == 'O' && !holds_text(raw));
     if (!numbers)
       raise({StatusCode::InvalidArgument, "points must be real numbers, not " + py::str(raw.dtype()).cast<std::string>() +
-                                              (kind == 'U' || kind == 'S' || kind == 'O'
-                                                   ? " (text: convert it with np.asarray(points, dtype=float) first)"
-                                                   : "")});
+                                              (kind == 'U' || kind == 'S' ? " (text: convert it with np.asarray(points, dtype=float) first)"
+                                               : kind == 'O' ? " (an object array holding text or booleans)"
+                                                             : "")});
   }
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!a) raise({StatusCode::InvalidArgument, "points must be an array of numbers"});
@@ -167,29 +167,28 @@ std::vector<std::array<int, K>> to_rows(const py::handle& obj, std::size_t n, co
     }
   return rows;
 }
-// For the validators: an index outside [0, n) is kept as the verdict's to name (-1 when it does
-// not fit an int), not raised: validate_polygon([0, 1, 2, 4]) and [0, 1, 2, 2**40] both answer
-// (False, "... out of range ...") (the second raised).
-std::vector<std::int64_t> to_ids64(const py::handle& obj, const char* what) {
-  check_integer_dtype(obj, what);
-  const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
-  if (!t) raise({StatusCode::InvalidArgument, std::string(what) + " must be an array of integer indices"});
-  return std::vector<std::int64_t>(t.data(), t.data() + t.size());
-}
-int fit_int(std::int64_t v) {
-  return v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max() ? -1 : static_cast<int>(v);
-}
-std::vector<int> to_ids(const py::handle& obj) {
+// A 1-D index array as int64 (integer dtypes only).
+std::vector<std::int64_t> to_ids64(const py::handle& obj) {
   check_integer_dtype(obj, "indices");
   const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
   if (!t || t.ndim() != 1) raise({StatusCode::InvalidArgument, "indices must be one-dimensional"});
-  std::vector<int> out(static_cast<std::size_t>(t.shape(0)));
-  const std::int64_t* d = t.data();
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (d[i] < std::numeric_limits<int>::min() || d[i] > std::numeric_limits<int>::max())
-      raise({StatusCode::InvalidArgument, "index " + std::to_string(d[i]) + " out of range"});
-    out[i] = static_cast<int>(d[i]);
+  return std::vector<std::int64_t>(t.data(), t.data() + t.size());
+}
+bool fits_int(std::int64_t v) { return v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max(); }
+// ... as ints: an index beyond them is refused.
+std::vector<int> to_ids(const py::handle& obj) {
+  std::vector<int> out;
+  for (const std::int64_t v : to_ids64(obj)) {
+    if (!fits_int(v)) raise({StatusCode::InvalidArgument, "index " + std::to_string(v) + " out of range"});
+    out.push_back(static_cast<int>(v));
   }
+  return out;
+}
+// ... for a validator: an index beyond the ints is passed on as -1, which it names out of range
+// (validate_polygon([0, 1, 2, 4]) and [0, 1, 2, 2**40] both answer with a verdict; the second raised).
+std::vector<int> to_ids_to_judge(const py::handle& obj) {
+  std::vector<int> out;
+  for (const std::int64_t v : to_ids64(obj)) out.push_back(fits_int(v) ? static_cast<int>(v) : -1);
   return out;
 }
 
@@ -689,10 +688,7 @@ PYBIND11_MODULE(_core, m) {
       "validate_polygon",
       [](const py::handle& points, const py::handle& boundary) {
         const PointSet p = to_points(points, 2);
-        if (const py::array a = py::array::ensure(boundary); a && a.ndim() != 1)
-          raise({StatusCode::InvalidArgument, "indices must be one-dimensional"});
-        std::vector<int> b;
-        for (const std::int64_t v : to_ids64(boundary, "indices")) b.push_back(fit_int(v));
+        const std::vector<int> b = to_ids_to_judge(boundary);
         PolygonCheck c;
         Status st;
         {
