@@ -271,10 +271,12 @@ class Gaps {
   // p's half-neighbour leaves p's own ring at a corner: at a vertex of at most 90° the NN-crust's
   // half-neighbour (beyond 90° from the nearest neighbour a) cannot be the ring's other
   // neighbour. So when p has another Delaunay neighbour c, more than t times nearer than the
-  // half-neighbour r (the gap rule's own ratio), that turns away from a (c at least as far from a
-  // as from p: the angle at p is the largest of the triangle a p c, at least 60°), c is p's ring
-  // neighbour and r lies beyond a gap. (On a curve sampled unevenly the second-nearest point lies
-  // past the nearest, nearer to it than to p: no corner.) Exact (compare_gap2, compare_distance2).
+  // half-neighbour r (the gap rule's own ratio), that does not lie past a (the angle at a of the
+  // triangle p a c is at most 90°), c is p's ring neighbour and r lies beyond a gap. (On a curve
+  // sampled unevenly the second-nearest point lies past the nearest: no corner.) The guard asked
+  // for the angle at p to be the largest of that triangle (c at least as far from a as from p),
+  // which an equilateral triangle meets only by a rounding's luck: islands of 3 points 17 of
+  // their sides apart came out as one ring. Exact (compare_gap2, diametral_side2).
   bool corner_jump(const Adjacency& adj, int p) const {
     const auto& ch = crust_.choices(p);
     const int a = ch[0], r = ch[1];
@@ -285,7 +287,7 @@ class Gaps {
       if (c == a || c == r) continue;
       const double* x[1] = {at(p)};
       const double* y[1] = {at(c)};
-      if (compare_gap2(at(p), at(r), x, y, 1, t_) > 0 && compare_distance2(at(c), at(a), at(p)) >= 0) return true;
+      if (compare_gap2(at(p), at(r), x, y, 1, t_) > 0 && diametral_side2(at(p), at(c), at(a)) >= 0) return true;
     }
     return false;
   }
