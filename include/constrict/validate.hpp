@@ -17,7 +17,9 @@ namespace constrict {
 struct PolygonCheck {
   bool indices_ok = false;    ///< every entry in [0, N)
   bool all_points = false;    ///< every input point appears exactly once
-  bool simple = false;        ///< no two non-adjacent edges meet; adjacent edges only at their vertex
+  /// No two non-adjacent edges meet; adjacent edges only at their vertex. (simple and ccw are also
+  /// set for a boundary that only misses points, an incomplete result: over its own vertices.)
+  bool simple = false;
   bool ccw = false;           ///< counter-clockwise (positive signed area)
   int missing_point = -1;     ///< first point that does not appear (or -1)
   int repeated_point = -1;    ///< first point that appears twice (or -1)

@@ -293,12 +293,27 @@ Status report_crossing(const Poly& P, std::size_t e, std::size_t f, PolygonCheck
 
 }  // namespace
 
+// A polygon that misses points (an incomplete result: a lock with the fallbacks off, a stop on
+// request) is still checked for what it is, so that the flags say whether it is simple and
+// counter-clockwise over its own vertices; the status stays the missing point's.
+Status with_partial_flags(const PointSet& points, const std::vector<int>& boundary, PolygonCheck* d, Status st) {
+  if (!d || !d->indices_ok || d->repeated_point >= 0 || d->missing_point < 0 || boundary.size() < 3) return st;
+  const Poly P{points, boundary, boundary.size()};
+  Sweep sweep(P);
+  std::size_t e = 0, f = 0;
+  if (sweep.run(e, f)) return st;
+  d->simple = true;
+  PolygonCheck orientation;
+  d->ccw = check_ccw(P, &orientation).is_ok();
+  return st;
+}
+
 Status validate_polygon(const PointSet& points, const std::vector<int>& boundary,
                         PolygonCheck* details) {
   if (details) *details = PolygonCheck{};
   if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
-  if (!st) return st;
+  if (!st) return with_partial_flags(points, boundary, details, st);
   Poly P{points, boundary, boundary.size()};
   Sweep sweep(P);
   std::size_t e = 0, f = 0;
@@ -327,7 +342,7 @@ Status validate_polygon_in_triangulation(const PointSet& points, const std::vect
   if (details) *details = PolygonCheck{};
   if (Status f = detail::check_finite(points, "validate_polygon"); !f) return f;
   Status st = check_indices(points, boundary, details);
-  if (!st) return st;
+  if (!st) return with_partial_flags(points, boundary, details, st);
   // Mark the polygon edges met as triangle edges: succ[u] is the vertex after u on the polygon.
   const std::size_t n = points.size();
   // (check_indices: the boundary is a permutation of the points, so every write has its own slot.)

@@ -697,6 +697,22 @@ TEST(Constrict2Validator, Basics) {
   EXPECT_FALSE(d.simple);
   EXPECT_FALSE(validate_polygon(sq, {0, 1, 2}, &d).is_ok());  // missing
   EXPECT_EQ(d.missing_point, 3);
+  EXPECT_EQ(d.reason, "point 3 is missing");
+  EXPECT_TRUE(d.simple && d.ccw);  // over its own vertices (the flags were false: a report said so)
+  const PointSet five = make2({{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 3}});
+  std::vector<std::array<int, 3>> fan{{0, 1, 2}, {0, 2, 3}, {3, 2, 4}};
+  for (const bool in_triangulation : {false, true}) {
+    const auto check = [&](const std::vector<int>& b) {
+      return in_triangulation ? validate_polygon_in_triangulation(five, b, fan, &d) : validate_polygon(five, b, &d);
+    };
+    EXPECT_FALSE(check({0, 1, 2, 3}).is_ok());  // point 4 missing, the square simple and CCW
+    EXPECT_TRUE(d.simple && d.ccw && !d.all_points) << in_triangulation;
+    EXPECT_FALSE(check({0, 2, 1, 3}).is_ok());  // missing, and a bow tie
+    EXPECT_EQ(d.reason, "point 4 is missing");
+    EXPECT_FALSE(d.simple) << in_triangulation;
+    EXPECT_FALSE(check({0, 3, 2, 1}).is_ok());  // missing, and clockwise
+    EXPECT_TRUE(d.simple && !d.ccw) << in_triangulation;
+  }
   EXPECT_FALSE(validate_polygon(sq, {0, 1, 2, 3, 1}, &d).is_ok());  // repeated
   EXPECT_EQ(d.repeated_point, 1);
   EXPECT_FALSE(validate_polygon(sq, {0, 1, 2, 7}, &d).is_ok());  // out of range
