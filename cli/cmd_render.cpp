@@ -311,8 +311,6 @@ int render_points3(const RenderArgs& a, const PointSet& pts) {
   return 0;
 }
 
-// Options of one dimension given for an input of the other are refused, not ignored (issue 18).
-// --up's default (z) cannot be told from an explicit `--up z`, which is let through.
 // render's --columns lays out sheets: the columns of a point file of more than 3 columns are
 // chosen by a header line here, or (points to reconstruct) by reconstruct's --columns, whose
 // --render draws the result.
@@ -327,6 +325,8 @@ Status columns_advice(const Status& s, bool reconstructs) {
                         m.substr(at + std::string(kChooseColumnsAdvice).size())};
 }
 
+// Options of one dimension given for an input of the other are refused, not ignored (issue 18).
+// --up's default (z) cannot be told from an explicit `--up z`, which is let through.
 Status check_dimension_options(const RenderArgs& a, int dim) {
   if (dim == 2) {
     if (!a.view.empty()) return wrong_dimension("--view", 2, a.in.path);

@@ -40,7 +40,6 @@ struct ColumnSelection {
 /// @return Ok, or InvalidArgument saying what is wrong with @p text
 Status parse_columns(const std::string& text, ColumnSelection& out);
 
-/// Options of read_points().
 /// How read_points() messages about text columns it cannot choose end (too many fields, or a
 /// header without x and y): the CLI's --columns. A caller without such an option (the CLI's
 /// render) replaces it with its own advice.
@@ -48,6 +47,7 @@ inline constexpr const char* kChooseColumnsAdvice =
     "choose the coordinate columns with --columns (1-based numbers such as 2,3,4, or header "
     "names such as x,y,z) or name them x, y, z in a header line";
 
+/// Options of read_points().
 struct ReadOptions {
   int dim = 0;                    ///< 0: from the data (2 columns -> 2D, 3 -> 3D); 2 or 3: forced
   PointFormat format = PointFormat::Auto;  ///< Auto: by file extension

@@ -57,6 +57,10 @@ PointSet merge_duplicates(const PointSet& points, std::vector<std::size_t>* kept
 /// grid cells) neither overflow nor underflow.
 constexpr int kRescaleExponent = 64;
 
+/// The exponent by which measurements scale data far from 1 in magnitude: @p e when beyond
+/// ±kRescaleExponent, else 0 (no scaling).
+constexpr int rescale_exponent(int e) noexcept { return e > kRescaleExponent || e < -kRescaleExponent ? e : 0; }
+
 /// Binary exponent e of the largest |coordinate| (std::frexp: max |x| in [2^(e-1), 2^e)); 0 when
 /// every coordinate is 0. @pre finite coordinates. O(N).
 int max_coordinate_exponent(const PointSet& points) noexcept;

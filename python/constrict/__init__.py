@@ -59,15 +59,15 @@ def _optional(module: str, what: str, package: str):
 def _result_points(points: ArrayLike, dim: int, used: List[np.ndarray], rows: Optional[int], what: str) -> np.ndarray:
     """The points a result's indices refer to, checked: (N, dim), every used row present, and
     exactly ``rows`` rows when the result knows its point count (a complete one)."""
-    raw = np.asarray(points) if not isinstance(points, np.ndarray) else points
-    # (The cast drops a complex number's imaginary part and parses text: as reconstruct2 does,
-    # only real numbers.)
-    if raw.dtype.kind not in "fiuO":
-        raise _invalid(f"{what}: points must be real numbers, not {raw.dtype}")
     try:
-        xy = np.asarray(points, dtype=float)
+        raw = np.asarray(points)
+        # (The cast drops a complex number's imaginary part and parses text: as reconstruct2 does,
+        # only real numbers.)
+        xy = np.asarray(raw, dtype=float) if raw.dtype.kind in "fiuO" else None
     except (TypeError, ValueError) as e:
         raise _invalid(f"{what}: points must be an (N, {dim}) array of numbers ({e})") from None
+    if xy is None:
+        raise _invalid(f"{what}: points must be real numbers, not {raw.dtype}")
     if xy.ndim != 2 or xy.shape[1] != dim:
         raise _invalid(f"{what}: points must have shape (N, {dim}), got {xy.shape}")
     top = max((int(u.max()) for u in used if len(u)), default=-1)

@@ -179,7 +179,6 @@ struct MaxExponent {
 // overflow or underflow: the distances are measured on both sides' coordinates times 2^-e (e the
 // larger exponent of the two) and scaled back. Vertices are matched on the coordinates as given.
 // 0 when no scaling is needed.
-int rescale_exponent(int e) { return e > kRescaleExponent || e < -kRescaleExponent ? e : 0; }
 int common_exponent(const PointSet& a, const PointSet& b) {
   return rescale_exponent(std::max(max_coordinate_exponent(a), max_coordinate_exponent(b)));
 }

@@ -12,6 +12,7 @@
 #include "constrict/voronoi_skeleton.hpp"
 #include "constrict/detail/skeleton_growth.hpp"
 #include "core/detail/canonical_order.hpp"
+#include "core/detail/ring_measure.hpp"
 
 namespace constrict {
 namespace {
@@ -68,21 +69,8 @@ Status skeleton2(const PointSet& points, const VoronoiSkeletonOptions& options, 
   }
   result.unplaced_points = std::move(body.unplaced);
   result.complete = result.unplaced_points.empty();
-  // The area's terms (a - o) x (b - a) about the first vertex o, on coordinates scaled by 2^-e
-  // (e: the largest exponent of the input): about the origin, a polygon far from it cancels (at
-  // 10^15 the area came out as -2.8e14 instead of 1.5e6), and unscaled products overflow (at
-  // 10^300: inf - inf, NaN). As the engine's (constrict2.cpp).
-  const std::size_t m = result.boundary.size();
-  const int e = max_coordinate_exponent(points);
-  for (std::size_t i = 0; i < m; ++i) {
-    const double* o = points[U(result.boundary[0])];
-    const double* a = points[U(result.boundary[i])];
-    const double* b = points[U(result.boundary[(i + 1) % m])];
-    const auto s = [e](double x) { return std::ldexp(x, -e); };
-    const double ax = s(a[0]) - s(o[0]), ay = s(a[1]) - s(o[1]), ux = s(b[0]) - s(a[0]), uy = s(b[1]) - s(a[1]);
-    result.area += 0.5 * (ax * uy - ay * ux);
-    result.perimeter += std::hypot(ux, uy);
-  }
+  const int e = rescale_exponent(max_coordinate_exponent(points));
+  detail::add_ring_measure(points, result.boundary, e, result.area, result.perimeter);
   result.area = std::ldexp(result.area, 2 * e);
   result.perimeter = std::ldexp(result.perimeter, e);
   st.ms_grow = ms_since(t1);

@@ -61,11 +61,9 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-constexpr const char* kHowToChoose = kChooseColumnsAdvice;
-
 Status too_many_fields(const std::string& name, std::size_t line, std::size_t count) {
   return error_at(StatusCode::ParseError, name, line,
-                  std::to_string(count) + " fields per line, more than x, y, z: " + kHowToChoose);
+                  std::to_string(count) + " fields per line, more than x, y, z: " + kChooseColumnsAdvice);
 }
 
 // A coordinate's header name must name one column: "x,x,y" would pick one of two silently.
@@ -109,7 +107,7 @@ Status select_columns(const Header& h, const ColumnSelection& c, int forced_dim,
       if (h.names.size() > static_cast<std::size_t>(kMaxDim))
         return error_at(StatusCode::ParseError, name, h.line,
                         "the header names " + std::to_string(h.names.size()) +
-                            " columns, none of them x and y: " + kHowToChoose);
+                            " columns, none of them x and y: " + kChooseColumnsAdvice);
       return Status::ok();  // "east,north,height": the first fields, as without a header
     }
     if (forced_dim == 3 && index.size() == 2)

@@ -14,6 +14,7 @@
 
 #include "constrict/delaunay.hpp"
 #include "constrict/detail/share2.hpp"
+#include "core/detail/ring_measure.hpp"
 #include "constrict/points.hpp"
 #include "constrict/topology.hpp"
 #include "core/detail/check_points.hpp"
@@ -42,21 +43,13 @@ Status infer_shared(const PointSet& input, const PointSet& points, const detail:
   return Status::ok();
 }
 
-// Shoelace area (holes run clockwise: they subtract) and perimeter, double arithmetic; each
-// ring's area terms about its first vertex (about the origin, rings far from it cancel).
+// Shoelace area (holes run clockwise: they subtract) and perimeter (detail::add_ring_measure).
 void measure(const PointSet& pts, Rings2Result& r) {
   r.area = r.perimeter = 0;
-  for (const Ring2& ring : r.rings) {
-    if (ring.indices.empty()) continue;
-    const double* o = pts[static_cast<std::size_t>(ring.indices[0])];
-    for (std::size_t i = 0; i < ring.indices.size(); ++i) {
-      const double* a = pts[static_cast<std::size_t>(ring.indices[i])];
-      const double* b = pts[static_cast<std::size_t>(ring.indices[(i + 1) % ring.indices.size()])];
-      const double ux = b[0] - a[0], uy = b[1] - a[1];
-      r.area += 0.5 * ((a[0] - o[0]) * uy - (a[1] - o[1]) * ux);
-      r.perimeter += std::hypot(ux, uy);
-    }
-  }
+  const int e = rescale_exponent(max_coordinate_exponent(pts));
+  for (const Ring2& ring : r.rings) detail::add_ring_measure(pts, ring.indices, e, r.area, r.perimeter);
+  r.area = std::ldexp(r.area, 2 * e);
+  r.perimeter = std::ldexp(r.perimeter, e);
 }
 
 }  // namespace

@@ -291,8 +291,6 @@ Status report_crossing(const Poly& P, std::size_t e, std::size_t f, PolygonCheck
                      std::to_string(P.b[f]) + "," + std::to_string(P.b[P.nxt(f)]) + ") intersect");
 }
 
-}  // namespace
-
 // A polygon that misses points (an incomplete result: a lock with the fallbacks off, a stop on
 // request) is still checked for what it is, so that the flags say whether it is simple and
 // counter-clockwise over its own vertices; the status stays the missing point's.
@@ -307,6 +305,8 @@ Status with_partial_flags(const PointSet& points, const std::vector<int>& bounda
   d->ccw = check_ccw(P, &orientation).is_ok();
   return st;
 }
+
+}  // namespace
 
 Status validate_polygon(const PointSet& points, const std::vector<int>& boundary,
                         PolygonCheck* details) {
