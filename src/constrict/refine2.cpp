@@ -197,10 +197,17 @@ class Refiner {
     // 2-exchange (half of a double bridge), and every vertex a move touches.
     std::vector<char> queued(n_, 0);
     region_.assign(n_, 0);
+    std::vector<std::uint8_t> forward(n_);  // or_opt_forward_bits by position
+    parallel_blocks(n_, [&](std::size_t i) { forward[i] = or_opt_forward_bits(tour_[i]); });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         const int v = tour_[i];
-        queued[U(v)] = static_cast<char>(try_two_opt<true>(v) || try_or_opt<true>(v));
+        // Or-opt from v: a segment forward from it, or backward from it (forward from the
+        // position len - 1 behind it).
+        bool or_opt = forward[i] != 0;
+        for (std::size_t len = 2; len <= kMaxSegment && !or_opt; ++len)
+          or_opt = (forward[(i + n_ - (len - 1) % n_) % n_] >> (len - 1)) & 1u;
+        queued[U(v)] = static_cast<char>(try_two_opt<true>(v) || or_opt);
         region_[U(v)] = static_cast<char>(queued[U(v)] || for_each_split(v, [](int, double) { return true; }));
       }
     });
@@ -583,8 +590,8 @@ class Refiner {
     return false;
   }
 
-  // Or-opt: move a segment of 1-3 points that starts at a (in either direction) between two
-  // adjacent polygon vertices c, c2, with c a Delaunay neighbour of a segment end.
+  // Or-opt: move a segment of 1-kMaxSegment points that starts at a (in either direction) between
+  // two adjacent polygon vertices c, c2, with c a Delaunay neighbour of a segment end.
   template <bool kDry> bool try_or_opt(int a) {
     for (const bool fwd : {true, false}) {
       std::array<int, kMaxSegment> s;
@@ -593,37 +600,63 @@ class Refiner {
       for (int len = 1; len <= kMaxSegment; ++len) {
         if (n_ < static_cast<std::size_t>(len) + 3) break;
         if (len > 1) s[U(len - 1)] = step(s[U(len - 2)], fwd);
-        const int last = s[U(len - 1)];
-        const int p = step(a, !fwd), q = step(last, fwd);
-        const auto in_seg = [&](int v) { return std::find(s.begin(), s.begin() + len, v) != s.begin() + len; };
-        const double rem_len = d(p, a) + d(last, q);
-        const double gain_rem = rem_len - d(p, q);
-        if (gain_rem <= 0) continue;
-        for (const int e : {a, last}) {
-          const int other = e == a ? last : a;
-          for (std::size_t k = off_[U(e)]; k < off_[U(e) + 1]; ++k) {
-            const int c = near_[k];
-            const double dce = near_d_[k];
-            if (dce >= gain_rem) break;
-            if (in_seg(c)) continue;
-            for (const int c2 : {succ(c), pred(c)}) {
-              if (in_seg(c2)) continue;
-              const double dcc2 = d(c, c2);
-              const double gain = gain_rem - (dce + d(other, c2) - dcc2);
-              if (!improves(gain, rem_len + dcc2)) continue;
-              if (kDry) return true;
-              const std::array<Edge, 3> rem{{{p, a}, {last, q}, {c, c2}}};
-              const std::array<Edge, 3> add{{{p, q}, {c, e}, {other, c2}}};
-              if (!valid(rem, add)) {
-                ++st_.rejected;
-                continue;
-              }
-              commit_edges(rem, add);
-              apply_or_opt(s, len, fwd, p, q, c, c2, e);
-              ++st_.moves_oropt;
-              return true;
-            }
+        if (or_opt_segment<kDry>(s, len, fwd)) return true;
+      }
+    }
+    return false;
+  }
+  // The first sweep's Or-opt test from every position at once: bit len - 1 of the result says
+  // whether the segment of len points forward from a has a shortening move. The segment backward
+  // from a vertex is the segment forward from its other end, with the same end points, lengths
+  // and candidates (the same doubles: a sum and a distance do not depend on the order of their
+  // terms), so try_or_opt<true>(v) is these bits of v and of the positions behind it (run()),
+  // with each segment tested once instead of from both ends.
+  std::uint8_t or_opt_forward_bits(int a) {
+    static_assert(kMaxSegment <= 8, "one bit per segment length");
+    std::uint8_t bits = 0;
+    std::array<int, kMaxSegment> s;
+    s.fill(-1);
+    s[0] = a;
+    for (int len = 1; len <= kMaxSegment; ++len) {
+      if (n_ < static_cast<std::size_t>(len) + 3) break;
+      if (len > 1) s[U(len - 1)] = step(s[U(len - 2)], true);
+      if (or_opt_segment<true>(s, len, true)) bits = static_cast<std::uint8_t>(bits | (1u << (len - 1)));
+    }
+    return bits;
+  }
+  // The Or-opt moves of the segment s[0 .. len) (s[0] = a, each next point one step in direction
+  // fwd): the first shortening one that keeps the polygon simple is applied (kDry: the first
+  // shortening one is reported, simplicity not tested).
+  template <bool kDry> bool or_opt_segment(const std::array<int, kMaxSegment>& s, int len, bool fwd) {
+    const int a = s[0], last = s[U(len - 1)];
+    const int p = step(a, !fwd), q = step(last, fwd);
+    const auto in_seg = [&](int v) { return std::find(s.begin(), s.begin() + len, v) != s.begin() + len; };
+    const double rem_len = d(p, a) + d(last, q);
+    const double gain_rem = rem_len - d(p, q);
+    if (gain_rem <= 0) return false;
+    for (const int e : {a, last}) {
+      const int other = e == a ? last : a;
+      for (std::size_t k = off_[U(e)]; k < off_[U(e) + 1]; ++k) {
+        const int c = near_[k];
+        const double dce = near_d_[k];
+        if (dce >= gain_rem) break;
+        if (in_seg(c)) continue;
+        for (const int c2 : {succ(c), pred(c)}) {
+          if (in_seg(c2)) continue;
+          const double dcc2 = d(c, c2);
+          const double gain = gain_rem - (dce + d(other, c2) - dcc2);
+          if (!improves(gain, rem_len + dcc2)) continue;
+          if (kDry) return true;
+          const std::array<Edge, 3> rem{{{p, a}, {last, q}, {c, c2}}};
+          const std::array<Edge, 3> add{{{p, q}, {c, e}, {other, c2}}};
+          if (!valid(rem, add)) {
+            ++st_.rejected;
+            continue;
           }
+          commit_edges(rem, add);
+          apply_or_opt(s, len, fwd, p, q, c, c2, e);
+          ++st_.moves_oropt;
+          return true;
         }
       }
     }
