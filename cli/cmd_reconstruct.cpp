@@ -42,6 +42,7 @@ struct ReconstructArgs {
 class ProgressVisitor final : public Constrict2Visitor {
  public:
   ProgressVisitor(Progress& p, std::size_t n) : progress_(p), n_(n) {}
+  bool wants_triangles() const override { return false; }  // (it counts them)
   void on_event(const Constrict2Event& e) override {
     if (e.kind == Constrict2Event::Kind::StageBegin && e.stage == "refine") {
       stage_ = "refining the polygon (local search)";

@@ -22,6 +22,7 @@ using engine2::ms_since;
 // ---- the Delaunay stage (spec §3.5) ------------------------------------------------------------
 Status Constrictor2::Impl::init(const PointSet& points) {
   pts = &rpts;
+  visitor_triangles = visitor == nullptr || visitor->wants_triangles();
   if (points.dim != 2) return {StatusCode::InvalidArgument, "reconstruct2: points must be 2D"};
   // Duplicates are found by the triangulation (fewer vertices than points); check_points then
   // names them.
@@ -368,6 +369,7 @@ struct Constrictor2::Canonical {
     Constrict2Visitor* inner = nullptr;
     const std::vector<int>* order = nullptr;
     Constrict2Event mapped;  // reused: its stage name is copied only when it changes
+    bool wants_triangles() const override { return inner->wants_triangles(); }
     void on_event(const Constrict2Event& e) override {
       mapped.kind = e.kind;
       mapped.criterion = e.criterion;

@@ -83,6 +83,39 @@ TEST(Constrict2Unit, ExampleBLocksAtGamma0) {
   EXPECT_NEAR(rec.events[1].criterion, 1.236614, 1e-6);
 }
 
+// A visitor that only counts (the CLI's progress) gets the same events, without their triangles
+// and keys; the result is the same.
+TEST(Constrict2Unit, CountingVisitorGetsTheEventsWithoutTriangles) {
+  struct Counter final : Recorder {
+    bool wants_triangles() const override { return false; }
+  };
+  const PointSet p = make2(kExampleB);
+  Constrict2Options o;
+  o.fallback = Fallback::Gamma0;  // removals, a lock, a stage, an insertion
+  Polygon2Result full, counted;
+  Recorder rec;
+  Counter cnt;
+  ASSERT_TRUE(reconstruct2(p, o, full, &rec).is_ok());
+  ASSERT_TRUE(reconstruct2(p, o, counted, &cnt).is_ok());
+  EXPECT_EQ(full.boundary, counted.boundary);
+  ASSERT_EQ(rec.events.size(), cnt.events.size());
+  std::size_t with_points = 0;
+  for (std::size_t i = 0; i < rec.events.size(); ++i) {
+    const Constrict2Event &a = rec.events[i], &b = cnt.events[i];
+    EXPECT_EQ(a.kind, b.kind) << i;
+    EXPECT_EQ(a.stage, b.stage) << i;
+    if (a.kind == Constrict2Event::Kind::RemoveTriangle || a.kind == Constrict2Event::Kind::InsertPoint) {
+      ++with_points;
+      EXPECT_NE(a.triangle[0], -1) << i;
+      EXPECT_EQ(b.triangle, (std::array<int, 3>{{-1, -1, -1}})) << i;
+      EXPECT_EQ(b.criterion, 0.0) << i;
+    } else {
+      EXPECT_EQ(a.triangle, b.triangle) << i;
+    }
+  }
+  EXPECT_GE(with_points, 3u);
+}
+
 TEST(Constrict2Unit, ExampleBGamma0Rescue) {
   const PointSet p = make2(kExampleB);
   Constrict2Options o;

@@ -144,6 +144,7 @@ struct Constrictor2::Impl {
   double ms_delaunay = 0, ms_constrict = 0;
   int scale_exp = 0;                         // rpts = ranked input * 2^-scale_exp (exact; init)
   Constrict2Event event;                     // reused by emit()
+  bool visitor_triangles = true;             // visitor->wants_triangles(), asked by init()
   std::unique_ptr<Polygon2Result> finished;  // the result of the first finish()
 
   // The Delaunay adjacency (built beside the constriction, or at the lock; freed by the
@@ -218,8 +219,10 @@ struct Constrictor2::Impl {
   void emit(Constrict2Event::Kind k, int a, int b, int y, double crit, const char* stage) {
     if (!visitor) return;
     event.kind = k;
-    event.triangle = {{G(a), G(b), G(y)}};
-    event.criterion = crit;
+    if (visitor_triangles) {
+      event.triangle = {{G(a), G(b), G(y)}};
+      event.criterion = crit;
+    }
     if (event.stage != stage) event.stage = stage;
     visitor->on_event(event);
   }
