@@ -466,9 +466,17 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // (no control changed:
     // 81 noisy genus-0 copies, the 28 noisy handle sets, 54 implicit chains and eights, the
     // shared 3D and topology sets).
+    // On an even sample (kUnevenSample: blue noise, as mesh vertices are) such a closing
+    // must leave an even surface, as the thin tube's must: the true ones measured there (sparse
+    // chains and linked tori of 600 points, bench/topology_sweep3.py) end at 1.75-2.05, while one
+    // closing a slot two spacings wide between a comb's fingers (bench/limbs3.py) ended at 3.41.
+    const auto even_sample = [&] {
+      if (*uneven < 0) *uneven = surface_ratio_quantile(b, spacing, 0.9);
+      return *uneven < kUnevenSample;
+    };
     const bool noisy_tube = !by_bridges && !thin_tube && !pinched && added && dF == 4 &&
                             (after.faces == 0 || after.faces < before.faces) &&
-                            after.worst <= kNoisyDrop * before.worst;
+                            after.worst <= kNoisyDrop * before.worst && (after.worst <= kThinCutAfter || !even_sample());
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
     // A closing region that closes several loops across a wall of long faces, one of them short,

@@ -19,7 +19,7 @@
 
 namespace constrict::test {
 
-enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window, Block, Plate, Stack };
+enum class Family3 { Torus, Spheres, Hollow, Links, Sphere, Ellipsoid, Peanut, Window, Block, Plate, Stack, Comb };
 
 struct Sample3 {
   PointSet points;
@@ -227,6 +227,31 @@ inline Sample3 make_surfaces3(Family3 f, double gap, unsigned seed, double h = 0
         const P q = detail_gen3::on_box(rng, 2, 1, 0.3);
         return P{q[0], q[1], q[2] + dz};
       }, all);
+      break;
+    }
+    case Family3::Comb: {  // a box with five fingers on it, gap spacings apart: genus 0
+      // Boxes as (centre, half sides); a candidate of one is kept outside all the others.
+      const double a = 0.25, g = gap * h;  // the fingers' half width, the slots' width
+      std::vector<std::array<P, 2>> boxes;
+      const double w = 5 * 2 * a + 4 * g;
+      boxes.push_back({P{w / 2, 0.5, 0.3}, P{w / 2, 0.5, 0.3}});
+      for (int i = 0; i < 5; ++i) boxes.push_back({P{a + i * (2 * a + g), 0.5, 1.65}, P{a, 0.5, 1.35}});
+      const auto inside = [](const P& p, const std::array<P, 2>& bx) {
+        for (int k = 0; k < 3; ++k)
+          if (!(std::fabs(p[k] - bx[0][k]) < bx[1][k])) return false;
+        return true;
+      };
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const P c = boxes[i][0], e = boxes[i][1];
+        throw_on(8 * (e[0] * e[1] + e[0] * e[2] + e[1] * e[2]), [&] {
+          const P q = detail_gen3::on_box(rng, e[0], e[1], e[2]);
+          return P{q[0] + c[0], q[1] + c[1], q[2] + c[2]};
+        }, [&](const P& p) {
+          for (std::size_t j = 0; j < boxes.size(); ++j)
+            if (j != i && inside(p, boxes[j])) return false;
+          return true;
+        });
+      }
       break;
     }
   }
