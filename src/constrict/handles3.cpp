@@ -341,6 +341,64 @@ bool loop_through_inside(const Body3& b, const std::vector<int>& changed, const 
 
 }  // namespace
 
+// The outward normal (not normalised) of the triangle abc of a body tetrahedron whose fourth
+// vertex is `inner`.
+std::array<double, 3> outward_normal(const Body3& b, int a, int c, int d, int inner) {
+  const double* p = b.P(a);
+  const double* q = b.P(c);
+  const double* r = b.P(d);
+  const double* s = b.P(inner);
+  const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+  std::array<double, 3> n{{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}};
+  if (n[0] * (s[0] - p[0]) + n[1] * (s[1] - p[1]) + n[2] * (s[2] - p[2]) > 0)
+    for (double& x : n) x = -x;
+  return n;
+}
+
+// Does a closing fold where its new surface meets the old one? Its new surface faces (the region's
+// faces toward tetrahedra outside the body, the region now in it) against the surface faces of
+// the body outside the region across their edges (the seam): a bend of 90 degrees or more there
+// (outward normals at a dot product of 0 or less, a degenerate face counting as such). A cut
+// across a tube continues the tube's surface over the seam; a bridge across the slot between two
+// walls meets them at about right angles. Measured (docs/topology.md, "Limbs that nearly touch"):
+// the true thin-tube and noisy-tube closings on even samples bend at most 79 degrees at their seam
+// (sparse chains, linked tori, mugs, a thin-walled box), the false ones across a comb's slots
+// 92-180. sorted_changed: the region, ascending.
+bool folds_at_seam(const Body3& b, const std::vector<int>& sorted_changed) {
+  const auto in_region = [&](int t) { return std::binary_search(sorted_changed.begin(), sorted_changed.end(), t); };
+  for (int t : sorted_changed) {
+    if (!b.alive(t)) continue;
+    const auto& tv = b.tets[uz(t)];
+    for (int i = 0; i < 4; ++i) {
+      if (b.alive(b.nbr[uz(t)][uz(i)])) continue;
+      int f[3], c = 0;
+      for (int l = 0; l < 4; ++l)
+        if (l != i) f[c++] = tv[uz(l)];
+      const std::array<double, 3> n0 = outward_normal(b, f[0], f[1], f[2], tv[uz(i)]);
+      for (int e = 0; e < 3; ++e) {
+        // The other surface face at the edge (u, w): round the edge from t through the body,
+        // first across t's face (u, w, tv[i]), to the first tetrahedron outside the body.
+        const int u = f[e], w = f[(e + 1) % 3];
+        int cur = t, exit_v = f[(e + 2) % 3], kept = tv[uz(i)];
+        for (std::size_t guard = 0; guard <= b.tets.size(); ++guard) {
+          const int nx = b.nbr[uz(cur)][uz(b.local_index(cur, exit_v))];
+          if (!b.alive(nx)) break;
+          int next_kept = -1;
+          for (int x : b.tets[uz(nx)])
+            if (x != u && x != w && x != kept) next_kept = x;
+          exit_v = kept;
+          kept = next_kept;
+          cur = nx;
+        }
+        if (in_region(cur)) continue;  // (a face of the region's own new surface)
+        const std::array<double, 3> n1 = outward_normal(b, u, w, kept, exit_v);
+        if (!(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] > 0)) return true;
+      }
+    }
+  }
+  return false;
+}
+
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
                                       std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels,
                                       std::shared_ptr<const std::vector<double>> given_spacing) {
@@ -438,8 +496,8 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // very unevenly sampled tubes: 9 -> 8, and two loops at once, 67 -> 6).
     const bool drop = pinched ? dF == 4 && 2 * after.faces <= before.faces : after.faces < before.faces;
     const bool by_bridges = drop && before.faces >= kMinCutBridges * loops;
-    const bool thin_tube = !by_bridges && !pinched && added && dF == 4 && after.faces == 0 &&
-                           before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
+    const bool thin_shape = !by_bridges && !pinched && added && dF == 4 && after.faces == 0 &&
+                            before.worst >= kThinCutBefore && after.worst <= kThinCutAfter;
     // ... and the loop a thin tube's region closes must be long: noise under a surface makes small
     // tunnels that pass the ratio test, with loops of 3.9-11.3 spacings (noisy armadillo, igea,
     // spot; 21.7 at a noise of 1.4 spacings), while every true thin tube measured (tori, chains and
@@ -470,13 +528,19 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // must leave an even surface, as the thin tube's must: the true ones measured there (sparse
     // chains and linked tori of 600 points, bench/topology_sweep3.py) end at 1.75-2.05, while one
     // closing a slot two spacings wide between a comb's fingers (bench/limbs3.py) ended at 3.41.
+    // And on an even sample neither rule keeps a closing that folds where it meets the surface
+    // around it (folds_at_seam): a bridge across a slot that ends even looks like a sparse tube's
+    // closing by every other measure here.
     const auto even_sample = [&] {
       if (*uneven < 0) *uneven = surface_ratio_quantile(b, spacing, 0.9);
       return *uneven < kUnevenSample;
     };
-    const bool noisy_tube = !by_bridges && !thin_tube && !pinched && added && dF == 4 &&
-                            (after.faces == 0 || after.faces < before.faces) &&
-                            after.worst <= kNoisyDrop * before.worst && (after.worst <= kThinCutAfter || !even_sample());
+    const bool noisy_shape = !by_bridges && !thin_shape && !pinched && added && dF == 4 &&
+                             (after.faces == 0 || after.faces < before.faces) && after.worst <= kNoisyDrop * before.worst;
+    const bool even_and_smooth = (thin_shape || noisy_shape) && even_sample() && after.worst <= kThinCutAfter &&
+                                 !folds_at_seam(b, sorted);
+    const bool thin_tube = thin_shape && (even_and_smooth || !even_sample());
+    const bool noisy_tube = noisy_shape && (even_and_smooth || !even_sample());
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
     // A closing region that closes several loops across a wall of long faces, one of them short,
