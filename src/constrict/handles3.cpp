@@ -530,7 +530,10 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     // closing a slot two spacings wide between a comb's fingers (bench/limbs3.py) ended at 3.41.
     // And on an even sample neither rule keeps a closing that folds where it meets the surface
     // around it (folds_at_seam): a bridge across a slot that ends even looks like a sparse tube's
-    // closing by every other measure here.
+    // closing by every other measure here. Nor does the thin-tube rule on any sample (its
+    // closings end even; no true one measured on an uneven sample folds, while three bridges
+    // between limbs of uniformly random points did). The noisy-tube rule on an uneven sample
+    // does not ask: a true closing on a noisy chain bent 140 degrees at its seam.
     const auto even_sample = [&] {
       if (*uneven < 0) *uneven = surface_ratio_quantile(b, spacing, 0.9);
       return *uneven < kUnevenSample;
@@ -539,7 +542,7 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
                              (after.faces == 0 || after.faces < before.faces) && after.worst <= kNoisyDrop * before.worst;
     const bool even_and_smooth = (thin_shape || noisy_shape) && even_sample() && after.worst <= kThinCutAfter &&
                                  !folds_at_seam(b, sorted);
-    const bool thin_tube = thin_shape && (even_and_smooth || !even_sample());
+    const bool thin_tube = thin_shape && (even_and_smooth || (!even_sample() && !folds_at_seam(b, sorted)));
     const bool noisy_tube = noisy_shape && (even_and_smooth || !even_sample());
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
