@@ -339,8 +339,6 @@ bool loop_through_inside(const Body3& b, const std::vector<int>& changed, const 
   return met;
 }
 
-}  // namespace
-
 // The outward normal (not normalised) of the triangle abc of a body tetrahedron whose fourth
 // vertex is `inner`.
 std::array<double, 3> outward_normal(const Body3& b, int a, int c, int d, int inner) {
@@ -398,6 +396,8 @@ bool folds_at_seam(const Body3& b, const std::vector<int>& sorted_changed) {
   }
   return false;
 }
+
+}  // namespace
 
 HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>* part_of,
                                       std::shared_ptr<std::vector<Handle3Change>> log, const Labels3* labels,
@@ -540,10 +540,11 @@ HandleDecision bridge_handle_decision(const Body3& body, const std::vector<int>*
     };
     const bool noisy_shape = !by_bridges && !thin_shape && !pinched && added && dF == 4 &&
                              (after.faces == 0 || after.faces < before.faces) && after.worst <= kNoisyDrop * before.worst;
-    const bool even_and_smooth = (thin_shape || noisy_shape) && even_sample() && after.worst <= kThinCutAfter &&
-                                 !folds_at_seam(b, sorted);
-    const bool thin_tube = thin_shape && (even_and_smooth || (!even_sample() && !folds_at_seam(b, sorted)));
-    const bool noisy_tube = noisy_shape && (even_and_smooth || !even_sample());
+    const bool weak_even = (thin_shape || noisy_shape) && even_sample();
+    const bool ask_fold = thin_shape || (noisy_shape && weak_even && after.worst <= kThinCutAfter);
+    const bool folds = ask_fold && folds_at_seam(b, sorted);
+    const bool thin_tube = thin_shape && !folds;  // (it ends even: after.worst <= kThinCutAfter)
+    const bool noisy_tube = noisy_shape && (!weak_even || (after.worst <= kThinCutAfter && !folds));
     const bool need_loop = thin_tube || noisy_tube || (by_bridges && pinched) || (by_bridges && dF >= 8);
     const double min_loop = noisy_tube ? kNoisyLoopMin : kThinLoopMin;
     // A closing region that closes several loops across a wall of long faces, one of them short,

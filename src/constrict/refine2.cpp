@@ -593,16 +593,9 @@ class Refiner {
   // Or-opt: move a segment of 1-kMaxSegment points that starts at a (in either direction) between
   // two adjacent polygon vertices c, c2, with c a Delaunay neighbour of a segment end.
   template <bool kDry> bool try_or_opt(int a) {
-    for (const bool fwd : {true, false}) {
-      std::array<int, kMaxSegment> s;
-      s.fill(-1);
-      s[0] = a;
-      for (int len = 1; len <= kMaxSegment; ++len) {
-        if (n_ < static_cast<std::size_t>(len) + 3) break;
-        if (len > 1) s[U(len - 1)] = step(s[U(len - 2)], fwd);
-        if (or_opt_segment<kDry>(s, len, fwd)) return true;
-      }
-    }
+    for (const bool fwd : {true, false})
+      if (for_each_segment(a, fwd, [&](const Segment& s, int len) { return or_opt_segment<kDry>(s, len, fwd); }))
+        return true;
     return false;
   }
   // The first sweep's Or-opt test from every position at once: bit len - 1 of the result says
@@ -614,20 +607,30 @@ class Refiner {
   std::uint8_t or_opt_forward_bits(int a) {
     static_assert(kMaxSegment <= 8, "one bit per segment length");
     std::uint8_t bits = 0;
-    std::array<int, kMaxSegment> s;
+    for_each_segment(a, true, [&](const Segment& s, int len) {
+      if (or_opt_segment<true>(s, len, true)) bits = static_cast<std::uint8_t>(bits | (1u << (len - 1)));
+      return false;
+    });
+    return bits;
+  }
+  // Calls f(s, len) for the segments of 1 to kMaxSegment points from a in direction fwd (s[0] = a,
+  // each next point one step on; at most N - 3 points) until f returns true; true if it did.
+  using Segment = std::array<int, kMaxSegment>;
+  template <class F> bool for_each_segment(int a, bool fwd, F&& f) {
+    Segment s;
     s.fill(-1);
     s[0] = a;
     for (int len = 1; len <= kMaxSegment; ++len) {
       if (n_ < static_cast<std::size_t>(len) + 3) break;
-      if (len > 1) s[U(len - 1)] = step(s[U(len - 2)], true);
-      if (or_opt_segment<true>(s, len, true)) bits = static_cast<std::uint8_t>(bits | (1u << (len - 1)));
+      if (len > 1) s[U(len - 1)] = step(s[U(len - 2)], fwd);
+      if (f(static_cast<const Segment&>(s), len)) return true;
     }
-    return bits;
+    return false;
   }
   // The Or-opt moves of the segment s[0 .. len) (s[0] = a, each next point one step in direction
   // fwd): the first shortening one that keeps the polygon simple is applied (kDry: the first
   // shortening one is reported, simplicity not tested).
-  template <bool kDry> bool or_opt_segment(const std::array<int, kMaxSegment>& s, int len, bool fwd) {
+  template <bool kDry> bool or_opt_segment(const Segment& s, int len, bool fwd) {
     const int a = s[0], last = s[U(len - 1)];
     const int p = step(a, !fwd), q = step(last, fwd);
     const auto in_seg = [&](int v) { return std::find(s.begin(), s.begin() + len, v) != s.begin() + len; };
